@@ -1,0 +1,35 @@
+//! fc3d: solvers for the discrete 3D frictional contact problem FC(W, q, mu) in Delassus form,
+//!
+//! find `r, u` in R^{3 nc} with `u = W r + q` and, for every contact `c`,
+//! `K*_c ∋ u_c + mu_c ||u_{T,c}|| e_N ⟂ r_c ∈ K_c` (Signorini contact with exact Coulomb friction),
+//! where `K_c = { r : ||r_T|| <= mu_c r_N }` is the Coulomb cone.
+//!
+//! The crate is a pure-Rust core (this module tree, no FFI types) plus a thin C layer in [`capi`]
+//! that reproduces the fc3d part of the Siconos Numerics 4.4 ABI.
+//!
+//! Entry points: build a [`FrictionProblem`] from a [`Delassus`] operator, `q` and `mu`, pick a
+//! [`SolverConfig`], call [`solve`]. Every [`SolveReport`] carries the error measured on the returned
+//! `(r, u)` with [`natural_map_error`], never the tolerance that was asked for.
+
+pub mod capi;
+pub mod cone;
+pub mod error;
+pub mod io;
+pub mod linalg;
+pub mod local;
+pub mod matrix;
+pub mod measure;
+pub mod nsgs;
+pub mod options;
+pub mod problem;
+pub mod report;
+pub mod scenes;
+pub mod solver;
+
+pub use error::Fc3dError;
+pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
+pub use measure::{natural_map_error, ErrorMeasure};
+pub use options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOptions, RhoRule};
+pub use problem::FrictionProblem;
+pub use report::{SolveReport, SolveStatus};
+pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};

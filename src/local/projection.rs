@@ -1,0 +1,126 @@
+//! Projection-type local solvers: one step on the cone (SBP / FP-DS-One), iterated steps with a
+//! self-adaptive rho, and one augmented-Lagrangian step on the cylinder (SAL).
+
+use super::{local_rho, LocalOutcome, LocalProblem, LocalSolver};
+use crate::cone::{modified_velocity, project_on_cone, project_on_cylinder};
+use crate::linalg::{norm3, sub3, Vec3};
+use crate::options::{LocalSolverOptions, RhoRule};
+
+/// `rho = 1 / W_NN` (with the degenerate-block fallback of [`local_rho`]).
+#[inline]
+fn normal_rho(p: &LocalProblem<'_>) -> f64 {
+    local_rho(p.w, RhoRule::SplitSpectralNorm).0
+}
+
+/// One step `r <- P_K(r - rho ũ(r))`, with ũ the De Saxcé velocity.
+#[inline]
+fn cone_step(p: &LocalProblem<'_>, r: &Vec3, rho: f64) -> Vec3 {
+    let ut = modified_velocity(&p.velocity(r), p.mu);
+    project_on_cone(
+        &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
+        p.mu,
+    )
+}
+
+/// [552] Dumont's SBP: a single projection step on the Coulomb cone along the De Saxcé
+/// direction, rho = 1 / W_NN. Reports convergence when the step left r unchanged.
+pub struct ProjectionOnCone;
+
+impl LocalSolver for ProjectionOnCone {
+    #[inline]
+    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
+        let next = cone_step(p, r, normal_rho(p));
+        let converged = next == *r;
+        *r = next;
+        LocalOutcome {
+            converged,
+            iterations: 1,
+        }
+    }
+}
+
+/// [557] Dumont's SAL: one augmented-Lagrangian step,
+/// `r_N <- (r_N - rho u_N)_+`, `r_T <- P_{B(0, mu r_N)}(r_T - rho u_T)` with the new `r_N`.
+pub struct ProjectionOnCylinder;
+
+impl LocalSolver for ProjectionOnCylinder {
+    #[inline]
+    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
+        let rho = normal_rho(p);
+        let u = p.velocity(r);
+        let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
+        let next = project_on_cylinder(&tau, p.mu * tau[0].max(0.0));
+        let converged = next == *r;
+        *r = next;
+        LocalOutcome {
+            converged,
+            iterations: 1,
+        }
+    }
+}
+
+/// [553] Projection steps on the cone until the natural-map residual of the contact is below
+/// the local tolerance, with a self-adaptive rho (the UPK-type rule of the VI solvers:
+/// shrink by `NU` when `rho ||ũ(r+) - ũ(r)|| > L ||r+ - r||`, grow when below `LMIN`).
+pub struct ProjectionOnConeWithLocalIteration {
+    tolerance: f64,
+    max_iter: usize,
+}
+
+const NU: f64 = 2.0 / 3.0;
+const L: f64 = 0.9;
+const LMIN: f64 = 0.3;
+
+impl ProjectionOnConeWithLocalIteration {
+    pub fn new(options: &LocalSolverOptions) -> Self {
+        ProjectionOnConeWithLocalIteration {
+            tolerance: options.tolerance,
+            max_iter: options.max_iter,
+        }
+    }
+}
+
+impl LocalSolver for ProjectionOnConeWithLocalIteration {
+    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
+        let mut rho = normal_rho(p);
+        let mut ut = modified_velocity(&p.velocity(r), p.mu);
+        for it in 0..self.max_iter {
+            let next = project_on_cone(
+                &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
+                p.mu,
+            );
+            let step = norm3(&sub3(&next, r));
+            if step == 0.0 {
+                return LocalOutcome {
+                    converged: true,
+                    iterations: it,
+                };
+            }
+            let ut_next = modified_velocity(&p.velocity(&next), p.mu);
+            let ratio = rho * norm3(&sub3(&ut_next, &ut)) / step;
+            if ratio > L && rho > f64::MIN_POSITIVE {
+                rho *= NU;
+                continue;
+            }
+            *r = next;
+            ut = ut_next;
+            if ratio < LMIN {
+                rho /= NU;
+            }
+            let res = {
+                let pr = project_on_cone(&[r[0] - ut[0], r[1] - ut[1], r[2] - ut[2]], p.mu);
+                norm3(&sub3(r, &pr))
+            };
+            if res <= self.tolerance * p.scale(r) {
+                return LocalOutcome {
+                    converged: true,
+                    iterations: it + 1,
+                };
+            }
+        }
+        LocalOutcome {
+            converged: p.residual(r) <= self.tolerance * p.scale(r),
+            iterations: self.max_iter,
+        }
+    }
+}

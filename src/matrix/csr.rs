@@ -1,0 +1,205 @@
+use crate::error::{check_finite, Fc3dError};
+
+/// General sparse matrix in compressed sparse row form, column indices sorted within each row and
+/// free of duplicates (constructors sort and sum).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsrMatrix {
+    nrows: usize,
+    ncols: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl CsrMatrix {
+    /// From triplets `(row, col, value)`, in any order; duplicates are summed.
+    pub fn from_triplets(
+        nrows: usize,
+        ncols: usize,
+        triplets: &[(usize, usize, f64)],
+    ) -> Result<Self, Fc3dError> {
+        for (k, &(i, j, v)) in triplets.iter().enumerate() {
+            if i >= nrows || j >= ncols {
+                return Err(Fc3dError::InvalidStructure(format!(
+                    "entry {k} at ({i}, {j}) is outside a {nrows}x{ncols} matrix"
+                )));
+            }
+            if !v.is_finite() {
+                return Err(Fc3dError::NonFinite {
+                    what: "W".into(),
+                    index: k,
+                });
+            }
+        }
+        let mut order: Vec<usize> = (0..triplets.len()).collect();
+        order.sort_by_key(|&k| (triplets[k].0, triplets[k].1));
+        let mut row_ptr = vec![0usize; nrows + 1];
+        let mut col_idx = Vec::with_capacity(triplets.len());
+        let mut values: Vec<f64> = Vec::with_capacity(triplets.len());
+        let mut last: Option<(usize, usize)> = None;
+        for k in order {
+            let (i, j, v) = triplets[k];
+            if last == Some((i, j)) {
+                *values.last_mut().expect("a previous entry exists") += v;
+            } else {
+                col_idx.push(j);
+                values.push(v);
+                row_ptr[i + 1] += 1;
+                last = Some((i, j));
+            }
+        }
+        for i in 0..nrows {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        Ok(CsrMatrix {
+            nrows,
+            ncols,
+            row_ptr,
+            col_idx,
+            values,
+        })
+    }
+
+    /// From compressed rows. Unsorted columns and duplicates are accepted (sorted, summed).
+    pub fn from_csr(
+        nrows: usize,
+        ncols: usize,
+        row_ptr: &[usize],
+        col_idx: &[usize],
+        values: &[f64],
+    ) -> Result<Self, Fc3dError> {
+        let triplets = compressed_to_triplets(nrows, row_ptr, col_idx, values, "row")?;
+        Self::from_triplets(nrows, ncols, &triplets)
+    }
+
+    /// From compressed columns (CSparse's native form). Unsorted rows and duplicates are accepted.
+    pub fn from_csc(
+        nrows: usize,
+        ncols: usize,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+    ) -> Result<Self, Fc3dError> {
+        let transposed = compressed_to_triplets(ncols, col_ptr, row_idx, values, "column")?;
+        let triplets: Vec<_> = transposed.into_iter().map(|(j, i, v)| (i, j, v)).collect();
+        Self::from_triplets(nrows, ncols, &triplets)
+    }
+
+    pub fn nrows(&self) -> usize {
+        self.nrows
+    }
+    pub fn ncols(&self) -> usize {
+        self.ncols
+    }
+    pub fn nnz(&self) -> usize {
+        self.values.len()
+    }
+    pub fn row_ptr(&self) -> &[usize] {
+        &self.row_ptr
+    }
+    pub fn col_idx(&self) -> &[usize] {
+        &self.col_idx
+    }
+    pub fn values(&self) -> &[f64] {
+        &self.values
+    }
+
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        let cols = &self.col_idx[self.row_ptr[i]..self.row_ptr[i + 1]];
+        match cols.binary_search(&j) {
+            Ok(k) => self.values[self.row_ptr[i] + k],
+            Err(_) => 0.0,
+        }
+    }
+
+    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+        for (i, yi) in y.iter_mut().enumerate().take(self.nrows) {
+            let mut s = 0.0;
+            for k in self.row_ptr[i]..self.row_ptr[i + 1] {
+                s += self.values[k] * x[self.col_idx[k]];
+            }
+            *yi += s;
+        }
+    }
+
+    pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
+        for i in 0..self.nrows {
+            for k in self.row_ptr[i]..self.row_ptr[i + 1] {
+                f(i, self.col_idx[k], self.values[k]);
+            }
+        }
+    }
+}
+
+/// Expands a compressed (row or column) structure into `(outer, inner, value)` triplets, checking
+/// the pointer array and the index ranges.
+fn compressed_to_triplets(
+    n_outer: usize,
+    ptr: &[usize],
+    idx: &[usize],
+    values: &[f64],
+    outer_name: &str,
+) -> Result<Vec<(usize, usize, f64)>, Fc3dError> {
+    if ptr.len() != n_outer + 1 {
+        return Err(Fc3dError::dims(
+            format!("{outer_name} pointers"),
+            n_outer + 1,
+            ptr.len(),
+        ));
+    }
+    if ptr[0] != 0 || ptr.windows(2).any(|w| w[0] > w[1]) {
+        return Err(Fc3dError::InvalidStructure(format!(
+            "{outer_name} pointers must start at 0 and be non-decreasing"
+        )));
+    }
+    let nnz = ptr[n_outer];
+    if idx.len() < nnz || values.len() < nnz {
+        return Err(Fc3dError::dims(
+            "sparse entries",
+            nnz,
+            idx.len().min(values.len()),
+        ));
+    }
+    check_finite("W", &values[..nnz])?;
+    let mut out = Vec::with_capacity(nnz);
+    for o in 0..n_outer {
+        for k in ptr[o]..ptr[o + 1] {
+            out.push((o, idx[k], values[k]));
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn duplicates_are_summed_and_rows_sorted() {
+        let m =
+            CsrMatrix::from_triplets(2, 3, &[(1, 2, 1.0), (0, 1, 2.0), (1, 0, 3.0), (1, 2, 4.0)])
+                .unwrap();
+        assert_eq!(m.row_ptr(), &[0, 1, 3]);
+        assert_eq!(m.col_idx(), &[1, 0, 2]);
+        assert_eq!(m.values(), &[2.0, 3.0, 5.0]);
+        assert_eq!(m.get(1, 2), 5.0);
+        assert_eq!(m.get(0, 0), 0.0);
+    }
+
+    #[test]
+    fn csc_with_unsorted_rows_equals_triplets() {
+        // 2x2 [[1, 2], [3, 4]] with column 0 rows given in reverse order.
+        let a =
+            CsrMatrix::from_csc(2, 2, &[0, 2, 4], &[1, 0, 0, 1], &[3.0, 1.0, 2.0, 4.0]).unwrap();
+        let b =
+            CsrMatrix::from_triplets(2, 2, &[(0, 0, 1.0), (0, 1, 2.0), (1, 0, 3.0), (1, 1, 4.0)])
+                .unwrap();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn bad_pointers_are_rejected() {
+        assert!(CsrMatrix::from_csr(2, 2, &[0, 2, 1], &[0, 1], &[1.0, 1.0]).is_err());
+        assert!(CsrMatrix::from_csr(2, 2, &[0, 1, 2], &[0, 5], &[1.0, 1.0]).is_err());
+    }
+}

@@ -1,0 +1,152 @@
+//! The Delassus operator W in the three storages a host may hand us, and the block-row form the
+//! Gauss-Seidel sweep works on.
+//!
+//! * [`DenseMatrix`]: column-major, borrowed from the host without a copy when it can be.
+//! * [`BlockSparseMatrix`]: 3x3 blocks in block-CSR order (Siconos' sparse-block storage).
+//! * [`CsrMatrix`]: general sparse; CSC and triplets are converted to it once (sorted, duplicates summed).
+//!
+//! Whatever the storage, [`Delassus::block_rows`] builds the [`BlockRows`] view once per solve:
+//! per contact its diagonal block and the list of non-zero off-diagonal blocks. Zero blocks of a dense
+//! W are dropped there, so a scene that couples few contacts costs what it couples.
+
+mod block_rows;
+mod block_sparse;
+mod csr;
+mod dense;
+
+pub use block_rows::BlockRows;
+pub use block_sparse::BlockSparseMatrix;
+pub use csr::CsrMatrix;
+pub use dense::DenseMatrix;
+
+use crate::error::Fc3dError;
+use crate::linalg::Mat3;
+
+/// The Delassus operator W of a problem, in the storage the host gave.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Delassus<'a> {
+    Dense(DenseMatrix<'a>),
+    SparseBlock(BlockSparseMatrix),
+    Sparse(CsrMatrix),
+}
+
+impl<'a> Delassus<'a> {
+    pub fn nrows(&self) -> usize {
+        match self {
+            Delassus::Dense(m) => m.nrows(),
+            Delassus::SparseBlock(m) => m.nrows(),
+            Delassus::Sparse(m) => m.nrows(),
+        }
+    }
+
+    pub fn ncols(&self) -> usize {
+        match self {
+            Delassus::Dense(m) => m.ncols(),
+            Delassus::SparseBlock(m) => m.ncols(),
+            Delassus::Sparse(m) => m.ncols(),
+        }
+    }
+
+    /// `y <- y + W x`.
+    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+        match self {
+            Delassus::Dense(m) => m.mul_add(x, y),
+            Delassus::SparseBlock(m) => m.mul_add(x, y),
+            Delassus::Sparse(m) => m.mul_add(x, y),
+        }
+    }
+
+    /// `u <- W r + q`.
+    pub fn velocity(&self, r: &[f64], q: &[f64], u: &mut [f64]) {
+        u.copy_from_slice(q);
+        self.mul_add(r, u);
+    }
+
+    /// Entry (i, j), zero where nothing is stored.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        match self {
+            Delassus::Dense(m) => m.get(i, j),
+            Delassus::SparseBlock(m) => m.get(i, j),
+            Delassus::Sparse(m) => m.get(i, j),
+        }
+    }
+
+    /// Calls `f(i, j, value)` for every stored entry (structural zeros of sparse storages skipped,
+    /// every entry of a dense one visited).
+    pub fn for_each_entry(&self, f: impl FnMut(usize, usize, f64)) {
+        match self {
+            Delassus::Dense(m) => m.for_each_entry(f),
+            Delassus::SparseBlock(m) => m.for_each_entry(f),
+            Delassus::Sparse(m) => m.for_each_entry(f),
+        }
+    }
+
+    /// The 3x3 diagonal block of contact `c` (row-major), `None` if a sparse-block W lacks it.
+    pub fn diagonal_block(&self, c: usize) -> Option<Mat3> {
+        match self {
+            Delassus::SparseBlock(m) => m.diagonal_block(c),
+            _ => {
+                let mut b = [[0.0; 3]; 3];
+                for (i, row) in b.iter_mut().enumerate() {
+                    for (j, v) in row.iter_mut().enumerate() {
+                        *v = self.get(3 * c + i, 3 * c + j);
+                    }
+                }
+                Some(b)
+            }
+        }
+    }
+
+    /// The block-row form used by Gauss-Seidel sweeps (built once per solve).
+    pub fn block_rows(&self) -> Result<BlockRows, Fc3dError> {
+        BlockRows::from_delassus(self)
+    }
+
+    /// A dense, owned copy (column-major).
+    pub fn to_dense(&self) -> DenseMatrix<'static> {
+        let (m, n) = (self.nrows(), self.ncols());
+        let mut data = vec![0.0; m * n];
+        self.for_each_entry(|i, j, v| data[i + j * m] += v);
+        DenseMatrix::new(m, n, data).expect("sizes agree by construction")
+    }
+
+    /// A CSR copy (sorted, no duplicates; exact zeros of a dense W are not stored).
+    pub fn to_csr(&self) -> CsrMatrix {
+        let mut triplets = Vec::new();
+        self.for_each_entry(|i, j, v| {
+            if v != 0.0 {
+                triplets.push((i, j, v))
+            }
+        });
+        CsrMatrix::from_triplets(self.nrows(), self.ncols(), &triplets)
+            .expect("indices in range by construction")
+    }
+
+    /// max |W - W^T| / max |W| (0 for a zero matrix): how far W is from symmetric.
+    pub fn relative_asymmetry(&self) -> f64 {
+        let mut amax = 0.0_f64;
+        let mut dmax = 0.0_f64;
+        self.for_each_entry(|i, j, v| {
+            amax = amax.max(v.abs());
+            if i < j {
+                dmax = dmax.max((v - self.get(j, i)).abs());
+            } else if i > j && self.get(j, i) == 0.0 {
+                dmax = dmax.max(v.abs());
+            }
+        });
+        if amax == 0.0 {
+            0.0
+        } else {
+            dmax / amax
+        }
+    }
+
+    /// Short storage name for tables and messages.
+    pub fn storage_name(&self) -> &'static str {
+        match self {
+            Delassus::Dense(_) => "dense",
+            Delassus::SparseBlock(_) => "sparse-block",
+            Delassus::Sparse(_) => "csr",
+        }
+    }
+}

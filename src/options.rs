@@ -1,0 +1,167 @@
+//! Typed solver options with Siconos' defaults. Integer/real parameter arrays exist only at the C
+//! boundary (`capi::options`), which converts them to these types and back.
+
+/// Local (one-contact) solvers usable inside NSGS. Siconos ids in brackets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LocalSolverKind {
+    /// Alart-Curnier nonsmooth Newton, full steps [550 ONECONTACT_NSN].
+    NewtonAlartCurnier,
+    /// Alart-Curnier Newton with Goldstein-Price line search [551 ONECONTACT_NSN_GP].
+    NewtonAlartCurnierGp,
+    /// Newton-GP, falling back to projection with local iterations and Newton again
+    /// when Newton does not converge [565 ONECONTACT_NSN_GP_HYBRID, Siconos' default].
+    NewtonHybrid,
+    /// One projection step on the Coulomb cone along the De Saxcé direction: the "FP-DS-One"
+    /// local solver of Acary-Brémond-Huber and Dumont's SBP [552 ProjectionOnCone].
+    ProjectionOnCone,
+    /// Projection steps on the cone with a self-adaptive rho until the local residual is below
+    /// the local tolerance [553 ProjectionOnConeWithLocalIteration].
+    ProjectionOnConeWithLocalIteration,
+    /// One augmented-Lagrangian projection on the cylinder `R+ x B(0, mu r_N)` with the radius
+    /// taken from the new normal reaction: Dumont's SAL [557 ProjectionOnCylinder].
+    ProjectionOnCylinder,
+}
+
+impl LocalSolverKind {
+    /// Siconos id of this local solver.
+    pub fn siconos_id(self) -> i32 {
+        match self {
+            LocalSolverKind::NewtonAlartCurnier => 550,
+            LocalSolverKind::NewtonAlartCurnierGp => 551,
+            LocalSolverKind::NewtonHybrid => 565,
+            LocalSolverKind::ProjectionOnCone => 552,
+            LocalSolverKind::ProjectionOnConeWithLocalIteration => 553,
+            LocalSolverKind::ProjectionOnCylinder => 557,
+        }
+    }
+
+    /// The local solver with Siconos id `id`, if implemented.
+    pub fn from_siconos_id(id: i32) -> Option<Self> {
+        Some(match id {
+            550 => LocalSolverKind::NewtonAlartCurnier,
+            551 => LocalSolverKind::NewtonAlartCurnierGp,
+            565 => LocalSolverKind::NewtonHybrid,
+            552 => LocalSolverKind::ProjectionOnCone,
+            553 => LocalSolverKind::ProjectionOnConeWithLocalIteration,
+            557 => LocalSolverKind::ProjectionOnCylinder,
+            _ => return None,
+        })
+    }
+
+    pub const ALL: [LocalSolverKind; 6] = [
+        LocalSolverKind::NewtonAlartCurnier,
+        LocalSolverKind::NewtonAlartCurnierGp,
+        LocalSolverKind::NewtonHybrid,
+        LocalSolverKind::ProjectionOnCone,
+        LocalSolverKind::ProjectionOnConeWithLocalIteration,
+        LocalSolverKind::ProjectionOnCylinder,
+    ];
+}
+
+/// How the penalty parameters rho (rho_N, rho_T) of a local solver are taken from the diagonal
+/// block `W_cc` of the contact (section 5.4 of Acary-Brémond-Huber).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RhoRule {
+    /// A fixed value for both.
+    Constant(f64),
+    /// (110): `rho_N = rho_T = 1 / lambda_max(W_cc)`.
+    SpectralNorm,
+    /// (111): `rho_N = 1 / W_NN`, `rho_T = 1 / lambda_max(W_TT)`.
+    SplitSpectralNorm,
+    /// (112), corrected: `rho_N = 1 / W_NN`, `rho_T = lambda_min(W_TT) / lambda_max(W_TT)^2`
+    /// (the paper prints `lambda_min(W_NN)`, a scalar, which cannot measure the conditioning of W_TT).
+    SplitSpectralNormCond,
+}
+
+/// Options of a local solver. Defaults per kind are Siconos 4.4's (`solver_options_create(id)`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalSolverOptions {
+    pub kind: LocalSolverKind,
+    /// Local tolerance on the local residual, relative to the local scale.
+    pub tolerance: f64,
+    /// Maximum local iterations.
+    pub max_iter: usize,
+    /// Rule for rho (Newton solvers; projection solvers use `1 / W_NN`).
+    pub rho_rule: RhoRule,
+    /// Maximum trial steps of the Goldstein-Price line search.
+    pub line_search_max_iter: usize,
+    /// Hybrid solver: number of (projection, Newton) rounds after the first Newton.
+    pub hybrid_max_loop: usize,
+    /// Hybrid solver: maximum projection iterations per round.
+    pub hybrid_max_iter: usize,
+}
+
+impl LocalSolverOptions {
+    /// Siconos' defaults for the given local solver.
+    pub fn new(kind: LocalSolverKind) -> Self {
+        use LocalSolverKind::*;
+        let (tolerance, max_iter, rho_rule) = match kind {
+            NewtonAlartCurnier => (1e-14, 10, RhoRule::SplitSpectralNormCond),
+            NewtonAlartCurnierGp | NewtonHybrid => (1e-14, 10, RhoRule::SplitSpectralNorm),
+            ProjectionOnCone | ProjectionOnConeWithLocalIteration | ProjectionOnCylinder => {
+                (1e-14, 1000, RhoRule::SplitSpectralNorm)
+            }
+        };
+        LocalSolverOptions {
+            kind,
+            tolerance,
+            max_iter,
+            rho_rule,
+            line_search_max_iter: 10,
+            hybrid_max_loop: 1,
+            hybrid_max_iter: 100,
+        }
+    }
+}
+
+impl Default for LocalSolverOptions {
+    fn default() -> Self {
+        LocalSolverOptions::new(LocalSolverKind::NewtonHybrid)
+    }
+}
+
+/// When NSGS evaluates the error it tests for convergence (Siconos iparam[7]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ErrorEvaluation {
+    /// The full natural-map error after every sweep (one extra W r product per sweep).
+    Full,
+    /// Only the cheap increment error (134); the returned error is still the full one.
+    Light,
+    /// Cheap error each sweep; when it passes, confirm with the full error and tighten the cheap
+    /// tolerance if the full one does not pass (Siconos' default).
+    LightWithFullFinal,
+}
+
+/// Options of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NsgsOptions {
+    /// Maximum number of sweeps (default 1000).
+    pub max_iter: usize,
+    /// Tolerance on the natural-map error (default 1e-4).
+    pub tolerance: f64,
+    /// Error evaluation strategy (default [`ErrorEvaluation::LightWithFullFinal`]).
+    pub error_evaluation: ErrorEvaluation,
+    /// The one-contact solver and its options (default [`LocalSolverKind::NewtonHybrid`]).
+    pub local: LocalSolverOptions,
+}
+
+impl Default for NsgsOptions {
+    fn default() -> Self {
+        NsgsOptions {
+            max_iter: 1000,
+            tolerance: 1e-4,
+            error_evaluation: ErrorEvaluation::LightWithFullFinal,
+            local: LocalSolverOptions::default(),
+        }
+    }
+}
+
+impl NsgsOptions {
+    /// Default options with another local solver.
+    pub fn with_local(kind: LocalSolverKind) -> Self {
+        NsgsOptions {
+            local: LocalSolverOptions::new(kind),
+            ..Default::default()
+        }
+    }
+}

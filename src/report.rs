@@ -1,0 +1,36 @@
+//! What a solve returns.
+
+/// Why a solver stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SolveStatus {
+    /// The natural-map error of the returned `(r, u)` is at or below the tolerance.
+    Converged,
+    /// The iteration limit was reached first; the returned error is above the tolerance.
+    MaxIterationsReached,
+}
+
+impl SolveStatus {
+    /// Siconos' `info`: 0 converged, 1 not.
+    pub fn info_code(self) -> i32 {
+        match self {
+            SolveStatus::Converged => 0,
+            SolveStatus::MaxIterationsReached => 1,
+        }
+    }
+}
+
+/// Outcome of a solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolveReport {
+    pub status: SolveStatus,
+    /// Iterations (sweeps for NSGS) done.
+    pub iterations: usize,
+    /// Relative natural-map error of the returned `(r, u)`, recomputed after the solver stopped.
+    pub error: f64,
+}
+
+impl SolveReport {
+    pub fn converged(&self) -> bool {
+        self.status == SolveStatus::Converged
+    }
+}

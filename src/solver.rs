@@ -1,0 +1,146 @@
+//! One entry point for every solver family: input checks shared by all of them, the trivial-case
+//! shortcut, dispatch, and the final independent error measurement.
+
+use crate::error::{check_finite, Fc3dError};
+use crate::measure::natural_map_error;
+use crate::nsgs;
+use crate::options::NsgsOptions;
+use crate::problem::FrictionProblem;
+use crate::report::{SolveReport, SolveStatus};
+
+/// Which solver to run, with its typed options.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SolverConfig {
+    /// Nonsmooth Gauss-Seidel (Siconos id 500).
+    Nsgs(NsgsOptions),
+}
+
+impl SolverConfig {
+    pub fn tolerance(&self) -> f64 {
+        match self {
+            SolverConfig::Nsgs(o) => o.tolerance,
+        }
+    }
+
+    pub fn max_iter(&self) -> usize {
+        match self {
+            SolverConfig::Nsgs(o) => o.max_iter,
+        }
+    }
+
+    /// Siconos id of the solver.
+    pub fn siconos_id(&self) -> i32 {
+        match self {
+            SolverConfig::Nsgs(_) => 500,
+        }
+    }
+
+    /// Short human-readable name, e.g. `NSGS-565`.
+    pub fn label(&self) -> String {
+        match self {
+            SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
+        }
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        let tol = self.tolerance();
+        if !(tol >= 0.0) || !tol.is_finite() {
+            return Err(Fc3dError::InvalidOption(format!(
+                "tolerance must be finite and >= 0, got {tol}"
+            )));
+        }
+        match self {
+            SolverConfig::Nsgs(o) => {
+                let lt = o.local.tolerance;
+                if !(lt >= 0.0) || !lt.is_finite() {
+                    return Err(Fc3dError::InvalidOption(format!(
+                        "local tolerance must be finite and >= 0, got {lt}"
+                    )));
+                }
+                if let crate::options::RhoRule::Constant(rho) = o.local.rho_rule {
+                    if !(rho > 0.0) || !rho.is_finite() {
+                        return Err(Fc3dError::InvalidOption(format!(
+                            "constant rho must be finite and > 0, got {rho}"
+                        )));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Progress of an iterative solver, handed to an observer after every iteration.
+#[derive(Debug, Clone, Copy)]
+pub struct IterationEvent<'a> {
+    pub iteration: usize,
+    pub reaction: &'a [f64],
+    /// The error the solver tested at this iteration (cheap or full, as configured).
+    pub error: f64,
+}
+
+/// Solves `problem` from the initial guess in `r`; on success `r` and `u = W r + q` hold the
+/// result and the report holds the error measured on them.
+///
+/// On `Err`, `r` and `u` are left untouched.
+pub fn solve(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+) -> Result<SolveReport, Fc3dError> {
+    solve_with_observer(problem, config, r, u, &mut |_| {})
+}
+
+/// [`solve`] with an observer called after every iteration (the C `Callback`).
+pub fn solve_with_observer(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut dyn FnMut(&IterationEvent<'_>),
+) -> Result<SolveReport, Fc3dError> {
+    let n = problem.size();
+    if r.len() != n {
+        return Err(Fc3dError::dims("reaction", n, r.len()));
+    }
+    if u.len() != n {
+        return Err(Fc3dError::dims("velocity", n, u.len()));
+    }
+    check_finite("initial reaction", r)?;
+    config.validate()?;
+
+    // Trivial case (Siconos): no contact is pushed into penetration by q, so r = 0, u = q.
+    if problem.q().chunks_exact(3).all(|qc| qc[0] >= -f64::EPSILON) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        let error = natural_map_error(problem, r, u);
+        let status = if error <= config.tolerance() {
+            SolveStatus::Converged
+        } else {
+            SolveStatus::MaxIterationsReached
+        };
+        return Ok(SolveReport {
+            status,
+            iterations: 0,
+            error,
+        });
+    }
+
+    let iterations = match config {
+        SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
+    };
+
+    // The reported error is always measured here, on the returned (r, u), whatever the solver's
+    // own stopping test was.
+    let error = natural_map_error(problem, r, u);
+    let status = if error <= config.tolerance() {
+        SolveStatus::Converged
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    Ok(SolveReport {
+        status,
+        iterations,
+        error,
+    })
+}
