@@ -1,0 +1,7 @@
+/* fc3d compatibility header: stands in for Siconos Numerics 4.4's FrictionContactProblem.h.
+   Compile a Siconos fc3d host with -I<this directory> and link with -lfc3d. */
+#ifndef FC3D_COMPAT_FRICTIONCONTACTPROBLEM_H
+#define FC3D_COMPAT_FRICTIONCONTACTPROBLEM_H
+#include "../fc3d.h"
+#include "NumericsMatrix.h"
+#endif

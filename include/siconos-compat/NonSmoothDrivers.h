@@ -1,0 +1,8 @@
+/* fc3d compatibility header: stands in for Siconos Numerics 4.4's NonSmoothDrivers.h.
+   Compile a Siconos fc3d host with -I<this directory> and link with -lfc3d. */
+#ifndef FC3D_COMPAT_NONSMOOTHDRIVERS_H
+#define FC3D_COMPAT_NONSMOOTHDRIVERS_H
+#include "../fc3d.h"
+#include "FrictionContactProblem.h"
+#include "SolverOptions.h"
+#endif
