@@ -122,6 +122,41 @@ impl<'a> Delassus<'a> {
             .expect("indices in range by construction")
     }
 
+    /// A sparse-block copy (3x3 blocks) holding every block with a non-zero entry and every
+    /// diagonal block. W must be square with a size divisible by 3.
+    pub fn to_block_sparse(&self) -> Result<BlockSparseMatrix, Fc3dError> {
+        let n = self.nrows();
+        if n != self.ncols() || n % 3 != 0 {
+            return Err(Fc3dError::InvalidStructure(format!(
+                "a 3x3-block copy needs a square W with a size divisible by 3, got {}x{}",
+                self.nrows(),
+                self.ncols()
+            )));
+        }
+        let nc = n / 3;
+        let mut map = std::collections::BTreeMap::<(usize, usize), [f64; 9]>::new();
+        for c in 0..nc {
+            map.insert((c, c), [0.0; 9]);
+        }
+        self.for_each_entry(|i, j, v| {
+            if v != 0.0 {
+                map.entry((i / 3, j / 3)).or_insert([0.0; 9])[i % 3 + 3 * (j % 3)] += v;
+            }
+        });
+        let mut row_ptr = vec![0usize; nc + 1];
+        let mut col_idx = Vec::with_capacity(map.len());
+        let mut blocks = Vec::with_capacity(map.len());
+        for ((bi, bj), b) in map {
+            row_ptr[bi + 1] += 1;
+            col_idx.push(bj);
+            blocks.push(b);
+        }
+        for i in 0..nc {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
+    }
+
     /// max |W - W^T| / max |W| (0 for a zero matrix): how far W is from symmetric.
     pub fn relative_asymmetry(&self) -> f64 {
         let mut amax = 0.0_f64;

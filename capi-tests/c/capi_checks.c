@@ -1,0 +1,610 @@
+/* C-side checks of the fc3d C API, written as a Siconos host would write them: only the
+ * Siconos-named compat headers are included. Each check returns 0 on success and prints what
+ * failed otherwise. Called from the Rust tests in ../tests and from ownership_main.c (valgrind). */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "SiconosNumerics.h"
+#include "FrictionContactProblem.h"
+#include "NumericsMatrix.h"
+#include "SolverOptions.h"
+#include "Friction_cst.h"
+#include "fc3d_Solvers.h"
+#include "fc3d_compute_error.h"
+#include "NonSmoothDrivers.h"
+#include "SparseBlockMatrix.h"
+#include "numerics_verbose.h"
+
+#define FAIL(...)                                                                  \
+  do {                                                                             \
+    fprintf(stderr, "%s:%d: ", __FILE__, __LINE__);                                \
+    fprintf(stderr, __VA_ARGS__);                                                  \
+    fprintf(stderr, " [last fc3d error: %s]\n", fc3d_last_error_message());        \
+    return 1;                                                                      \
+  } while (0)
+
+#define CHECK(cond, ...)                                                           \
+  do {                                                                             \
+    if (!(cond)) FAIL(__VA_ARGS__);                                                \
+  } while (0)
+
+typedef struct {
+  int info;
+  int iterations;
+  double reported_error;
+  double api_error;
+  double independent_error;
+  int storage;
+} CSolveResult;
+
+static double norm2(const double* x, int n) {
+  double s = 0.0;
+  for (int i = 0; i < n; i++) s += x[i] * x[i];
+  return sqrt(s);
+}
+
+/* Plain-C natural-map error of (r, u = W r + q), Siconos' normalisation, with W as a dense
+ * column-major array: nothing of fc3d is used. */
+static double independent_error(const double* W, const double* q, const double* mu, const double* r,
+                                 int nc, double* u) {
+  int n = 3 * nc;
+  for (int i = 0; i < n; i++) {
+    double s = q[i];
+    for (int j = 0; j < n; j++) s += W[i + (size_t)j * n] * r[j];
+    u[i] = s;
+  }
+  double sum = 0.0;
+  for (int c = 0; c < nc; c++) {
+    const double* rc = r + 3 * c;
+    const double* uc = u + 3 * c;
+    double m = mu[c];
+    double ut = hypot(uc[1], uc[2]);
+    double x[3] = {rc[0] - (uc[0] + m * ut), rc[1] - uc[1], rc[2] - uc[2]};
+    double xt = hypot(x[1], x[2]);
+    double p[3];
+    if (xt <= m * x[0]) {
+      p[0] = x[0]; p[1] = x[1]; p[2] = x[2];
+    } else if (m * xt <= -x[0]) {
+      p[0] = p[1] = p[2] = 0.0;
+    } else {
+      double pn = (x[0] + m * xt) / (1.0 + m * m);
+      p[0] = pn; p[1] = m * pn * x[1] / xt; p[2] = m * pn * x[2] / xt;
+    }
+    for (int k = 0; k < 3; k++) sum += (rc[k] - p[k]) * (rc[k] - p[k]);
+  }
+  double scale = fmax(norm2(q, n), fmax(norm2(r, n), norm2(u, n)));
+  if (scale == 0.0) scale = 1.0;
+  return sqrt(sum) / scale;
+}
+
+/* ---- building W in each storage from a dense copy ------------------------------------------ */
+
+static NumericsMatrix* dense_matrix(const double* W, int n) {
+  NumericsMatrix* M = NM_create(NM_DENSE, n, n);
+  memcpy(M->matrix0, W, sizeof(double) * (size_t)n * n);
+  return M;
+}
+
+static NumericsMatrix* csr_matrix(const double* W, int n) {
+  size_t nnz = 0;
+  for (size_t k = 0; k < (size_t)n * n; k++) nnz += W[k] != 0.0;
+  CSparseMatrix* A = malloc(sizeof(CSparseMatrix));
+  A->nzmax = (CS_INT)nnz;
+  A->n = n; /* Siconos' CSR convention: n rows, m columns */
+  A->m = n;
+  A->nz = -2;
+  A->p = malloc(sizeof(CS_INT) * (size_t)(n + 1));
+  A->i = malloc(sizeof(CS_INT) * (nnz ? nnz : 1));
+  A->x = malloc(sizeof(double) * (nnz ? nnz : 1));
+  size_t k = 0;
+  for (int i = 0; i < n; i++) {
+    A->p[i] = (CS_INT)k;
+    for (int j = 0; j < n; j++) {
+      double v = W[i + (size_t)j * n];
+      if (v != 0.0) { A->i[k] = j; A->x[k] = v; k++; }
+    }
+  }
+  A->p[n] = (CS_INT)k;
+  NumericsSparseMatrix* S = calloc(1, sizeof(NumericsSparseMatrix));
+  S->csr = A;
+  S->origin = NSM_CSR;
+  return NM_create_from_data(NM_SPARSE, n, n, S);
+}
+
+/* Sparse-block W built the way LMGC-like hosts do: coordinate blocks, then SBCM_to_SBM.
+ * The block values stay in *values_out, to be freed by the caller after SBM_free_from_SBCM. */
+typedef struct {
+  NumericsMatrix* M;
+  SparseBlockCoordinateMatrix* coo;
+  double* values;
+  unsigned* rows;
+  unsigned* cols;
+} SbmBuild;
+
+static SbmBuild sbm_matrix(const double* W, int nc) {
+  int n = 3 * nc;
+  SbmBuild b = {0};
+  unsigned nb = 0;
+  b.values = malloc(sizeof(double) * 9 * (size_t)nc * nc);
+  b.rows = malloc(sizeof(unsigned) * (size_t)nc * nc);
+  b.cols = malloc(sizeof(unsigned) * (size_t)nc * nc);
+  for (int bj = nc - 1; bj >= 0; bj--) /* reverse order: SBCM_to_SBM must sort */
+    for (int bi = 0; bi < nc; bi++) {
+      int nonzero = (bi == bj);
+      double blk[9];
+      for (int c = 0; c < 3; c++)
+        for (int r = 0; r < 3; r++) {
+          blk[r + 3 * c] = W[(3 * bi + r) + (size_t)(3 * bj + c) * n];
+          nonzero |= blk[r + 3 * c] != 0.0;
+        }
+      if (!nonzero) continue;
+      memcpy(b.values + 9 * (size_t)nb, blk, sizeof blk);
+      b.rows[nb] = (unsigned)bi + 1;
+      b.cols[nb] = (unsigned)bj + 1;
+      nb++;
+    }
+  b.coo = SBCM_new_3x3((unsigned)nc, (unsigned)nc, nb, b.rows, b.cols, b.values);
+  SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(b.coo);
+  b.M = NM_new_SBM(n, n, sbm);
+  return b;
+}
+
+static void sbm_release(SbmBuild* b) {
+  /* Blocks belong to b->values: detach the SBM before NM_free. */
+  SBM_free_from_SBCM(b->M->matrix1);
+  b->M->matrix1 = NULL;
+  NM_free(b->M);
+  SBCM_free_3x3(b->coo);
+  free(b->values);
+  free(b->rows);
+  free(b->cols);
+}
+
+/* ---- solving a shared problem --------------------------------------------------------------- */
+
+int capi_solve_file(const char* path, int storage, int local_solver, double tolerance, int max_iter,
+                    double* reaction_out, double* velocity_out, int capacity, CSolveResult* result) {
+  FrictionContactProblem* file = frictionContact_new_from_filename(path);
+  CHECK(file != NULL, "cannot read %s", path);
+  int nc = file->numberOfContacts;
+  int n = 3 * nc;
+  CHECK(n <= capacity, "%s: %d unknowns do not fit %d", path, n, capacity);
+
+  double* W = malloc(sizeof(double) * ((size_t)n * n + 1));
+  for (int j = 0; j < n; j++)
+    for (int i = 0; i < n; i++) W[i + (size_t)j * n] = NM_get_value(file->M, i, j);
+
+  SbmBuild sbm = {0};
+  NumericsMatrix* M = NULL;
+  switch (storage) {
+    case -1: M = file->M; break;
+    case NM_DENSE: M = dense_matrix(W, n); break;
+    case NM_SPARSE_BLOCK: sbm = sbm_matrix(W, nc); M = sbm.M; break;
+    case NM_SPARSE: M = csr_matrix(W, n); break;
+    default: FAIL("unknown storage %d", storage);
+  }
+  /* Hosts fill the problem struct on the stack. */
+  FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
+
+  SolverOptions* options = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  CHECK(options != NULL, "solver_options_create(NSGS)");
+  if (local_solver != 0) solver_options_update_internal(options, 0, local_solver);
+  CHECK(options->internalSolvers[0] != NULL, "update_internal(%d)", local_solver);
+  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+
+  double* r = calloc((size_t)n + 1, sizeof(double));
+  double* u = calloc((size_t)n + 1, sizeof(double));
+  double* w2 = calloc((size_t)n + 1, sizeof(double));
+  double* u3 = calloc((size_t)n + 1, sizeof(double));
+  int info = fc3d_driver(&problem, r, u, options);
+  CHECK(info == 0 || info == 1, "%s: fc3d_driver returned %d", path, info);
+
+  result->info = info;
+  result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  result->reported_error = options->dparam[SICONOS_DPARAM_RESIDU];
+  result->storage = M->storageType;
+  double api_error = -1.0;
+  int e = fc3d_compute_error(&problem, r, w2, tolerance, options, norm2(file->q, n), &api_error);
+  CHECK(e == 0 || e == 1, "fc3d_compute_error returned %d", e);
+  result->api_error = api_error;
+  result->independent_error = independent_error(W, file->q, file->mu, r, nc, u3);
+  memcpy(reaction_out, r, sizeof(double) * (size_t)n);
+  memcpy(velocity_out, u, sizeof(double) * (size_t)n);
+
+  solver_options_delete(options);
+  free(options);
+  if (storage == NM_SPARSE_BLOCK) sbm_release(&sbm);
+  else if (storage != -1) NM_free(M);
+  frictionContactProblem_free(file);
+  free(W); free(r); free(u); free(w2); free(u3);
+  return 0;
+}
+
+/* ---- single contacts with analytic answers -------------------------------------------------- */
+
+static int solve_one(const char* name, int local, double W[9], double q[3], double mu, const double r_exp[3],
+                     const double u_exp[3]) {
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = W; /* host-owned: never freed by fc3d */
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  solver_options_update_internal(o, 0, local);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-14;
+  o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
+  double r[3] = {0, 0, 0}, u[3] = {0, 0, 0};
+  int info = fc3d_driver(&p, r, u, o);
+  double err = o->dparam[SICONOS_DPARAM_RESIDU];
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == 0, "%s with local solver %d: info %d, error %g", name, local, info, err);
+  for (int k = 0; k < 3; k++) {
+    CHECK(fabs(r[k] - r_exp[k]) <= 1e-10, "%s/%d: r[%d] = %.17g, expected %.17g", name, local, k, r[k], r_exp[k]);
+    CHECK(fabs(u[k] - u_exp[k]) <= 1e-10, "%s/%d: u[%d] = %.17g, expected %.17g", name, local, k, u[k], u_exp[k]);
+  }
+  return 0;
+}
+
+int capi_check_single_contacts(void) {
+  int locals[] = {SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID, SICONOS_FRICTION_3D_ONECONTACT_NSN,
+                  SICONOS_FRICTION_3D_ONECONTACT_NSN_GP, SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCone,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnConeWithLocalIteration,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinder};
+  for (size_t k = 0; k < sizeof locals / sizeof locals[0]; k++) {
+    int l = locals[k];
+    double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    { /* take-off: q_N > 0 gives r = 0, u = q */
+      double q[3] = {1, 0.5, 0}, re[3] = {0, 0, 0}, ue[3] = {1, 0.5, 0};
+      if (solve_one("take-off", l, I, q, 0.3, re, ue)) return 1;
+    }
+    { /* stick: ||r_T|| = 0.1 < mu r_N = 0.5 */
+      double q[3] = {-1, 0.1, 0}, re[3] = {1, -0.1, 0}, ue[3] = {0, 0, 0};
+      if (solve_one("stick", l, I, q, 0.5, re, ue)) return 1;
+    }
+    { /* slide: stick would need ||r_T|| = 2 > mu r_N = 0.5; r_T opposes u_T */
+      double q[3] = {-1, 2, 0}, re[3] = {1, -0.5, 0}, ue[3] = {0, 1.5, 0};
+      if (solve_one("slide", l, I, q, 0.5, re, ue)) return 1;
+    }
+    { /* frictionless: r_T = 0 */
+      double q[3] = {-2, 3, -1}, re[3] = {2, 0, 0}, ue[3] = {0, 3, -1};
+      if (solve_one("mu=0", l, I, q, 0.0, re, ue)) return 1;
+    }
+    { /* slide on W = diag(2, 4, 4): r_N = 1, |r_T| = mu r_N = 0.5, u_T = 4 (-0.5) + 3 = 1 */
+      double Wd[9] = {2, 0, 0, 0, 4, 0, 0, 0, 4};
+      double q[3] = {-2, 3, 0}, re[3] = {1, -0.5, 0}, ue[3] = {0, 1, 0};
+      if (solve_one("slide-diag", l, Wd, q, 0.5, re, ue)) return 1;
+    }
+  }
+  return 0;
+}
+
+/* ---- rejected input --------------------------------------------------------------------------- */
+
+#define EXPECT_CODE(call, code)                                                         \
+  do {                                                                                  \
+    fc3d_clear_last_error();                                                            \
+    int got_ = (call);                                                                  \
+    CHECK(got_ == (code), "%s returned %d, expected %d (%s)", #call, got_, code, #code);   \
+    CHECK(strlen(fc3d_last_error_message()) > 0, "%s left no message", #call);          \
+    CHECK(fc3d_last_error_code() == (code), "%s: last error code %d", #call, fc3d_last_error_code()); \
+  } while (0)
+
+static int untouched(const double* x, int n, double sentinel) {
+  for (int i = 0; i < n; i++)
+    if (x[i] != sentinel) return 0;
+  return 1;
+}
+
+int capi_check_bad_input(const char* data_dir) {
+  double W[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double q[3] = {-1, 0.1, 0};
+  double mu = 0.5;
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  double r[3], u[3];
+  const double S = 12345.0;
+  for (int k = 0; k < 3; k++) r[k] = u[k] = S;
+
+  EXPECT_CODE(fc3d_driver(NULL, r, u, o), FC3D_ERR_NULL_POINTER);
+  EXPECT_CODE(fc3d_driver(&p, r, u, NULL), FC3D_ERR_NULL_POINTER);
+  EXPECT_CODE(fc3d_driver(&p, NULL, u, o), FC3D_ERR_NULL_POINTER);
+  EXPECT_CODE(fc3d_driver(&p, r, NULL, o), FC3D_ERR_NULL_POINTER);
+  CHECK(untouched(r, 3, S) && untouched(u, 3, S), "outputs written on failure");
+  CHECK(o->iparam[SICONOS_IPARAM_ITER_DONE] == 0 && isinf(o->dparam[SICONOS_DPARAM_RESIDU]),
+        "iparam[1]/dparam[1] written on failure");
+
+  /* sizes */
+  p.numberOfContacts = -1;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_SIZE);
+  p.numberOfContacts = 2;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_SIZE);
+  p.numberOfContacts = 1;
+  p.dimension = 2;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_PROBLEM);
+  p.dimension = 3;
+  M.size0 = -3;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_SIZE);
+  M.size0 = 3;
+  /* storage */
+  M.storageType = 7;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_STORAGE);
+  M.storageType = NM_SPARSE_BLOCK; /* matrix1 is NULL */
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_NULL_POINTER);
+  M.storageType = NM_DENSE;
+  M.matrix0 = NULL;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_NULL_POINTER);
+  M.matrix0 = W;
+  /* values */
+  q[1] = NAN;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_NON_FINITE);
+  q[1] = 0.1;
+  W[4] = INFINITY;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_NON_FINITE);
+  W[4] = 1.0;
+  mu = -0.1;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_PROBLEM);
+  mu = NAN;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_NON_FINITE);
+  mu = 0.5;
+  CHECK(untouched(r, 3, S) && untouched(u, 3, S), "outputs written on failure");
+
+  /* solver ids and options */
+  CHECK(solver_options_create(9999) == NULL, "solver_options_create(9999) should fail");
+  o->solverId = SICONOS_FRICTION_3D_NSN_AC; /* not implemented yet */
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
+  CHECK(strstr(fc3d_last_error_message(), "FC3D_NSN_AC") != NULL, "message should name the solver: %s",
+        fc3d_last_error_message());
+  o->solverId = SICONOS_FRICTION_3D_NSGS;
+  solver_options_update_internal(o, 0, SICONOS_FRICTION_3D_ONECONTACT_QUARTIC);
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
+  solver_options_update_internal(o, 0, SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID);
+  o->iparam[SICONOS_FRICTION_3D_NSGS_SHUFFLE] = 1;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_OPTION);
+  o->iparam[SICONOS_FRICTION_3D_NSGS_SHUFFLE] = 0;
+  o->dparam[SICONOS_DPARAM_TOL] = NAN;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_OPTION);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-8;
+  o->iparam[SICONOS_IPARAM_MAX_ITER] = -5;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_OPTION);
+  o->iparam[SICONOS_IPARAM_MAX_ITER] = 1000;
+  int isize = o->iSize;
+  o->iSize = 5;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_OPTION);
+  o->iSize = isize;
+  int* ip = o->iparam;
+  o->iparam = NULL;
+  EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_INVALID_OPTION);
+  o->iparam = ip;
+  CHECK(untouched(r, 3, S) && untouched(u, 3, S), "outputs written on failure");
+
+  /* a valid call after all that works and writes outputs */
+  r[0] = r[1] = r[2] = 0.0;
+  int info = fc3d_driver(&p, r, u, o);
+  CHECK(info == 0 && fabs(r[0] - 1.0) < 1e-12, "valid solve failed: info %d r0 %g", info, r[0]);
+
+  /* sparse-block W missing its diagonal block */
+  {
+    double blk[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    unsigned row[1] = {1}, col[1] = {2};
+    double q2[6] = {-1, 0, 0, -1, 0, 0}, mu2[2] = {0.5, 0.5}, r2[6] = {0}, u2[6] = {0};
+    SparseBlockCoordinateMatrix* coo = SBCM_new_3x3(2, 2, 1, row, col, blk);
+    SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(coo);
+    NumericsMatrix Ms = {0};
+    Ms.storageType = NM_SPARSE_BLOCK;
+    Ms.size0 = Ms.size1 = 6;
+    Ms.matrix1 = sbm;
+    FrictionContactProblem p2 = {3, 2, &Ms, q2, mu2};
+    EXPECT_CODE(fc3d_driver(&p2, r2, u2, o), FC3D_ERR_INVALID_PROBLEM);
+    SBM_free_from_SBCM(sbm);
+    SBCM_free_3x3(coo);
+  }
+  /* CSC with unsorted and duplicate entries is accepted: W = I stored as 0.5 + 0.5 on (0,0) */
+  {
+    CS_INT colp[4] = {0, 3, 4, 5};
+    CS_INT rowi[5] = {0, 0, 0, 1, 2};
+    double x[5] = {0.25, 0.5, 0.25, 1.0, 1.0};
+    CSparseMatrix A = {5, 3, 3, colp, rowi, x, -1};
+    NumericsSparseMatrix S = {0};
+    S.csc = &A;
+    S.origin = NSM_CSC;
+    NumericsMatrix Mc = {0};
+    Mc.storageType = NM_SPARSE;
+    Mc.size0 = Mc.size1 = 3;
+    Mc.matrix2 = &S;
+    double qc[3] = {-1, 2, 0}, muc = 0.5, rc[3] = {0}, uc[3] = {0};
+    FrictionContactProblem pc = {3, 1, &Mc, qc, &muc};
+    info = fc3d_driver(&pc, rc, uc, o);
+    CHECK(info == 0 && fabs(rc[0] - 1.0) < 1e-10 && fabs(rc[1] + 0.5) < 1e-10,
+          "CSC with duplicates: info %d r = (%g, %g, %g)", info, rc[0], rc[1], rc[2]);
+    rowi[0] = 7; /* out of range */
+    EXPECT_CODE(fc3d_driver(&pc, rc, uc, o), FC3D_ERR_INVALID_STORAGE);
+  }
+  solver_options_delete(o);
+  free(o);
+
+  /* files */
+  fc3d_clear_last_error();
+  CHECK(frictionContact_new_from_filename("/nonexistent/fc3d.dat") == NULL, "missing file accepted");
+  CHECK(fc3d_last_error_code() == FC3D_ERR_IO, "missing file: code %d", fc3d_last_error_code());
+  CHECK(frictionContact_new_from_filename(NULL) == NULL, "NULL filename accepted");
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "NULL filename: code %d", fc3d_last_error_code());
+  {
+    char garbage[] = "3 1 0 3 3 3 3 1 0 0 0 1 0 0 0 oops";
+    FILE* f = fmemopen(garbage, strlen(garbage), "r");
+    CHECK(frictionContact_newFromFile(f) == NULL, "garbage accepted");
+    CHECK(fc3d_last_error_code() == FC3D_ERR_PARSE, "garbage: code %d", fc3d_last_error_code());
+    CHECK(strstr(fc3d_last_error_message(), "oops") != NULL, "message should name the token: %s",
+          fc3d_last_error_message());
+    fclose(f);
+  }
+  {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/Rover1039.dat", data_dir);
+    FILE* f = fopen(path, "r");
+    CHECK(f != NULL, "cannot open %s", path);
+    char buf[600];
+    size_t got = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    CHECK(got == sizeof buf, "short read");
+    FILE* t = fmemopen(buf, 500, "r"); /* truncated in the middle of W */
+    CHECK(frictionContact_newFromFile(t) == NULL, "truncated file accepted");
+    CHECK(fc3d_last_error_code() == FC3D_ERR_PARSE, "truncated: code %d", fc3d_last_error_code());
+    fclose(t);
+  }
+  CHECK(frictionContact_newFromFile(NULL) == NULL, "NULL FILE accepted");
+  return 0;
+}
+
+/* ---- ownership paths (run under valgrind by CI) ---------------------------------------------- */
+
+int capi_check_ownership(const char* data_dir, const char* scratch_dir) {
+  char path[4096], out[4096];
+  /* a problem read from a file, written back, read again, compared, freed */
+  snprintf(path, sizeof path, "%s/Capsules-i100-889.dat", data_dir);
+  snprintf(out, sizeof out, "%s/fc3d_roundtrip.dat", scratch_dir);
+  FrictionContactProblem* a = frictionContact_new_from_filename(path);
+  CHECK(a != NULL, "read %s", path);
+  CHECK(frictionContact_printInFilename(a, out) == 0, "write %s", out);
+  FILE* f = fopen(out, "r");
+  CHECK(f != NULL, "reopen %s", out);
+  FrictionContactProblem* b = frictionContact_newFromFile(f);
+  fclose(f);
+  CHECK(b != NULL, "read back %s", out);
+  int n = 3 * a->numberOfContacts;
+  CHECK(b->numberOfContacts == a->numberOfContacts && b->M->storageType == a->M->storageType, "round trip shape");
+  for (int i = 0; i < n; i++) CHECK(a->q[i] == b->q[i], "q[%d] differs after round trip", i);
+  for (int i = 0; i < n; i += 7)
+    for (int j = 0; j < n; j += 5)
+      CHECK(NM_get_value(a->M, i, j) == NM_get_value(b->M, i, j), "W(%d,%d) differs after round trip", i, j);
+  remove(out);
+  frictionContactProblem_free(a);
+  frictionContactProblem_free(b);
+
+  /* problem assembled by the host with malloc'd data handed over to fc3d */
+  {
+    NumericsMatrix* M = NM_create(NM_DENSE, 3, 3);
+    M->matrix0[0] = M->matrix0[4] = M->matrix0[8] = 1.0;
+    double* q = malloc(3 * sizeof(double));
+    double* mu = malloc(sizeof(double));
+    q[0] = -1; q[1] = 0.1; q[2] = 0; mu[0] = 0.5;
+    FrictionContactProblem* p = frictionContactProblem_new_with_data(3, 1, M, q, mu);
+    double r[3] = {0}, u[3] = {0};
+    SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+    CHECK(fc3d_driver(p, r, u, o) == 0, "solve");
+    SolverOptions* c = solver_options_copy(o);
+    solver_options_update_internal(c, 0, SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCone);
+    SolverOptions* local = solver_options_create(SICONOS_FRICTION_3D_ONECONTACT_NSN);
+    solver_options_set_internal_solver(c, 0, local);
+    CHECK(solver_options_get_internal_solver(c, 0) == local, "set_internal_solver");
+    CHECK(fc3d_driver(p, r, u, c) == 0, "solve with copied options");
+    solver_options_delete(c);
+    free(c);
+    solver_options_delete(o);
+    free(o);
+    frictionContactProblem_free(p);
+  }
+  /* empty problem */
+  frictionContactProblem_free(frictionContactProblem_new());
+  frictionContactProblem_free(NULL);
+  /* sparse matrix built entry by entry, growing its triplet past nzmax, copied, freed */
+  {
+    NumericsMatrix* T = NM_create(NM_SPARSE, 6, 6);
+    NM_triplet_alloc(T, 2);
+    for (int i = 0; i < 6; i++) NM_entry(T, i, i, 2.0 + i);
+    NM_entry(T, 0, 5, 0.5);
+    CHECK(NM_get_value(T, 3, 3) == 5.0 && NM_get_value(T, 0, 5) == 0.5 && NM_get_value(T, 1, 0) == 0.0,
+          "NM_entry/NM_get_value on a triplet");
+    NumericsMatrix* D = NM_create(NM_DENSE, 6, 6);
+    D->matrix0[7] = 3.0;
+    NumericsMatrix* S = NM_create(NM_SPARSE, 6, 6);
+    NM_copy_to_sparse(D, S, 1e-300);
+    CHECK(NM_get_value(S, 1, 1) == 3.0 && NM_get_value(S, 2, 2) == 0.0, "NM_copy_to_sparse");
+    NM_free(T);
+    NM_free(D);
+    NM_clear(S);
+    free(S);
+  }
+  /* matrices wrapping host data that fc3d then owns */
+  {
+    double* data = calloc(9, sizeof(double));
+    NumericsMatrix* M = NM_create_from_data(NM_DENSE, 3, 3, data);
+    NM_entry(M, 1, 2, 4.0);
+    CHECK(data[1 + 2 * 3] == 4.0, "NM_create_from_data must not copy");
+    NM_free(M);
+    NumericsMatrix* E = NM_new_SBM(0, 0, SBM_new());
+    NM_free(E);
+    NumericsMatrix* F = NM_new();
+    NM_fill(F, NM_DENSE, 2, 2, calloc(4, sizeof(double)));
+    NM_free(F);
+    NumericsMatrix* G = NM_create(NM_SPARSE_BLOCK, 3, 3);
+    NM_free(G);
+  }
+  /* sparse-block W assembled from coordinates and solved */
+  {
+    double blocks[18] = {2, 0, 0, 0, 2, 0, 0, 0, 2, /* (1,1) */ 1, 0, 0, 0, 1, 0, 0, 0, 1 /* (2,2) */};
+    unsigned row[2] = {2, 1}, col[2] = {2, 1};
+    double tmp[9];
+    memcpy(tmp, blocks, sizeof tmp); /* reverse the order: (2,2) first */
+    memcpy(blocks, blocks + 9, sizeof tmp);
+    memcpy(blocks + 9, tmp, sizeof tmp);
+    SparseBlockCoordinateMatrix* coo = SBCM_new_3x3(2, 2, 2, row, col, blocks);
+    SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(coo);
+    CHECK(sbm->index2_data[0] == 0 && sbm->index2_data[1] == 1, "SBCM_to_SBM sorts blocks");
+    NumericsMatrix* M = NM_new_SBM(6, 6, sbm);
+    CHECK(NM_get_value(M, 0, 0) == 2.0 && NM_get_value(M, 4, 4) == 1.0 && NM_get_value(M, 0, 4) == 0.0,
+          "NM_get_value on SBM");
+    double q[6] = {-2, 0, 0, -1, 0, 0}, mu[2] = {0.3, 0.3}, r[6] = {0}, u[6] = {0};
+    FrictionContactProblem p = {3, 2, M, q, mu};
+    SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+    CHECK(fc3d_driver(&p, r, u, o) == 0 && fabs(r[0] - 1.0) < 1e-12 && fabs(r[3] - 1.0) < 1e-12, "SBM solve");
+    solver_options_delete(o);
+    free(o);
+    SBM_free_from_SBCM(sbm);
+    M->matrix1 = NULL;
+    NM_free(M);
+    SBCM_free_3x3(coo);
+  }
+  /* LMGC90-style entry point, solving in place */
+  {
+    double W[18] = {2, 0, 0, 0, 2, 0, 0, 0, 2, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    unsigned row[2] = {1, 2}, col[2] = {1, 2};
+    double q[6] = {-2, 0.1, 0, -1, 5, 0}, mu[2] = {0.3, 0.3}, r[6] = {0}, u[6] = {0};
+    int info = fc3d_LmgcDriver(r, u, q, mu, W, row, col, 2, 2, SICONOS_FRICTION_3D_NSGS, 1e-12, 1000, 0, 0, 0, 0);
+    CHECK(info == 0 && fabs(r[0] - 1.0) < 1e-12 && fabs(r[4] + 0.3) < 1e-12, "LMGC driver: info %d r = %g %g", info,
+          r[0], r[4]);
+  }
+  return 0;
+}
+
+/* ---- options, names, defaults ---------------------------------------------------------------- */
+
+int capi_check_options(void) {
+  CHECK(strcmp(solver_options_id_to_name(SICONOS_FRICTION_3D_NSGS), "FC3D_NSGS") == 0, "name of 500");
+  CHECK(solver_options_name_to_id("FC3D_ONECONTACT_NSN_GP_HYBRID") == 565, "id of hybrid");
+  CHECK(solver_options_name_to_id("no such solver") == 0, "unknown name");
+  CHECK(strcmp(solver_options_id_to_name(4242), "NONAME") == 0, "unknown id");
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  CHECK(o->solverId == 500 && o->iSize == 20 && o->dSize == 20, "NSGS shape");
+  CHECK(o->iparam[SICONOS_IPARAM_MAX_ITER] == 1000 && o->dparam[SICONOS_DPARAM_TOL] == 1e-4, "NSGS defaults");
+  CHECK(o->iparam[SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] == SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_LIGHT_WITH_FULL_FINAL,
+        "NSGS error evaluation default");
+  CHECK(o->numberOfInternalSolvers == 1, "one internal solver");
+  SolverOptions* l = solver_options_get_internal_solver(o, 0);
+  CHECK(l->solverId == SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID && l->iparam[0] == 10 && l->dparam[0] == 1e-14,
+        "local defaults");
+  CHECK(solver_options_get_internal_solver(o, 3) == NULL, "out-of-range internal solver");
+  solver_options_update_internal(o, 0, SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinder);
+  CHECK(o->internalSolvers[0]->solverId == 557, "update_internal");
+  solver_options_delete(o);
+  free(o);
+  return 0;
+}

@@ -1,0 +1,20 @@
+/* Standalone driver of the C checks, linked against libfc3d.so by .ci/run and run under
+ * valgrind: every create/free path of the C API must run clean. */
+#include <stdio.h>
+
+int capi_check_ownership(const char* data_dir, const char* scratch_dir);
+int capi_check_bad_input(const char* data_dir);
+int capi_check_options(void);
+int capi_check_single_contacts(void);
+
+int main(int argc, char** argv) {
+  const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
+  const char* scratch = argc > 2 ? argv[2] : "/tmp";
+  int failed = 0;
+  failed += capi_check_options() != 0;
+  failed += capi_check_single_contacts() != 0;
+  failed += capi_check_bad_input(data) != 0;
+  failed += capi_check_ownership(data, scratch) != 0;
+  printf("%d passed, %d failed\n", 4 - failed, failed);
+  return failed != 0;
+}

@@ -1,0 +1,52 @@
+//! Bindings to the C test functions in `c/` (compiled by build.rs against the public headers).
+//! Each returns 0 on success, or a non-zero code after printing what failed.
+
+use std::os::raw::{c_char, c_double, c_int};
+
+// Link the fc3d library's C symbols into every test binary that uses this crate.
+pub use fc3d;
+
+/// Storage a C test rebuilds W into before solving.
+pub const STORAGE_AS_FILE: c_int = -1;
+pub const STORAGE_DENSE: c_int = 0;
+pub const STORAGE_SPARSE_BLOCK: c_int = 1;
+pub const STORAGE_CSR: c_int = 2;
+
+/// What a C-side solve returned.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct CSolveResult {
+    pub info: c_int,
+    pub iterations: c_int,
+    /// dparam[1] as reported by fc3d_driver.
+    pub reported_error: c_double,
+    /// fc3d_compute_error with norm = ||q||.
+    pub api_error: c_double,
+    /// The error recomputed in plain C from W (read entry by entry), q, mu, r.
+    pub independent_error: c_double,
+    /// The storage type of the matrix that was solved.
+    pub storage: c_int,
+}
+
+extern "C" {
+    pub fn capi_solve_file(
+        path: *const c_char,
+        storage: c_int,
+        local_solver: c_int,
+        tolerance: c_double,
+        max_iter: c_int,
+        reaction_out: *mut c_double,
+        velocity_out: *mut c_double,
+        capacity: c_int,
+        result: *mut CSolveResult,
+    ) -> c_int;
+    pub fn capi_check_single_contacts() -> c_int;
+    pub fn capi_check_bad_input(data_dir: *const c_char) -> c_int;
+    pub fn capi_check_ownership(data_dir: *const c_char, scratch_dir: *const c_char) -> c_int;
+    pub fn capi_check_options() -> c_int;
+}
+
+/// Reference to the shared Siconos data set beside the repository.
+pub fn data_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/siconos")
+}
