@@ -10,7 +10,9 @@ use crate::linalg::{norm2, Vec3};
 #[inline]
 pub fn project_on_cone(x: &Vec3, mu: f64) -> Vec3 {
     let nt = norm2(x[1], x[2]);
-    if nt <= mu * x[0] {
+    // `x[0] >= 0` matters for mu = 0 only: there `mu * x[0]` is -0.0 for x_N < 0, and
+    // `0.0 <= -0.0` holds, which would return (x_N < 0, 0, 0) unchanged.
+    if x[0] >= 0.0 && nt <= mu * x[0] {
         return *x;
     }
     if mu * nt <= -x[0] {
@@ -91,6 +93,16 @@ mod tests {
         // mu = 0: the half-line x_T = 0, x_N >= 0.
         assert_eq!(project_on_cone(&[2.0, 1.0, -1.0], 0.0), [2.0, 0.0, 0.0]);
         assert_eq!(project_on_cone(&[0.0, 0.0, 0.0], 0.3), [0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn frictionless_cone_of_negative_normal_axis_is_origin() {
+        // Regression: with mu = 0, x = (x_N < 0, 0, 0) used to be returned unchanged
+        // (`0 <= 0 * x_N` holds since 0 * x_N is -0.0), so the natural-map error of a separating
+        // frictionless contact with r = 0, u = (u_N > 0, 0, 0) was u_N instead of 0.
+        assert_eq!(project_on_cone(&[-1.0, 0.0, 0.0], 0.0), [0.0, 0.0, 0.0]);
+        assert_eq!(project_on_cone(&[-1e-300, 0.0, 0.0], 0.0), [0.0, 0.0, 0.0]);
+        assert_eq!(project_on_cone(&[2.0, 0.0, 0.0], 0.0), [2.0, 0.0, 0.0]);
     }
 
     proptest! {

@@ -33,3 +33,8 @@ pub use options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOpti
 pub use problem::FrictionProblem;
 pub use report::{SolveReport, SolveStatus};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};
+
+/// The README's Rust examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

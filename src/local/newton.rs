@@ -206,10 +206,19 @@ impl LocalSolver for AlartCurnierNewton {
             best = start;
             best_res = start_res;
         }
+        // Each round continues the projection iterations from where the previous round left
+        // them (not from `best`, which would make every round after a failed one an exact
+        // repeat), then tries Newton from the projected point. Both points are candidates.
+        let mut projected = best;
         for _ in 0..self.options.hybrid_max_loop {
-            let mut x = best;
-            let pr = self.projection.solve(p, &mut x);
+            let pr = self.projection.solve(p, &mut projected);
             iterations += pr.iterations;
+            let res = p.residual(&projected);
+            if res <= best_res {
+                best = projected;
+                best_res = res;
+            }
+            let mut x = projected;
             let (ok, it) = self.newton(p, rho, &mut x);
             iterations += it;
             let res = p.residual(&x);
@@ -223,6 +232,10 @@ impl LocalSolver for AlartCurnierNewton {
                     converged: true,
                     iterations,
                 };
+            }
+            if pr.converged {
+                // The projection itself reached the local tolerance.
+                break;
             }
         }
         *r = best;
