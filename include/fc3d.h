@@ -14,6 +14,14 @@
 // A solver ran and returned its best iterate, but the error is above the tolerance.
 #define FC3D_NOT_CONVERGED 1
 
+// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
+// reaction is the best iterate it measured, and its error is above the tolerance.
+#define FC3D_TIME_BUDGET_EXHAUSTED 2
+
+// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
+// Siconos' fc3d solvers leave unused.
+#define FC3D_DPARAM_TIME_BUDGET 19
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 
@@ -204,7 +212,9 @@ void numerics_set_verbose(int newVerboseMode);
 
 // Solves the problem with the solver `options->solverId`, starting from `reaction`.
 // Returns 0 when converged (error <= dparam[0]), 1 when the solver stopped above the
-// tolerance (reaction, velocity hold its last iterate), a negative `FC3D_ERR_*` code when the
+// tolerance at its iteration limit (reaction, velocity hold its last iterate), 2
+// (`FC3D_TIME_BUDGET_EXHAUSTED`) when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out
+// (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 // input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
 // and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
 int fc3d_driver(struct FrictionContactProblem *problem,
@@ -318,6 +328,46 @@ struct SparseBlockStructuredMatrix *SBCM_to_SBM(struct SparseBlockCoordinateMatr
 
 // Frees an SBM made by `SBCM_to_SBM` (structure and struct, not the block values).
 void SBM_free_from_SBCM(struct SparseBlockStructuredMatrix *M);
+
+// A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
+// size1` and the body; see `crate::io::dat`). Release with `NM_free`.
+//
+// On a seekable stream (a regular file) only the matrix is consumed: on success the stream is
+// left at the first token after the matrix (as Siconos' reader leaves it, but for the whitespace
+// after a CSC dump, which Siconos leaves unread), so a host may read what follows; on failure it
+// is put back where it was. On a stream that cannot seek (a pipe) the rest of the stream is read.
+//
+// NULL on failure: `FC3D_ERR_PARSE` for malformed text (`fc3d_last_error_message` names the
+// token), `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a sparse-block matrix
+// whose blocks are not all 3x3, a half-triplet sparse matrix), `FC3D_ERR_NULL_POINTER`,
+// `FC3D_ERR_IO`.
+struct NumericsMatrix *NM_new_from_file(FILE *file);
+
+// A matrix read from the file `filename` (see `NM_new_from_file`). Release with `NM_free`.
+// NULL on failure (`FC3D_ERR_IO` when the file cannot be read).
+struct NumericsMatrix *NM_new_from_filename(const char *filename);
+
+// Writes `M` to an open stream as Siconos does (`storageType size0 size1` and the body), values
+// in their shortest exactly round-tripping form (Siconos' own writer prints sparse values with
+// `%g`). Sparse matrices are written as a CSparse triplet dump (origin `NSM_TRIPLET`), whatever
+// their origin. Both Siconos' `NM_new_from_file` and fc3d's read it back.
+//
+// Nothing is written when `M` cannot be represented by fc3d (a sparse-block matrix whose blocks
+// are not all 3x3, non-finite values, an inconsistent structure): see `fc3d_last_error_code`.
+void NM_write_in_file(const struct NumericsMatrix *M, FILE *file);
+
+// Writes `M` to the file `filename`, created or truncated (see `NM_write_in_file`). The file is
+// not touched when `M` cannot be written.
+void NM_write_in_filename(const struct NumericsMatrix *M, const char *filename);
+
+// A sparse-block matrix read from an open stream, as written by Siconos' `SBM_write_in_file`:
+// the sparse-block body without the `storageType size0 size1` header (`nbblocks`, then the block
+// structure and the blocks). The size comes from the cumulative block sizes. Blocks must all be
+// 3x3 (`FC3D_ERR_INVALID_STORAGE` otherwise); a lone `0` gives an empty 0x0 matrix (Siconos
+// returns NULL there). The stream is consumed as by `NM_new_from_file`.
+// Release with `SBM_clear` + `free` (or through `NM_free` once wrapped by `NM_new_SBM`).
+// NULL on failure (`FC3D_ERR_PARSE` for malformed text).
+struct SparseBlockStructuredMatrix *SBM_new_from_file(FILE *file);
 
 // Options for solver `solverId` with Siconos 4.4's defaults (and default internal solvers).
 // NULL for an id that is not an fc3d solver. Release with `solver_options_delete` then `free`.

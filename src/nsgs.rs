@@ -2,74 +2,117 @@
 //! one-contact problem FC(W_cc, q_c + sum_{b != c} W_cb r_b, mu_c) with the chosen local solver,
 //! and write its reaction back before moving to the next contact.
 
+use std::time::Instant;
+
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver};
+use crate::matrix::BlockRows;
 use crate::measure::{cheap_error, natural_map_error};
 use crate::options::{ErrorEvaluation, NsgsOptions};
 use crate::problem::FrictionProblem;
 use crate::solver::IterationEvent;
 
-/// Runs NSGS from the reaction in `r`. Returns the number of sweeps done. `u` is used as work
-/// space; the caller recomputes `u = W r + q` and the final error.
+/// How an NSGS run ended (the caller measures the final error and sets the status).
+pub(crate) struct NsgsOutcome {
+    pub iterations: usize,
+    pub out_of_time: bool,
+}
+
+/// The best iterate by full natural-map error, kept only when a time budget may cut the run
+/// short (the copy is allocated once, before the loop).
+struct BestIterate {
+    r: Vec<f64>,
+    error: f64,
+}
+
+/// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
+/// `u = W r + q` and the final error.
 pub(crate) fn nsgs(
     problem: &FrictionProblem<'_>,
     options: &NsgsOptions,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut dyn FnMut(&IterationEvent<'_>),
-) -> Result<usize, Fc3dError> {
+) -> Result<NsgsOutcome, Fc3dError> {
     // Everything that can fail happens before r is touched.
     let rows = problem.w().block_rows()?;
     let mut local = AnyLocalSolver::new(&options.local);
     let (q, mu) = (problem.q(), problem.mu());
     let tol = options.tolerance;
     let mut light_tol = tol;
+    let deadline = options.time_budget.map(|b| Instant::now() + b);
+    let mut best = deadline.map(|_| BestIterate {
+        r: r.to_vec(),
+        error: f64::INFINITY,
+    });
 
     for iteration in 1..=options.max_iter {
         let increment_sq = sweep(&rows, q, mu, &mut local, r);
 
-        let (error, converged) = match options.error_evaluation {
+        // (error tested this sweep, whether it is the full error, converged)
+        let (error, full, converged) = match options.error_evaluation {
             ErrorEvaluation::Full => {
                 let e = natural_map_error(problem, r, u);
-                (e, e <= tol)
+                (e, true, e <= tol)
             }
             ErrorEvaluation::Light => {
                 let e = cheap_error(increment_sq, r);
-                (e, e <= tol)
+                (e, false, e <= tol)
             }
             ErrorEvaluation::LightWithFullFinal => {
                 let light = cheap_error(increment_sq, r);
                 if light <= light_tol {
                     let full = natural_map_error(problem, r, u);
-                    if full <= tol {
-                        (full, true)
-                    } else {
+                    if full > tol {
                         // Assume full/light stays roughly proportional and ask the cheap error
                         // for what the full one still lacks.
                         light_tol = light * tol / full;
-                        (full, false)
                     }
+                    (full, true, full <= tol)
                 } else {
-                    (light, false)
+                    (light, false, false)
                 }
             }
         };
+        if let (true, Some(b)) = (full, best.as_mut()) {
+            if error < b.error {
+                b.error = error;
+                b.r.copy_from_slice(r);
+            }
+        }
         observer(&IterationEvent {
             iteration,
             reaction: r,
             error,
         });
         if converged {
-            return Ok(iteration);
+            return Ok(NsgsOutcome {
+                iterations: iteration,
+                out_of_time: false,
+            });
+        }
+        if deadline.is_some_and(|d| Instant::now() >= d) {
+            if let Some(b) = best {
+                if b.error < natural_map_error(problem, r, u) {
+                    r.copy_from_slice(&b.r);
+                }
+            }
+            return Ok(NsgsOutcome {
+                iterations: iteration,
+                out_of_time: true,
+            });
         }
     }
-    Ok(options.max_iter)
+    Ok(NsgsOutcome {
+        iterations: options.max_iter,
+        out_of_time: false,
+    })
 }
 
 /// One Gauss-Seidel sweep in contact order; returns `sum_c ||r_c^new - r_c^old||^2`.
 /// A local solution that is not finite is discarded (the contact keeps its previous reaction).
 fn sweep(
-    rows: &crate::matrix::BlockRows,
+    rows: &BlockRows,
     q: &[f64],
     mu: &[f64],
     local: &mut AnyLocalSolver,

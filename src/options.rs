@@ -143,6 +143,10 @@ pub struct NsgsOptions {
     pub error_evaluation: ErrorEvaluation,
     /// The one-contact solver and its options (default [`LocalSolverKind::NewtonHybrid`]).
     pub local: LocalSolverOptions,
+    /// Wall-clock budget (default none). When it is spent, NSGS stops after the current sweep
+    /// and returns the best iterate it measured, with
+    /// [`SolveStatus::TimeBudgetExhausted`](crate::SolveStatus::TimeBudgetExhausted).
+    pub time_budget: Option<std::time::Duration>,
 }
 
 impl Default for NsgsOptions {
@@ -152,6 +156,7 @@ impl Default for NsgsOptions {
             tolerance: 1e-4,
             error_evaluation: ErrorEvaluation::LightWithFullFinal,
             local: LocalSolverOptions::default(),
+            time_budget: None,
         }
     }
 }

@@ -7,14 +7,18 @@ pub enum SolveStatus {
     Converged,
     /// The iteration limit was reached first; the returned error is above the tolerance.
     MaxIterationsReached,
+    /// The wall-clock budget ran out first; the returned iterate is the best one seen (by its
+    /// natural-map error) and its error is above the tolerance.
+    TimeBudgetExhausted,
 }
 
 impl SolveStatus {
-    /// Siconos' `info`: 0 converged, 1 not.
+    /// Siconos' `info`: 0 converged, 1 not; fc3d adds 2 for an exhausted time budget.
     pub fn info_code(self) -> i32 {
         match self {
             SolveStatus::Converged => 0,
             SolveStatus::MaxIterationsReached => 1,
+            SolveStatus::TimeBudgetExhausted => 2,
         }
     }
 }

@@ -28,6 +28,13 @@ impl SolverConfig {
         }
     }
 
+    /// Wall-clock budget, if any.
+    pub fn time_budget(&self) -> Option<std::time::Duration> {
+        match self {
+            SolverConfig::Nsgs(o) => o.time_budget,
+        }
+    }
+
     /// Siconos id of the solver.
     pub fn siconos_id(&self) -> i32 {
         match self {
@@ -109,6 +116,13 @@ pub fn solve_with_observer(
     }
     check_finite("initial reaction", r)?;
     config.validate()?;
+    if let Some(b) = config.time_budget() {
+        if b.is_zero() {
+            return Err(Fc3dError::InvalidOption(
+                "a time budget must be positive".into(),
+            ));
+        }
+    }
 
     // Trivial case (Siconos): no contact is pushed into penetration by q, so r = 0, u = q.
     if problem.q().chunks_exact(3).all(|qc| qc[0] >= -f64::EPSILON) {
@@ -126,7 +140,7 @@ pub fn solve_with_observer(
         });
     }
 
-    let iterations = match config {
+    let outcome = match config {
         SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
     };
 
@@ -135,12 +149,14 @@ pub fn solve_with_observer(
     let error = natural_map_error(problem, r, u);
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
     } else {
         SolveStatus::MaxIterationsReached
     };
     Ok(SolveReport {
         status,
-        iterations,
+        iterations: outcome.iterations,
         error,
     })
 }

@@ -5,8 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use fc3d::io::{parse_dat, read_dat_file, write_dat, write_dat_file};
-use fc3d::{BlockSparseMatrix, CsrMatrix, Delassus, Fc3dError, FrictionProblem};
+use fc3d::io::{
+    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat_file,
+    write_dat, write_dat_file, write_matrix, write_sbm,
+};
+use fc3d::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix, Fc3dError, FrictionProblem};
 use proptest::prelude::*;
 
 const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/siconos");
@@ -614,5 +617,402 @@ proptest! {
             };
         }
         check_no_panic(&text)?;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The matrix part alone (`NM_write_in_file` / `NM_new_from_file`, `SBM_new_from_file`)
+// ---------------------------------------------------------------------------------------------
+
+fn matrix_text(w: &Delassus<'_>) -> String {
+    let mut bytes = Vec::new();
+    write_matrix(w, &mut bytes).expect("writing to memory");
+    String::from_utf8(bytes).expect("the writer emits UTF-8")
+}
+
+/// Same storage, shape, structure and value bits.
+fn assert_matrix_bits(a: &Delassus<'_>, b: &Delassus<'_>, what: &str) {
+    assert_eq!(a, b, "{what}");
+    assert_eq!(
+        (a.nrows(), a.ncols()),
+        (b.nrows(), b.ncols()),
+        "{what}: shape"
+    );
+    match (a, b) {
+        (Delassus::Dense(x), Delassus::Dense(y)) => {
+            assert_eq!(bits(x.values()), bits(y.values()), "{what}")
+        }
+        (Delassus::SparseBlock(x), Delassus::SparseBlock(y)) => {
+            assert_eq!(
+                (x.row_ptr(), x.col_idx()),
+                (y.row_ptr(), y.col_idx()),
+                "{what}"
+            );
+            for (bx, by) in x.blocks().iter().zip(y.blocks()) {
+                assert_eq!(bits(bx), bits(by), "{what}: block");
+            }
+        }
+        (Delassus::Sparse(x), Delassus::Sparse(y)) => {
+            assert_eq!(bits(x.values()), bits(y.values()), "{what}")
+        }
+        _ => panic!("{what}: the storage changed"),
+    }
+}
+
+/// Writes, parses back, checks the bits, that writing is deterministic and that the prefix
+/// reader stops right before what follows the matrix.
+fn assert_matrix_round_trip(w: &Delassus<'_>, what: &str) {
+    let text = matrix_text(w);
+    let back = parse_matrix(&text, what).unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert_matrix_bits(&back, w, what);
+    assert_eq!(matrix_text(&back), text, "{what}: rewrite");
+    let followed = format!("{text} \n\n  next 1 2\n");
+    let (again, len) = parse_matrix_prefix(&followed, what).unwrap();
+    assert_matrix_bits(&again, w, what);
+    assert_eq!(&followed[len..], "next 1 2\n", "{what}: prefix length");
+}
+
+fn sample_values(count: usize, seed: u64) -> Vec<f64> {
+    let special = [
+        1.0 / 3.0,
+        -0.0,
+        0.1,
+        f64::MIN_POSITIVE,
+        5e-324,
+        -f64::MAX,
+        123_456_789.123_456_79,
+        -2.5e-10,
+    ];
+    (0..count)
+        .map(|k| {
+            let k = k as u64 + seed;
+            special[(k % special.len() as u64) as usize] * (1.0 + k as f64 / 7.0)
+        })
+        .map(|v| if v.is_finite() { v } else { -1.5 })
+        .collect()
+}
+
+#[test]
+fn matrices_of_any_shape_round_trip_in_every_storage() {
+    for (rows, cols) in [
+        (0, 0),
+        (1, 1),
+        (2, 3),
+        (3, 2),
+        (4, 7),
+        (6, 6),
+        (0, 5),
+        (5, 0),
+    ] {
+        let dense = DenseMatrix::new(rows, cols, sample_values(rows * cols, 3)).unwrap();
+        let mut triplets = Vec::new();
+        dense.for_each_entry(|i, j, v| {
+            if (i + 2 * j) % 3 != 1 {
+                triplets.push((i, j, v))
+            }
+        });
+        let sparse = CsrMatrix::from_triplets(rows, cols, &triplets).unwrap();
+        assert_matrix_round_trip(&Delassus::Dense(dense), &format!("dense {rows}x{cols}"));
+        assert_matrix_round_trip(&Delassus::Sparse(sparse), &format!("sparse {rows}x{cols}"));
+    }
+    // Sparse-block: 3x3 blocks, non-square, empty rows, no block at all.
+    for (nbr, nbc, row_ptr, col_idx) in [
+        (2, 3, vec![0, 2, 3], vec![0, 2, 2]),
+        (3, 1, vec![0, 1, 1, 2], vec![0, 0]),
+        (2, 2, vec![0, 1, 2], vec![1, 0]),
+        (2, 2, vec![0, 0, 0], vec![]),
+        (0, 0, vec![0], vec![]),
+    ] {
+        let blocks: Vec<[f64; 9]> = (0..col_idx.len())
+            .map(|k| sample_values(9, 11 * k as u64).try_into().unwrap())
+            .collect();
+        let sbm = BlockSparseMatrix::new(nbr, nbc, row_ptr, col_idx, blocks).unwrap();
+        let what = format!("sparse-block {nbr}x{nbc} blocks");
+        assert_matrix_round_trip(&Delassus::SparseBlock(sbm.clone()), &what);
+
+        // The body alone, as SBM_write_in_file / SBM_new_from_file.
+        let mut body = Vec::new();
+        write_sbm(&sbm, &mut body).unwrap();
+        let body = String::from_utf8(body).unwrap();
+        let back = parse_sbm(&body, &what).unwrap();
+        if sbm.n_blocks() == 0 {
+            // A lone 0 does not say the size.
+            assert_eq!((back.nrows(), back.ncols(), back.n_blocks()), (0, 0, 0));
+        } else {
+            assert_matrix_bits(
+                &Delassus::SparseBlock(back),
+                &Delassus::SparseBlock(sbm.clone()),
+                &what,
+            );
+        }
+        let followed = format!("{body}\t\nrest");
+        let (_, len) = parse_sbm_prefix(&followed, &what).unwrap();
+        assert_eq!(&followed[len..], "rest", "{what}");
+        // The header plus the body is the NM_write_in_file text.
+        assert!(
+            matrix_text(&Delassus::SparseBlock(sbm)).ends_with(&body),
+            "{what}"
+        );
+    }
+}
+
+#[test]
+fn the_w_of_every_3d_file_round_trips_as_a_lone_matrix() {
+    for path in files_3d() {
+        let name = file_name(&path);
+        let p = read_dat_file(&path).unwrap();
+        let sbm = match p.w() {
+            Delassus::SparseBlock(s) => s.clone(),
+            w => to_sparse_block(w),
+        };
+        for w in [
+            Delassus::Dense(p.w().to_dense()),
+            Delassus::Sparse(p.w().to_csr()),
+            Delassus::SparseBlock(sbm),
+        ] {
+            let what = format!("{name}: W as {}", w.storage_name());
+            assert_matrix_round_trip(&w, &what);
+            // In a .dat file the matrix follows `dim nc` and q follows it.
+            let q = p.with_w(w.clone()).unwrap();
+            let dat = write_to_string(&q);
+            let after_header = dat.splitn(3, '\n').nth(2).unwrap();
+            let (in_dat, len) = parse_matrix_prefix(after_header, &what).unwrap();
+            assert_matrix_bits(&in_dat, &w, &what);
+            let first_q: f64 = after_header[len..]
+                .split_whitespace()
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            assert_eq!(first_q.to_bits(), p.q()[0].to_bits(), "{what}");
+        }
+    }
+}
+
+/// Verbatim `NM_write_in_file` output of Siconos 4.4 (a dense 2x3, a 3x4 triplet, the same as CSC
+/// with an empty column, a 6x6 sparse-block of 3 blocks), each followed by the tail a host would
+/// read next; produced by a throwaway C program linked with `-lsiconos_numerics`.
+const SICONOS_DENSE_2X3: &str = "0\n2\n3\n2\t3\n  1.000000000000000055511151e-01   \
+    2.000000000000000111022302e-01   3.000000000000000444089210e-01 \n  \
+    4.000000000000000777156117e-01   5.000000000000000000000000e-01   \
+    3.333333333333333148296163e-01 \nTAIL 42\n";
+const SICONOS_TRIPLET_3X4: &str = "2\n3\n4\n1\n\
+    CSparse Version 3.2.0, Sept 12, 2017.  Copyright (c) Timothy A. Davis, 2006-2016\n\
+    triplet: 3-by-4, nzmax: 4 nnz: 3\n    0 0 : 0.333333\n    2 3 : -2.5e-10\n    1 1 : 123457\n\
+    TAIL 42\n";
+const SICONOS_CSC_3X4: &str = "2\n3\n4\n2\n\
+    CSparse Version 3.2.0, Sept 12, 2017.  Copyright (c) Timothy A. Davis, 2006-2016\n\
+    3-by-4, nzmax: 3 nnz: 3, 1-norm: 123457\n    col 0 : locations 0 to 0\n      0 : 0.333333\n\
+    \x20   col 1 : locations 1 to 1\n      1 : 123457\n    col 2 : locations 2 to 1\n\
+    \x20   col 3 : locations 2 to 2\n      2 : -2.5e-10\nTAIL 42\n";
+
+/// `NM_write_in_file` of a 6x6 sparse-block matrix with blocks (0,0), (0,1), (1,1) whose entry
+/// (i, j) is 10 (i + 1) + j + 1 + 1/8; without its first three lines it is `SBM_write_in_file`'s.
+fn siconos_sbm_6x6() -> String {
+    let mut text = String::from("1\n6\n6\n3\n2\n2\n3\t6\t\n3\t6\t\n3\n3\n0\t2\t3\t\n0\t1\t1\t\n");
+    for (k, (bi, bj)) in [(0, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+        text += &format!("{k}\n");
+        for c in 0..3 {
+            for r in 0..3 {
+                let v = (10 * (3 * bi + r + 1) + 3 * bj + c + 1) as f64 + 0.125;
+                text += &format!("  {v:.24e}\n");
+            }
+        }
+    }
+    text + "TAIL 42\n"
+}
+
+#[test]
+fn siconos_matrix_files_read_as_siconos_reads_them() {
+    let (dense, len) = parse_matrix_prefix(SICONOS_DENSE_2X3, "dense").unwrap();
+    assert_eq!(&SICONOS_DENSE_2X3[len..], "TAIL 42\n");
+    let Delassus::Dense(d) = &dense else {
+        panic!("expected dense")
+    };
+    assert_eq!((d.nrows(), d.ncols()), (2, 3));
+    // Column-major: the second value is entry (1, 0).
+    assert_eq!(d.get(1, 0), 0.2);
+    assert_eq!(d.get(0, 1), 0.30000000000000004);
+    assert_eq!(d.get(1, 2), 1.0 / 3.0);
+
+    for (label, text) in [("triplet", SICONOS_TRIPLET_3X4), ("csc", SICONOS_CSC_3X4)] {
+        let (w, len) = parse_matrix_prefix(text, label).unwrap();
+        assert_eq!(&text[len..], "TAIL 42\n", "{label}");
+        let Delassus::Sparse(s) = &w else {
+            panic!("{label}: expected sparse")
+        };
+        assert_eq!((s.nrows(), s.ncols(), s.nnz()), (3, 4, 3), "{label}");
+        // Siconos prints sparse values with %g.
+        assert_eq!(w.get(0, 0), 0.333333, "{label}");
+        assert_eq!(w.get(1, 1), 123457.0, "{label}");
+        assert_eq!(w.get(2, 3), -2.5e-10, "{label}");
+        assert_eq!(w.get(2, 2), 0.0, "{label}");
+    }
+
+    let text = siconos_sbm_6x6();
+    let (w, len) = parse_matrix_prefix(&text, "sbm").unwrap();
+    assert_eq!(&text[len..], "TAIL 42\n");
+    let Delassus::SparseBlock(s) = &w else {
+        panic!("expected sparse-block")
+    };
+    assert_eq!(
+        (s.n_block_rows(), s.n_block_cols(), s.n_blocks()),
+        (2, 2, 3)
+    );
+    for i in 0..6 {
+        for j in 0..6 {
+            let stored = i < 3 || j >= 3;
+            let expected = if stored {
+                (10 * (i + 1) + j + 1) as f64 + 0.125
+            } else {
+                0.0
+            };
+            assert_eq!(w.get(i, j), expected, "({i}, {j})");
+        }
+    }
+    // SBM_new_from_file reads the body without the header.
+    let body = text.splitn(4, '\n').nth(3).unwrap();
+    let (b, len) = parse_sbm_prefix(body, "sbm body").unwrap();
+    assert_eq!(&body[len..], "TAIL 42\n");
+    assert_eq!(&b, s);
+    // ... and is not a matrix file, nor is a matrix file a body.
+    assert!(matches!(
+        parse_matrix(body, "x"),
+        Err(Fc3dError::Parse { .. })
+    ));
+    assert!(matches!(
+        parse_sbm(&text, "x"),
+        Err(Fc3dError::Parse { .. })
+    ));
+    // Siconos writes a sparse-block matrix without blocks as a lone 0.
+    let empty = parse_matrix("1\n6\n9\n0\n", "empty").unwrap();
+    assert_eq!((empty.nrows(), empty.ncols(), empty.get(5, 8)), (6, 9, 0.0));
+}
+
+#[test]
+fn sparse_block_matrices_need_3x3_blocks() {
+    // NM_write_in_file of a 4x4 matrix cut into 2x2 blocks by Siconos (SBM_from_csparse(2, ...)).
+    let mut text =
+        String::from("1\n4\n4\n4\n2\n2\n2\t4\t\n2\t4\t\n3\n4\n0\t2\t4\t\n0\t1\t0\t1\t\n");
+    for k in 0..4 {
+        text += &format!("{k}\n1\n2\n3\n4\n");
+    }
+    for (result, label) in [
+        (parse_matrix(&text, "two.mat").map(|_| ()), "two.mat"),
+        (
+            parse_sbm(text.splitn(4, '\n').nth(3).unwrap(), "two.sbm").map(|_| ()),
+            "two.sbm",
+        ),
+        (parse_matrix("1 4 4 0", "four.mat").map(|_| ()), "four.mat"),
+    ] {
+        match result {
+            Err(Fc3dError::Unsupported(m)) => {
+                assert!(m.contains(label) && m.contains("3x3"), "{m}")
+            }
+            other => panic!("{label}: expected Unsupported, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn damaged_matrix_files_are_parse_errors() {
+    for (text, token_index) in [
+        ("", 0),
+        ("garbage", 0),
+        ("7 3 3", 0),
+        ("0 2 2 2 3 1 2 3 4", 4),     // the sizes are not repeated
+        ("0 2 2 2 2 1 2 3", 8),       // truncated: the end of the text
+        ("0 1 1 1 1 nan", 5),         // non-finite
+        ("0 4294967296 0 4294967296 0", 1), // does not fit a C int
+        ("2 1000000000000 1000000000000 1\nCSparse\ntriplet: 1000000000000-by-1000000000000, nzmax: 0 nnz: 0\n", 1),
+        ("1 99999999 99999999 0", 1), // sparse-block too large to hold
+        ("2 2 2 1\nCSparse\ntriplet: 2-by-3, nzmax: 1 nnz: 1\n 0 0 : 1\n", 6),
+        ("2 2 2 1\nCSparse\ntriplet: 2-by-2, nzmax: 1 nnz: 1\n 0 2 : 1\n", 12),
+    ] {
+        match parse_matrix(text, "bad") {
+            Err(Fc3dError::Parse {
+                file,
+                token_index: at,
+                ..
+            }) => {
+                assert_eq!(file, "bad");
+                assert_eq!(at, token_index, "{text:?}");
+            }
+            other => panic!("{text:?}: expected a parse error, got {other:?}"),
+        }
+    }
+    assert!(matches!(parse_sbm("", "bad"), Err(Fc3dError::Parse { .. })));
+    assert!(matches!(
+        parse_sbm("1 1 1 3 3 2 1 0 1 0 0 1", "bad"),
+        Err(Fc3dError::Parse { .. })
+    ));
+}
+
+fn arbitrary_matrix() -> impl Strategy<Value = Delassus<'static>> {
+    let value = prop_oneof![
+        Just(0.0),
+        any::<f64>().prop_filter("finite", |v| v.is_finite()),
+        -1e3..1e3f64,
+    ];
+    let dense = (0usize..6, 0usize..6)
+        .prop_flat_map(move |(r, c)| (Just((r, c)), prop::collection::vec(value.clone(), r * c)))
+        .prop_map(|((r, c), v)| Delassus::Dense(DenseMatrix::new(r, c, v).unwrap()));
+    let sparse = (1usize..7, 1usize..7)
+        .prop_flat_map(|(r, c)| {
+            (
+                Just((r, c)),
+                prop::collection::vec((0..r, 0..c, -1e6..1e6f64), 0..12),
+            )
+        })
+        .prop_map(|((r, c), t)| Delassus::Sparse(CsrMatrix::from_triplets(r, c, &t).unwrap()));
+    let sbm = (1usize..4, 1usize..4)
+        .prop_flat_map(|(nbr, nbc)| {
+            (
+                Just((nbr, nbc)),
+                prop::collection::vec(prop::collection::vec(any::<bool>(), nbc), nbr),
+                prop::collection::vec(any::<f64>().prop_filter("finite", |v| v.is_finite()), 9),
+            )
+        })
+        .prop_map(|((nbr, nbc), present, values)| {
+            let mut row_ptr = vec![0];
+            let mut col_idx = Vec::new();
+            let mut blocks = Vec::new();
+            for row in &present {
+                for (j, &p) in row.iter().enumerate() {
+                    if p {
+                        col_idx.push(j);
+                        let mut b: [f64; 9] = values.clone().try_into().unwrap();
+                        b[0] = blocks.len() as f64;
+                        blocks.push(b);
+                    }
+                }
+                row_ptr.push(col_idx.len());
+            }
+            Delassus::SparseBlock(
+                BlockSparseMatrix::new(nbr, nbc, row_ptr, col_idx, blocks).unwrap(),
+            )
+        });
+    prop_oneof![dense, sparse, sbm]
+}
+
+proptest! {
+    #[test]
+    fn random_matrices_round_trip(w in arbitrary_matrix()) {
+        assert_matrix_round_trip(&w, "random");
+    }
+
+    #[test]
+    fn random_matrix_text_never_panics(
+        header in prop::sample::select(&["0 2 3 ", "1 6 6 ", "1 3 6 ", "2 3 3 1\nCSparse\n", "2 3 4 2\nCSparse\n", ""][..]),
+        body in token_text(),
+    ) {
+        let text = format!("{header}{body}");
+        match parse_matrix_prefix(&text, "fuzz") {
+            Ok((_, len)) => prop_assert!(len <= text.len()),
+            Err(Fc3dError::Parse { file, .. }) => prop_assert_eq!(file, "fuzz"),
+            Err(Fc3dError::Unsupported(m)) => prop_assert!(m.contains("fuzz")),
+            Err(other) => prop_assert!(false, "unexpected error kind: {other:?}"),
+        }
+        let _ = parse_sbm_prefix(&body, "fuzz");
     }
 }

@@ -65,7 +65,7 @@ static double independent_error(const double* W, const double* q, const double* 
     double x[3] = {rc[0] - (uc[0] + m * ut), rc[1] - uc[1], rc[2] - uc[2]};
     double xt = hypot(x[1], x[2]);
     double p[3];
-    if (xt <= m * x[0]) {
+    if (x[0] >= 0.0 && xt <= m * x[0]) { /* x[0] >= 0: with m = 0, 0 <= -0.0 holds */
       p[0] = x[0]; p[1] = x[1]; p[2] = x[2];
     } else if (m * xt <= -x[0]) {
       p[0] = p[1] = p[2] = 0.0;
@@ -464,10 +464,156 @@ int capi_check_bad_input(const char* data_dir) {
   return 0;
 }
 
+/* ---- matrix files: NM_write_in_file / NM_new_from_file / SBM_new_from_file ----------------- */
+
+/* Every entry of A and B is the same double (bit for bit: -0 and +0 differ). */
+static int same_matrix(const NumericsMatrix* A, const NumericsMatrix* B, const char* what) {
+  CHECK(A->storageType == B->storageType, "%s: storage %d read back as %d", what, A->storageType, B->storageType);
+  CHECK(A->size0 == B->size0 && A->size1 == B->size1, "%s: %dx%d read back as %dx%d", what, A->size0, A->size1,
+        B->size0, B->size1);
+  for (int i = 0; i < A->size0; i++)
+    for (int j = 0; j < A->size1; j++) {
+      double a = NM_get_value(A, i, j), b = NM_get_value(B, i, j);
+      CHECK(memcmp(&a, &b, sizeof a) == 0, "%s: entry (%d, %d) is %.17g, read back as %.17g", what, i, j, a, b);
+    }
+  return 0;
+}
+
+static int write_text(const char* path, const char* text) {
+  FILE* f = fopen(path, "w");
+  CHECK(f != NULL, "create %s", path);
+  fputs(text, f);
+  fclose(f);
+  return 0;
+}
+
+static int check_matrix_files(const char* scratch_dir) {
+  char path[4096], path2[4096];
+  snprintf(path, sizeof path, "%s/fc3d_matrices.txt", scratch_dir);
+  snprintf(path2, sizeof path2, "%s/fc3d_matrix.txt", scratch_dir);
+
+  /* a dense 2x3, a sparse 4x5 (triplet), a sparse-block 6x9 of 3x3 blocks */
+  NumericsMatrix* D = NM_create(NM_DENSE, 2, 3);
+  const double dv[6] = {1.0 / 3.0, -0.0, 5e-324, -1.7976931348623157e308, 0.1, 123456789.12345679};
+  memcpy(D->matrix0, dv, sizeof dv);
+  NumericsMatrix* T = NM_create(NM_SPARSE, 4, 5);
+  NM_triplet_alloc(T, 1);
+  NM_entry(T, 0, 0, 2.0 / 3.0);
+  NM_entry(T, 3, 4, -2.5e-10);
+  NM_entry(T, 1, 2, 1e300);
+  NM_entry(T, 2, 0, -7.0);
+  double blocks[27];
+  for (int k = 0; k < 27; k++) blocks[k] = k + 1.0 / 7.0;
+  unsigned brow[3] = {2, 1, 1}, bcol[3] = {3, 3, 1};
+  SparseBlockCoordinateMatrix* coo = SBCM_new_3x3(2, 3, 3, brow, bcol, blocks);
+  SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(coo);
+  NumericsMatrix* S = NM_new_SBM(6, 9, sbm);
+  NumericsMatrix* written[3] = {D, T, S};
+  const char* names[3] = {"dense", "sparse", "sparse-block"};
+
+  /* all three in one file, then a tail: each read must stop at the end of its matrix */
+  FILE* f = fopen(path, "w");
+  CHECK(f != NULL, "create %s", path);
+  fc3d_clear_last_error();
+  for (int k = 0; k < 3; k++) NM_write_in_file(written[k], f);
+  fprintf(f, "tail 7\n");
+  fclose(f);
+  CHECK(fc3d_last_error_code() == 0, "NM_write_in_file failed");
+  f = fopen(path, "r");
+  CHECK(f != NULL, "reopen %s", path);
+  for (int k = 0; k < 3; k++) {
+    NumericsMatrix* R = NM_new_from_file(f);
+    CHECK(R != NULL, "NM_new_from_file (%s)", names[k]);
+    int rc = same_matrix(written[k], R, names[k]);
+    NM_free(R);
+    if (rc) return rc;
+  }
+  char word[16] = "";
+  int seven = 0;
+  CHECK(fscanf(f, "%15s %d", word, &seven) == 2 && strcmp(word, "tail") == 0 && seven == 7,
+        "NM_new_from_file read past its matrix");
+  fclose(f);
+
+  /* by file name */
+  NM_write_in_filename(D, path2);
+  NumericsMatrix* R = NM_new_from_filename(path2);
+  CHECK(R != NULL, "NM_new_from_filename");
+  if (same_matrix(D, R, "dense by name")) return 1;
+  NM_free(R);
+  /* a sparse-block matrix without blocks is written as Siconos does (a lone 0): zeros */
+  {
+    NumericsMatrix* E = NM_create(NM_SPARSE_BLOCK, 6, 3);
+    NM_write_in_filename(E, path2);
+    R = NM_new_from_filename(path2);
+    CHECK(R != NULL && R->storageType == NM_SPARSE_BLOCK && R->size0 == 6 && R->size1 == 3 &&
+              R->matrix1->nbblocks == 0 && NM_get_value(R, 5, 2) == 0.0,
+          "empty sparse-block matrix");
+    NM_free(R);
+    NM_free(E);
+  }
+
+  /* SBM_new_from_file reads the sparse-block body without the `storageType size0 size1` header */
+  f = fopen(path2, "w");
+  CHECK(f != NULL, "create %s", path2);
+  NM_write_in_file(S, f);
+  fclose(f);
+  f = fopen(path2, "r");
+  CHECK(f != NULL, "reopen %s", path2);
+  int header[3];
+  CHECK(fscanf(f, "%d %d %d", &header[0], &header[1], &header[2]) == 3 && header[0] == NM_SPARSE_BLOCK &&
+            header[1] == 6 && header[2] == 9,
+        "sparse-block header");
+  SparseBlockStructuredMatrix* B = SBM_new_from_file(f);
+  fclose(f);
+  CHECK(B != NULL, "SBM_new_from_file");
+  CHECK(B->nbblocks == 3 && B->blocknumber0 == 2 && B->blocknumber1 == 3 && B->blocksize1[2] == 9,
+        "SBM_new_from_file structure");
+  NumericsMatrix* BM = NM_new_SBM(6, 9, B); /* takes B: NM_free releases it */
+  if (same_matrix(S, BM, "SBM_new_from_file")) return 1;
+  NM_free(BM);
+
+  /* garbage: NULL, a parse error, and the stream is left where it was */
+  if (write_text(path2, "garbage 1 2\n")) return 1;
+  f = fopen(path2, "r");
+  CHECK(f != NULL, "reopen %s", path2);
+  CHECK(NM_new_from_file(f) == NULL, "garbage accepted by NM_new_from_file");
+  CHECK(fc3d_last_error_code() == FC3D_ERR_PARSE, "garbage: code %d", fc3d_last_error_code());
+  CHECK(strstr(fc3d_last_error_message(), "garbage") != NULL, "the message names the token: %s",
+        fc3d_last_error_message());
+  CHECK(SBM_new_from_file(f) == NULL && fc3d_last_error_code() == FC3D_ERR_PARSE, "garbage accepted by SBM_new_from_file");
+  CHECK(fscanf(f, "%15s", word) == 1 && strcmp(word, "garbage") == 0, "a failed read moved the stream");
+  fclose(f);
+  /* a truncated matrix */
+  if (write_text(path2, "0 2 2 2 2 1.0 2.0 3.0")) return 1;
+  R = NM_new_from_filename(path2);
+  CHECK(R == NULL && fc3d_last_error_code() == FC3D_ERR_PARSE, "truncated matrix accepted");
+  /* sparse-block matrices of other than 3x3 blocks are not represented by fc3d */
+  if (write_text(path2, "1\n4\n4\n4\n2\n2\n2\t4\t\n2\t4\t\n3\n4\n0\t2\t4\t\n0\t1\t0\t1\t\n"
+                        "0 1 2 3 4\n1 1 2 3 4\n2 1 2 3 4\n3 1 2 3 4\n"))
+    return 1;
+  R = NM_new_from_filename(path2);
+  CHECK(R == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_STORAGE, "2x2 blocks: code %d",
+        fc3d_last_error_code());
+  CHECK(NM_new_from_file(NULL) == NULL && fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "NULL FILE");
+  CHECK(SBM_new_from_file(NULL) == NULL && fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "NULL FILE (SBM)");
+  remove(path2);
+  CHECK(NM_new_from_filename(path2) == NULL && fc3d_last_error_code() == FC3D_ERR_IO, "missing file");
+  remove(path);
+
+  NM_free(D);
+  NM_free(T);
+  SBM_free_from_SBCM(sbm);
+  S->matrix1 = NULL;
+  NM_free(S);
+  SBCM_free_3x3(coo);
+  return 0;
+}
+
 /* ---- ownership paths (run under valgrind by CI) ---------------------------------------------- */
 
 int capi_check_ownership(const char* data_dir, const char* scratch_dir) {
   char path[4096], out[4096];
+  if (check_matrix_files(scratch_dir)) return 1;
   /* a problem read from a file, written back, read again, compared, freed */
   snprintf(path, sizeof path, "%s/Capsules-i100-889.dat", data_dir);
   snprintf(out, sizeof out, "%s/fc3d_roundtrip.dat", scratch_dir);

@@ -70,7 +70,9 @@ unsafe fn driver_impl(
 
 /// Solves the problem with the solver `options->solverId`, starting from `reaction`.
 /// Returns 0 when converged (error <= dparam[0]), 1 when the solver stopped above the
-/// tolerance (reaction, velocity hold its last iterate), a negative `FC3D_ERR_*` code when the
+/// tolerance at its iteration limit (reaction, velocity hold its last iterate), 2
+/// (`FC3D_TIME_BUDGET_EXHAUSTED`) when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out
+/// (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 /// input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
 /// and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
 #[no_mangle]

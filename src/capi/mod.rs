@@ -33,6 +33,12 @@ use crate::error::Fc3dError;
 pub const FC3D_OK: c_int = 0;
 /// A solver ran and returned its best iterate, but the error is above the tolerance.
 pub const FC3D_NOT_CONVERGED: c_int = 1;
+/// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
+/// reaction is the best iterate it measured, and its error is above the tolerance.
+pub const FC3D_TIME_BUDGET_EXHAUSTED: c_int = 2;
+/// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
+/// Siconos' fc3d solvers leave unused.
+pub const FC3D_DPARAM_TIME_BUDGET: c_int = 19;
 /// A required pointer argument (or a pointer inside a struct) is NULL.
 pub const FC3D_ERR_NULL_POINTER: c_int = -1;
 /// Sizes are negative, inconsistent, or too large.

@@ -278,6 +278,19 @@ impl<'a> Params<'a> {
         }
     }
 
+    /// fc3d's wall-clock budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`, seconds, 0 = none).
+    fn time_budget(&self) -> CResult<Option<std::time::Duration>> {
+        let k = super::FC3D_DPARAM_TIME_BUDGET as usize;
+        let b = self.dparam[k];
+        if b == 0.0 {
+            Ok(None)
+        } else if b > 0.0 && b.is_finite() {
+            Ok(Some(std::time::Duration::from_secs_f64(b)))
+        } else {
+            Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("time budget (dparam[{k}]) = {b} must be 0 (none) or a positive number of seconds")))
+        }
+    }
+
     /// Rejects a non-default value of an option fc3d does not implement yet (never ignore it
     /// silently: the host asked for a behaviour).
     fn require(&self, k: usize, expected: c_int, name: &str) -> CResult<()> {
@@ -357,6 +370,7 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
                     return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light, 2 light with full final)")))
                 }
             };
+            n.time_budget = p.time_budget()?;
             p.require(IPARAM_INTERNAL_ERROR_STRATEGY, 1, "local tolerance strategy (1 = given value)")?;
             p.require(IPARAM_RESCALING, 0, "rescaling")?;
             p.require(IPARAM_NSGS_RELAXATION, 0, "NSGS relaxation")?;

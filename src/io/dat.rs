@@ -31,6 +31,12 @@
 //! in the text is an [`Fc3dError::Parse`] naming the token at fault (or `<end of file>`). Declared
 //! sizes are checked against the number of tokens left before anything is allocated, so a corrupt
 //! header cannot make the reader allocate more than the file could describe.
+//!
+//! The matrix part alone (`storageType size0 size1` and the body, any shape) is what Siconos'
+//! `NM_write_in_file` writes and `NM_new_from_file` reads: [`parse_matrix`] and [`write_matrix`].
+//! The sparse-block body without that header is what `SBM_write_in_file` writes and
+//! `SBM_new_from_file` reads: [`parse_sbm`] and [`write_sbm`]. The `_prefix` variants also say
+//! where the matrix text ends, for readers that continue after it.
 
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
@@ -63,9 +69,16 @@ const TOKENS_PER_CSC_ENTRY: usize = 3;
 /// Tokens of a `row col : value` line of a triplet dump.
 const TOKENS_PER_TRIPLET: usize = 4;
 
+/// Largest number of rows or columns (2^24) [`parse_matrix`] accepts for a sparse or sparse-block
+/// matrix. Their sizes are not bounded by the number of values in the text (an empty
+/// 10^12 x 10^12 sparse matrix is a few tokens), while reading them allocates per row: this keeps
+/// a corrupt header from exhausting memory. 2^24 rows are 5.6 million contacts, far beyond any
+/// fc3d problem.
+const MAX_SPARSE_MATRIX_SIZE: usize = 1 << 24;
+
 /// Parses the text of a `.dat` file. `file_label` names the input in error messages.
 pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static>, Fc3dError> {
-    let mut r = Reader::new(text, file_label);
+    let mut r = Reader::new(text, file_label, "W");
 
     let (dim_index, dim) = r.usize("the problem dimension")?;
     match dim {
@@ -100,17 +113,8 @@ pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static
     // q and mu follow the matrix: a size the rest of the file cannot hold fails here, before any
     // storage sized by it (a CSR row pointer array, say) is allocated.
     r.ensure_remaining(n.saturating_add(nc), "W, q and mu")?;
-    let w = match storage {
-        STORAGE_DENSE => parse_dense(&mut r, n)?,
-        STORAGE_SPARSE_BLOCK => parse_sparse_block(&mut r, nc)?,
-        STORAGE_SPARSE => parse_sparse(&mut r, n)?,
-        _ => {
-            return Err(r.error_at(
-                storage_index,
-                "unknown storage type of W (0 dense, 1 sparse-block, 2 sparse)",
-            ))
-        }
-    };
+    // The solvers need the diagonal block of every contact: a sparse-block W must store them all.
+    let w = parse_matrix_body(&mut r, storage_index, storage, n, n, true)?;
 
     let q = r.reals(n, "q")?;
     r.ensure_remaining(nc, "the friction coefficients mu")?;
@@ -148,13 +152,111 @@ pub fn read_dat_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError>
 pub fn write_dat<W: Write>(problem: &FrictionProblem<'_>, out: &mut W) -> io::Result<()> {
     writeln!(out, "{DIMENSION}")?;
     writeln!(out, "{}", problem.n_contacts())?;
-    match problem.w() {
-        Delassus::Dense(d) => write_dense(d, out)?,
-        Delassus::SparseBlock(s) => write_sparse_block(s, out)?,
-        Delassus::Sparse(s) => write_triplet_dump(s, out)?,
-    }
+    write_matrix(problem.w(), out)?;
     write_reals_line(out, problem.q())?;
     write_reals_line(out, problem.mu())
+}
+
+/// Parses a matrix as Siconos' `NM_write_in_file` writes it: `storageType size0 size1` and the
+/// body of that storage (see the module documentation), of any shape. Whatever follows the
+/// matrix is ignored. `label` names the input in error messages.
+///
+/// Differences from Siconos' `NM_new_from_file`, which accepts more than fc3d can represent:
+/// * a sparse-block matrix must be made of 3x3 blocks (so its sizes are multiples of 3): other
+///   block sizes give [`Fc3dError::Unsupported`] naming `label`, the block and the token;
+/// * a sparse matrix with origin 4 (half triplet) gives [`Fc3dError::Unsupported`];
+/// * sparse and sparse-block matrices have at most 2^24 rows and columns (their sizes are not
+///   bounded by the values in the text, and reading allocates per row);
+/// * values must be finite, block numbers in order, the dense body must repeat the declared sizes;
+/// * a sparse-block matrix without blocks (Siconos writes a lone `0` after the header, and reads
+///   it back as a matrix without storage) is the all-zero matrix of the declared size.
+///
+/// Every other defect is an [`Fc3dError::Parse`] naming the token at fault.
+pub fn parse_matrix(text: &str, label: &str) -> Result<Delassus<'static>, Fc3dError> {
+    parse_matrix_prefix(text, label).map(|(w, _)| w)
+}
+
+/// [`parse_matrix`], also returning the length in bytes of the matrix text and the whitespace
+/// after it: `&text[len..]` starts at the first token after the matrix (or is empty).
+pub fn parse_matrix_prefix(
+    text: &str,
+    label: &str,
+) -> Result<(Delassus<'static>, usize), Fc3dError> {
+    let mut r = Reader::new(text, label, "M");
+    let (storage_index, storage) = r.usize("the storage type of the matrix")?;
+    let (rows_index, rows) = r.usize("the number of rows of the matrix (size0)")?;
+    let (cols_index, cols) = r.usize("the number of columns of the matrix (size1)")?;
+    let limit = if storage == STORAGE_DENSE {
+        // The values are in the text: the remaining-token checks bound what is allocated.
+        i32::MAX as usize
+    } else {
+        MAX_SPARSE_MATRIX_SIZE
+    };
+    for (index, size) in [(rows_index, rows), (cols_index, cols)] {
+        if size > limit {
+            return Err(r.error_at(
+                index,
+                format!("the matrix size must be at most {limit} for this storage"),
+            ));
+        }
+    }
+    let w = parse_matrix_body(&mut r, storage_index, storage, rows, cols, false)?;
+    Ok((w, r.consumed_bytes()))
+}
+
+/// Writes `w` as Siconos' `NM_write_in_file` does (`storageType size0 size1` and the body), in the
+/// storage it has; a [`CsrMatrix`] is written as a CSparse triplet dump (origin `NSM_TRIPLET`).
+/// Values are printed in their shortest exactly round-tripping form: [`parse_matrix`] gives back
+/// an equal matrix, bit for bit, and Siconos reads the same values.
+pub fn write_matrix<W: Write>(w: &Delassus<'_>, out: &mut W) -> io::Result<()> {
+    match w {
+        Delassus::Dense(d) => write_dense(d, out),
+        Delassus::SparseBlock(s) => {
+            writeln!(out, "{STORAGE_SPARSE_BLOCK}\n{}\n{}", s.nrows(), s.ncols())?;
+            write_sbm(s, out)
+        }
+        Delassus::Sparse(s) => write_triplet_dump(s, out),
+    }
+}
+
+/// Parses a sparse-block body without the `storageType size0 size1` header, as Siconos'
+/// `SBM_write_in_file` writes it and `SBM_new_from_file` reads it. The size comes from the
+/// cumulative block sizes; a lone `0` (no block) is the empty 0x0 matrix (Siconos'
+/// `SBM_new_from_file` returns NULL there). Blocks must be 3x3: other block sizes give
+/// [`Fc3dError::Unsupported`] naming `label`; other defects are [`Fc3dError::Parse`] errors.
+/// Whatever follows the body is ignored.
+pub fn parse_sbm(text: &str, label: &str) -> Result<BlockSparseMatrix, Fc3dError> {
+    parse_sbm_prefix(text, label).map(|(m, _)| m)
+}
+
+/// [`parse_sbm`], also returning the length in bytes of the body and the whitespace after it.
+pub fn parse_sbm_prefix(text: &str, label: &str) -> Result<(BlockSparseMatrix, usize), Fc3dError> {
+    let mut r = Reader::new(text, label, "M");
+    let m = parse_sparse_block(&mut r, None, false)?;
+    Ok((m, r.consumed_bytes()))
+}
+
+/// Writes the sparse-block body of `m` without the `storageType size0 size1` header, as Siconos'
+/// `SBM_write_in_file` does (a lone `0` for a matrix without blocks).
+pub fn write_sbm<W: Write>(m: &BlockSparseMatrix, out: &mut W) -> io::Result<()> {
+    writeln!(out, "{}", m.n_blocks())?;
+    if m.n_blocks() == 0 {
+        return Ok(());
+    }
+    writeln!(out, "{}\n{}", m.n_block_rows(), m.n_block_cols())?;
+    write_usizes_line(out, (1..=m.n_block_rows()).map(|k| DIMENSION * k))?;
+    write_usizes_line(out, (1..=m.n_block_cols()).map(|k| DIMENSION * k))?;
+    writeln!(out, "{}\n{}", m.row_ptr().len(), m.n_blocks())?;
+    write_usizes_line(out, m.row_ptr().iter().copied())?;
+    write_usizes_line(out, m.col_idx().iter().copied())?;
+    // Blocks are stored in block-CSR order, so storage index k is the number Siconos expects.
+    for (k, block) in m.blocks().iter().enumerate() {
+        writeln!(out, "{k}")?;
+        for v in block {
+            writeln!(out, "{v:e}")?;
+        }
+    }
+    Ok(())
 }
 
 /// Writes `problem` to `path` (see [`write_dat`]).
@@ -181,13 +283,16 @@ struct Token<'t> {
 
 /// A cursor over the tokens of the whole input.
 struct Reader<'t> {
+    text: &'t str,
     file: &'t str,
+    /// What the matrix is called in messages ("W" in a problem file, "M" alone).
+    name: &'static str,
     tokens: Vec<Token<'t>>,
     pos: usize,
 }
 
 impl<'t> Reader<'t> {
-    fn new(text: &'t str, file: &'t str) -> Self {
+    fn new(text: &'t str, file: &'t str, name: &'static str) -> Self {
         // Splitting lines on '\n' then each line on whitespace yields exactly the tokens of
         // `text.split_whitespace()`, so token indices are those of the whole text.
         let tokens = text
@@ -196,10 +301,21 @@ impl<'t> Reader<'t> {
             .flat_map(|(line, l)| l.split_whitespace().map(move |text| Token { text, line }))
             .collect();
         Reader {
+            text,
             file,
+            name,
             tokens,
             pos: 0,
         }
+    }
+
+    /// The bytes of the text read so far and the whitespace after them: the offset of the first
+    /// unread token, or the length of the text when every token has been read.
+    fn consumed_bytes(&self) -> usize {
+        self.tokens.get(self.pos).map_or(self.text.len(), |t| {
+            // Tokens are slices of `text`.
+            t.text.as_ptr() as usize - self.text.as_ptr() as usize
+        })
     }
 
     /// A parse error at token `index` (the end of the input if there is no such token).
@@ -301,35 +417,67 @@ fn token_count(count: usize, per_item: usize) -> usize {
     count.saturating_mul(per_item)
 }
 
-fn parse_dense(r: &mut Reader<'_>, n: usize) -> Result<Delassus<'static>, Fc3dError> {
+/// The body of a `rows x cols` matrix of the given storage code (read at token `storage_index`).
+/// `require_diagonal`: a sparse-block matrix must store every diagonal block (a problem's W).
+fn parse_matrix_body(
+    r: &mut Reader<'_>,
+    storage_index: usize,
+    storage: usize,
+    rows: usize,
+    cols: usize,
+    require_diagonal: bool,
+) -> Result<Delassus<'static>, Fc3dError> {
+    match storage {
+        STORAGE_DENSE => parse_dense(r, rows, cols),
+        STORAGE_SPARSE_BLOCK => {
+            parse_sparse_block(r, Some((rows, cols)), require_diagonal).map(Delassus::SparseBlock)
+        }
+        STORAGE_SPARSE => parse_sparse(r, rows, cols),
+        _ => Err(r.error_at(
+            storage_index,
+            format!(
+                "unknown storage type of {} (0 dense, 1 sparse-block, 2 sparse)",
+                r.name
+            ),
+        )),
+    }
+}
+
+fn parse_dense(
+    r: &mut Reader<'_>,
+    rows: usize,
+    cols: usize,
+) -> Result<Delassus<'static>, Fc3dError> {
+    let name = r.name;
     // The dense body repeats the sizes (Siconos reads them again and trusts the second pair).
-    for what in ["rows", "columns"] {
-        let (index, size) = r.usize(&format!("the number of {what} of the dense W"))?;
+    for (what, n) in [("rows", rows), ("columns", cols)] {
+        let (index, size) = r.usize(&format!("the number of {what} of the dense {name}"))?;
         if size != n {
             return Err(r.error_at(
                 index,
-                format!("the dense W must have {n} {what} as declared, not {size}"),
+                format!("the dense {name} must have {n} {what} as declared, not {size}"),
             ));
         }
     }
     let start = r.pos;
-    let len = n
-        .checked_mul(n)
-        .ok_or_else(|| r.error_at(start, "the dense W is too large"))?;
-    let values = r.reals(len, "the dense W")?;
-    DenseMatrix::new(n, n, values)
+    let len = rows
+        .checked_mul(cols)
+        .ok_or_else(|| r.error_at(start, format!("the dense {name} is too large")))?;
+    let values = r.reals(len, &format!("the dense {name}"))?;
+    DenseMatrix::new(rows, cols, values)
         .map(Delassus::Dense)
         .map_err(|e| r.error_at(start, e.to_string()))
 }
 
-/// Reads `count` cumulative block sizes that must be 3, 6, 9, ... up to `n`.
+/// Reads `count` cumulative block sizes that must be 3, 6, 9, ..., up to `n` when it is given;
+/// returns the last one (the number of rows or columns the blocks cover).
 fn parse_block_sizes(
     r: &mut Reader<'_>,
     count: usize,
     count_index: usize,
-    n: usize,
+    n: Option<usize>,
     what: &str,
-) -> Result<(), Fc3dError> {
+) -> Result<usize, Fc3dError> {
     r.ensure_remaining(count, &format!("the cumulative {what} block sizes"))?;
     let mut previous = 0;
     let mut last_index = count_index;
@@ -343,52 +491,81 @@ fn parse_block_sizes(
         }
         if size - previous != DIMENSION {
             return Err(Fc3dError::Unsupported(format!(
-                "{}: sparse-block W with a block {what} of size {} (block {what} {k}, token {index}); \
+                "{}: sparse-block {} with a block {what} of size {} (block {what} {k}, token {index}); \
                  fc3d handles 3x3 blocks only",
                 r.file,
+                r.name,
                 size - previous
             )));
         }
         previous = size;
         last_index = index;
     }
-    if previous != n {
-        return Err(r.error_at(
+    match n {
+        Some(n) if previous != n => Err(r.error_at(
             last_index,
-            format!("the {what} blocks cover {previous} {what}s but W has {n}"),
-        ));
+            format!(
+                "the {what} blocks cover {previous} {what}s but {} has {n}",
+                r.name
+            ),
+        )),
+        _ => Ok(previous),
     }
-    Ok(())
 }
 
-fn parse_sparse_block(r: &mut Reader<'_>, nc: usize) -> Result<Delassus<'static>, Fc3dError> {
-    let (nbblocks_index, nbblocks) = r.usize("the number of blocks of W")?;
+/// A sparse-block body. `shape`: the declared `(rows, cols)` (None: the block sizes tell).
+/// `require_diagonal`: every diagonal block must be stored (the W of a problem).
+fn parse_sparse_block(
+    r: &mut Reader<'_>,
+    shape: Option<(usize, usize)>,
+    require_diagonal: bool,
+) -> Result<BlockSparseMatrix, Fc3dError> {
+    let name = r.name;
+    let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
     if nbblocks == 0 {
         // Siconos writes a lone 0 for a matrix without blocks and stops there.
-        if nc > 0 {
+        let (rows, cols) = shape.unwrap_or((0, 0));
+        if require_diagonal && rows > 0 {
             return Err(r.error_at(
                 nbblocks_index,
                 format!(
-                    "a sparse-block W without blocks lacks the diagonal blocks of {nc} contacts"
+                    "a sparse-block {name} without blocks lacks the diagonal blocks of {} contacts",
+                    rows / DIMENSION
                 ),
             ));
         }
-        let empty = BlockSparseMatrix::new(0, 0, vec![0], Vec::new(), Vec::new())
-            .map_err(|e| r.error_at(nbblocks_index, e.to_string()))?;
-        return Ok(Delassus::SparseBlock(empty));
+        if rows % DIMENSION != 0 || cols % DIMENSION != 0 {
+            return Err(Fc3dError::Unsupported(format!(
+                "{}: a sparse-block {name} of size {rows}x{cols} cannot be made of 3x3 blocks \
+                 (fc3d handles 3x3 blocks only)",
+                r.file
+            )));
+        }
+        let empty = BlockSparseMatrix::new(
+            rows / DIMENSION,
+            cols / DIMENSION,
+            vec![0; rows / DIMENSION + 1],
+            Vec::new(),
+            Vec::new(),
+        )
+        .map_err(|e| r.error_at(nbblocks_index, e.to_string()))?;
+        return Ok(empty);
     }
-    let n = nc * DIMENSION;
     let (rows_index, block_rows) = r.usize("the number of block rows")?;
     let (cols_index, block_cols) = r.usize("the number of block columns")?;
-    parse_block_sizes(r, block_rows, rows_index, n, "row")?;
-    parse_block_sizes(r, block_cols, cols_index, n, "column")?;
-    // From here on block_rows == block_cols == nc.
+    parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row")?;
+    parse_block_sizes(r, block_cols, cols_index, shape.map(|s| s.1), "column")?;
+    // From here on the matrix is block_rows x block_cols blocks of 3x3 (and block_rows tokens
+    // have been read, so allocating per block row is bounded by the text).
 
     let (filled1_index, filled1) = r.usize("filled1 (the length of index1_data)")?;
-    if filled1 == 0 || filled1 > nc + 1 {
+    if filled1 == 0 || filled1 > block_rows + 1 {
         return Err(r.error_at(
             filled1_index,
-            format!("filled1 must be between 1 and {} (block rows + 1)", nc + 1),
+            format!(
+                "filled1 must be between 1 and {} (block rows + 1)",
+                block_rows + 1
+            ),
         ));
     }
     let (filled2_index, filled2) = r.usize("filled2 (the number of stored blocks)")?;
@@ -404,7 +581,7 @@ fn parse_sparse_block(r: &mut Reader<'_>, nc: usize) -> Result<Delassus<'static>
     )?;
 
     let index1_start = r.pos;
-    let mut row_ptr = Vec::with_capacity(nc + 1);
+    let mut row_ptr = Vec::with_capacity(block_rows + 1);
     for k in 0..filled1 {
         let (index, p) = r.usize("a block-row pointer (index1_data)")?;
         let previous = row_ptr.last().copied().unwrap_or(0);
@@ -423,37 +600,42 @@ fn parse_sparse_block(r: &mut Reader<'_>, nc: usize) -> Result<Delassus<'static>
         ));
     }
     // Siconos may stop index1_data after the last non-empty block row; the rows after it are empty.
-    row_ptr.resize(nc + 1, filled2);
+    row_ptr.resize(block_rows + 1, filled2);
 
     let mut col_idx = Vec::with_capacity(filled2);
     for _ in 0..filled2 {
         let (index, c) = r.usize("a block column (index2_data)")?;
-        if c >= nc {
+        if c >= block_cols {
             return Err(r.error_at(
                 index,
-                format!("block column {c} is out of range (W has {nc} block columns)"),
+                format!("block column {c} is out of range ({name} has {block_cols} block columns)"),
             ));
         }
         col_idx.push(c);
     }
-    // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
-    for c in 0..nc {
-        if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
-            let index = if c < filled1 {
-                index1_start + c
-            } else {
-                filled1_index
-            };
-            return Err(r.error_at(
-                index,
-                format!("the diagonal 3x3 block of contact {c} is missing from W"),
-            ));
+    if require_diagonal {
+        // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
+        for c in 0..block_rows {
+            if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
+                let index = if c < filled1 {
+                    index1_start + c
+                } else {
+                    filled1_index
+                };
+                return Err(r.error_at(
+                    index,
+                    format!("the diagonal 3x3 block of contact {c} is missing from {name}"),
+                ));
+            }
         }
     }
 
-    r.ensure_remaining(token_count(filled2, TOKENS_PER_BLOCK), "the blocks of W")?;
+    r.ensure_remaining(
+        token_count(filled2, TOKENS_PER_BLOCK),
+        &format!("the blocks of {name}"),
+    )?;
     let mut blocks = Vec::with_capacity(filled2);
-    for row in 0..nc {
+    for row in 0..block_rows {
         for k in row_ptr[row]..row_ptr[row + 1] {
             let (index, number) = r.usize("a block number")?;
             // Siconos only warns about a wrong number (it stores blocks in file order anyway); a
@@ -471,8 +653,7 @@ fn parse_sparse_block(r: &mut Reader<'_>, nc: usize) -> Result<Delassus<'static>
             blocks.push(block);
         }
     }
-    BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
-        .map(Delassus::SparseBlock)
+    BlockSparseMatrix::new(block_rows, block_cols, row_ptr, col_idx, blocks)
         .map_err(|e| r.error_at(nbblocks_index, e.to_string()))
 }
 
@@ -482,20 +663,24 @@ fn parse_csparse_dims(text: &str) -> Option<(usize, usize)> {
     Some((m.parse().ok()?, n.parse().ok()?))
 }
 
-/// Reads the `m-by-n,` token and checks it against the declared size.
-fn csparse_dims(r: &mut Reader<'_>, n: usize) -> Result<(), Fc3dError> {
+/// Reads the `m-by-n,` token and checks it against the expected `m` and `n`.
+fn csparse_dims(r: &mut Reader<'_>, m: usize, n: usize) -> Result<(), Fc3dError> {
     let (index, text) = r.next("the matrix size 'm-by-n,'")?;
     match parse_csparse_dims(text) {
-        Some((rows, cols)) if rows == n && cols == n => Ok(()),
-        Some((rows, cols)) => Err(r.error_at(
+        Some(dims) if dims == (m, n) => Ok(()),
+        Some((a, b)) => Err(r.error_at(
             index,
-            format!("the CSparse matrix is {rows}x{cols} but W is {n}x{n}"),
+            format!("the CSparse matrix is {a}-by-{b} where {m}-by-{n} is expected"),
         )),
         None => Err(r.error_at(index, "expected the matrix size 'm-by-n,'")),
     }
 }
 
-fn parse_sparse(r: &mut Reader<'_>, n: usize) -> Result<Delassus<'static>, Fc3dError> {
+fn parse_sparse(
+    r: &mut Reader<'_>,
+    rows: usize,
+    cols: usize,
+) -> Result<Delassus<'static>, Fc3dError> {
     let (origin_index, origin) = r.usize("the sparse origin (1 triplet, 2 CSC, 3 CSR)")?;
     // Siconos reads what follows with fgets: the rest of the origin line, the CSparse banner line,
     // then the header line. The banner is free text, so it is skipped as a whole line.
@@ -511,8 +696,8 @@ fn parse_sparse(r: &mut Reader<'_>, n: usize) -> Result<Delassus<'static>, Fc3dE
             ORIGIN_TRIPLET => {}
             ORIGIN_HALF_TRIPLET => {
                 return Err(Fc3dError::Unsupported(format!(
-                    "{}: half-triplet (symmetric half) storage of W is not supported",
-                    r.file
+                    "{}: half-triplet (symmetric half) storage of {} is not supported",
+                    r.file, r.name
                 )))
             }
             _ => {
@@ -522,11 +707,12 @@ fn parse_sparse(r: &mut Reader<'_>, n: usize) -> Result<Delassus<'static>, Fc3dE
                 ))
             }
         }
-        parse_triplet_dump(r, n)?
+        parse_triplet_dump(r, rows, cols)?
     } else {
         let rows_are_outer = match origin {
             ORIGIN_CSC => false,
-            // A CSR matrix is printed by the same code with its rows as "col" sections.
+            // Siconos keeps a CSR matrix as the CSparse struct of its transpose (m = columns,
+            // n = rows) and prints it with the same code: rows are the "col" sections.
             ORIGIN_CSR => true,
             _ => {
                 return Err(r.error_at(
@@ -535,17 +721,22 @@ fn parse_sparse(r: &mut Reader<'_>, n: usize) -> Result<Delassus<'static>, Fc3dE
                 ))
             }
         };
-        parse_compressed_dump(r, n, rows_are_outer)?
+        parse_compressed_dump(r, rows, cols, rows_are_outer)?
     };
-    CsrMatrix::from_triplets(n, n, &triplets)
+    CsrMatrix::from_triplets(rows, cols, &triplets)
         .map(Delassus::Sparse)
         .map_err(|e| r.error_at(origin_index, e.to_string()))
 }
 
 /// `triplet: m-by-n, nzmax: Z nnz: N` then `N` lines `row col : value`.
-fn parse_triplet_dump(r: &mut Reader<'_>, n: usize) -> Result<Vec<(usize, usize, f64)>, Fc3dError> {
+fn parse_triplet_dump(
+    r: &mut Reader<'_>,
+    rows: usize,
+    cols: usize,
+) -> Result<Vec<(usize, usize, f64)>, Fc3dError> {
+    let name = r.name;
     r.literal("triplet:", "the triplet header")?;
-    csparse_dims(r, n)?;
+    csparse_dims(r, rows, cols)?;
     r.literal("nzmax:", "the triplet header")?;
     let (_, nzmax) = r.usize("nzmax")?;
     r.literal("nnz:", "the triplet header")?;
@@ -557,31 +748,42 @@ fn parse_triplet_dump(r: &mut Reader<'_>, n: usize) -> Result<Vec<(usize, usize,
     let mut triplets = Vec::with_capacity(nnz);
     for _ in 0..nnz {
         let (i_index, i) = r.usize("a row index")?;
-        if i >= n {
-            return Err(r.error_at(i_index, format!("row index out of range (W has {n} rows)")));
+        if i >= rows {
+            return Err(r.error_at(
+                i_index,
+                format!("row index out of range ({name} has {rows} rows)"),
+            ));
         }
         let (j_index, j) = r.usize("a column index")?;
-        if j >= n {
+        if j >= cols {
             return Err(r.error_at(
                 j_index,
-                format!("column index out of range (W has {n} columns)"),
+                format!("column index out of range ({name} has {cols} columns)"),
             ));
         }
         r.literal(":", "between the indices and the value of a triplet")?;
-        let (_, v) = r.real("a value of W")?;
+        let (_, v) = r.real(&format!("a value of {name}"))?;
         triplets.push((i, j, v));
     }
     Ok(triplets)
 }
 
 /// `m-by-n, nzmax: Z nnz: N, 1-norm: X` then per section `col j : locations a to b` and `b - a + 1`
-/// lines `i : value`. Sections are columns (CSC), or rows when `rows_are_outer` (CSR).
+/// lines `i : value`. Sections are columns (CSC: `m` rows, `n` columns), or rows when
+/// `rows_are_outer` (CSR: printed from the transposed struct, so `m` columns and `n` rows).
 fn parse_compressed_dump(
     r: &mut Reader<'_>,
-    n: usize,
+    rows: usize,
+    cols: usize,
     rows_are_outer: bool,
 ) -> Result<Vec<(usize, usize, f64)>, Fc3dError> {
-    csparse_dims(r, n)?;
+    let name = r.name;
+    let (inner_count, outer_count) = if rows_are_outer {
+        (cols, rows)
+    } else {
+        (rows, cols)
+    };
+    csparse_dims(r, inner_count, outer_count)?;
     r.literal("nzmax:", "the CSparse header")?;
     let (_, nzmax) = r.usize("nzmax")?;
     r.literal("nnz:", "the CSparse header")?;
@@ -598,12 +800,12 @@ fn parse_compressed_dump(
     r.next("the 1-norm")?;
 
     r.ensure_remaining(
-        token_count(n, TOKENS_PER_CSC_COLUMN)
+        token_count(outer_count, TOKENS_PER_CSC_COLUMN)
             .saturating_add(token_count(nnz, TOKENS_PER_CSC_ENTRY)),
         "the compressed sections",
     )?;
     let mut triplets = Vec::with_capacity(nnz);
-    for outer in 0..n {
+    for outer in 0..outer_count {
         r.literal("col", "a section header 'col j : locations a to b'")?;
         let (j_index, j) = r.usize("a section number")?;
         if j != outer {
@@ -634,11 +836,14 @@ fn parse_compressed_dump(
             })?;
         for _ in 0..count {
             let (i_index, inner) = r.usize("an index of a stored entry")?;
-            if inner >= n {
-                return Err(r.error_at(i_index, format!("index out of range (W is {n}x{n})")));
+            if inner >= inner_count {
+                return Err(r.error_at(
+                    i_index,
+                    format!("index out of range ({name} is {rows}x{cols})"),
+                ));
             }
             r.literal(":", "between the index and the value of an entry")?;
-            let (_, v) = r.real("a value of W")?;
+            let (_, v) = r.real(&format!("a value of {name}"))?;
             triplets.push(if rows_are_outer {
                 (outer, inner, v)
             } else {
@@ -681,32 +886,10 @@ fn write_usizes_line<W: Write>(out: &mut W, values: impl Iterator<Item = usize>)
 fn write_dense<W: Write>(d: &DenseMatrix<'_>, out: &mut W) -> io::Result<()> {
     let (m, n) = (d.nrows(), d.ncols());
     writeln!(out, "{STORAGE_DENSE}\n{m}\n{n}\n{m}\t{n}")?;
-    // One column per line (Siconos prints size1 values per line; W is square).
-    for column in d.values().chunks(m.max(1)) {
-        write_reals_line(out, column)?;
-    }
-    Ok(())
-}
-
-fn write_sparse_block<W: Write>(s: &BlockSparseMatrix, out: &mut W) -> io::Result<()> {
-    writeln!(out, "{STORAGE_SPARSE_BLOCK}\n{}\n{}", s.nrows(), s.ncols())?;
-    writeln!(out, "{}", s.n_blocks())?;
-    if s.n_blocks() == 0 {
-        // Siconos' layout for a matrix without blocks (only possible with no contact).
-        return Ok(());
-    }
-    writeln!(out, "{}\n{}", s.n_block_rows(), s.n_block_cols())?;
-    write_usizes_line(out, (1..=s.n_block_rows()).map(|k| DIMENSION * k))?;
-    write_usizes_line(out, (1..=s.n_block_cols()).map(|k| DIMENSION * k))?;
-    writeln!(out, "{}\n{}", s.row_ptr().len(), s.n_blocks())?;
-    write_usizes_line(out, s.row_ptr().iter().copied())?;
-    write_usizes_line(out, s.col_idx().iter().copied())?;
-    // Blocks are stored in block-CSR order, so storage index k is the number Siconos expects.
-    for (k, block) in s.blocks().iter().enumerate() {
-        writeln!(out, "{k}")?;
-        for v in block {
-            writeln!(out, "{v:e}")?;
-        }
+    // The column-major values, size1 per line as Siconos prints them (one column per line when
+    // the matrix is square).
+    for line in d.values().chunks(n.max(1)) {
+        write_reals_line(out, line)?;
     }
     Ok(())
 }
@@ -782,10 +965,10 @@ triplet: 3-by-3, nzmax: 16 nnz: 9\n\
     /// Parses the W of a (2D) file whose header is `dim nc storage n n`, to exercise the CSparse
     /// readers on the real dumps Siconos wrote.
     fn matrix_of(text: &str) -> Delassus<'static> {
-        let mut r = Reader::new(text, "2d");
+        let mut r = Reader::new(text, "2d", "W");
         let header: Vec<usize> = (0..5).map(|_| r.usize("header").unwrap().1).collect();
         assert_eq!(header[2], STORAGE_SPARSE);
-        parse_sparse(&mut r, header[3]).unwrap()
+        parse_sparse(&mut r, header[3], header[4]).unwrap()
     }
 
     #[test]
