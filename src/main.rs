@@ -24,7 +24,8 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, Parser, Subcommand};
 use fc3d::{
-    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolverConfig,
+    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolveStatus,
+    SolverConfig,
 };
 
 /// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
@@ -167,6 +168,12 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
                     eprintln!("fc3d: skipping {why}");
                     continue;
                 }
+                // A folder of Siconos test data holds other inputs too (global problems,
+                // unit-test tables): they are not counted as failures when found by a scan.
+                Err(e) if from_directory => {
+                    eprintln!("fc3d: skipping (not a local fc3d problem) {e}");
+                    continue;
+                }
                 Err(e) => {
                     eprintln!("fc3d: {e}");
                     failed = true;
@@ -256,9 +263,23 @@ fn dat_files_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for entry in std::fs::read_dir(dir)? {
         let path = entry?.path();
-        if path.is_file() && path.extension().is_some_and(|e| e == "dat") {
-            files.push(path);
+        if !path.is_file() || !path.extension().is_some_and(|e| e == "dat") {
+            continue;
         }
+        // Siconos names global problems (M, H, q, b, mu) GFC3D_/gfc3d_/gfc2d_: their text
+        // happens to parse as a (wrong) local problem, so a folder scan leaves them out.
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_lowercase())
+            .unwrap_or_default();
+        if name.starts_with("gfc3d_") || name.starts_with("gfc2d_") {
+            eprintln!(
+                "fc3d: skipping {}: a global (M, H) problem, not an fc3d input",
+                path.display()
+            );
+            continue;
+        }
+        files.push(path);
     }
     files.sort();
     Ok(files)
@@ -293,10 +314,10 @@ impl Table {
             lines.push(format_cells(&HEADERS.map(String::from)));
             lines.push(format_cells(&WIDTHS.map(|w| "-".repeat(w))));
         }
-        let status = if row.report.converged() {
-            "converged"
-        } else {
-            "max-iter"
+        let status = match row.report.status {
+            SolveStatus::Converged => "converged",
+            SolveStatus::MaxIterationsReached => "max-iter",
+            SolveStatus::TimeBudgetExhausted => "out-of-time",
         };
         lines.push(format_cells(&[
             row.problem,
