@@ -25,6 +25,32 @@ struct BestIterate {
     error: f64,
 }
 
+/// One Gauss-Seidel sweep's state, prepared once per problem: the block-row view of W and the
+/// local solver. Public so that benchmarks and hosts that drive their own loop can sweep
+/// without re-preparing; a sweep allocates nothing.
+pub struct Sweeper {
+    rows: BlockRows,
+    local: AnyLocalSolver,
+}
+
+impl Sweeper {
+    pub fn new(
+        problem: &FrictionProblem<'_>,
+        local: &crate::options::LocalSolverOptions,
+    ) -> Result<Self, Fc3dError> {
+        Ok(Sweeper {
+            rows: problem.w().block_rows()?,
+            local: AnyLocalSolver::new(local),
+        })
+    }
+
+    /// One sweep over all contacts in order, updating `r` in place; returns
+    /// `sum_c ||r_c^new - r_c^old||^2`.
+    pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
+        sweep(&self.rows, q, mu, &mut self.local, r)
+    }
+}
+
 /// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
 /// `u = W r + q` and the final error.
 pub(crate) fn nsgs(
@@ -35,8 +61,7 @@ pub(crate) fn nsgs(
     observer: &mut dyn FnMut(&IterationEvent<'_>),
 ) -> Result<NsgsOutcome, Fc3dError> {
     // Everything that can fail happens before r is touched.
-    let rows = problem.w().block_rows()?;
-    let mut local = AnyLocalSolver::new(&options.local);
+    let mut sweeper = Sweeper::new(problem, &options.local)?;
     let (q, mu) = (problem.q(), problem.mu());
     let tol = options.tolerance;
     let mut light_tol = tol;
@@ -47,7 +72,7 @@ pub(crate) fn nsgs(
     });
 
     for iteration in 1..=options.max_iter {
-        let increment_sq = sweep(&rows, q, mu, &mut local, r);
+        let increment_sq = sweeper.sweep(q, mu, r);
 
         // (error tested this sweep, whether it is the full error, converged)
         let (error, full, converged) = match options.error_evaluation {
