@@ -15,6 +15,8 @@ packages=()
 command -v cc >/dev/null || packages+=(gcc libc6-dev)
 command -v valgrind >/dev/null || packages+=(valgrind)
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
+command -v pkg-config >/dev/null || packages+=(pkg-config)
+[ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
 if [ ${#packages[@]} -gt 0 ]; then
   echo "== installing ${packages[*]}"
   SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
@@ -22,8 +24,10 @@ if [ ${#packages[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${packages[@]}" >/dev/null
 fi
 
-echo "== cargo test --workspace"
-cargo test --workspace
+echo "== cargo test --workspace --features fc3d/fclib"
+cargo test --workspace --features fc3d/fclib
+echo "== cargo test --test fclib (without the fclib feature: .hdf5 refused with a clear error)"
+cargo test -p fc3d --test fclib
 
 echo "== release library"
 cargo build --release --lib
