@@ -11,7 +11,10 @@ pub(crate) fn c_calloc<T>(n: usize) -> CResult<*mut T> {
     // SAFETY: calloc checks n * size for overflow itself.
     let p = unsafe { libc::calloc(n.max(1), size) } as *mut T;
     if p.is_null() {
-        Err(CError::new(FC3D_ERR_INVALID_SIZE, format!("cannot allocate {n} elements of {size} bytes")))
+        Err(CError::new(
+            FC3D_ERR_INVALID_SIZE,
+            format!("cannot allocate {n} elements of {size} bytes"),
+        ))
     } else {
         Ok(p)
     }

@@ -46,7 +46,14 @@ unsafe fn driver_impl(
             scratch_r.extend_from_slice(ev.reaction);
             scratch_u.resize(n, 0.0);
             p.velocity(ev.reaction, &mut scratch_u);
-            f(cb.env, n as c_int, scratch_r.as_mut_ptr(), scratch_u.as_mut_ptr(), ev.error, std::ptr::null_mut());
+            f(
+                cb.env,
+                n as c_int,
+                scratch_r.as_mut_ptr(),
+                scratch_u.as_mut_ptr(),
+                ev.error,
+                std::ptr::null_mut(),
+            );
         }
     };
     let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut observer)?;
@@ -82,7 +89,11 @@ pub unsafe extern "C" fn fc3d_driver(
     velocity: *mut c_double,
     options: *mut SolverOptions,
 ) -> c_int {
-    ffi_guard("fc3d_driver", |c| c, || driver_impl(problem, reaction, velocity, options))
+    ffi_guard(
+        "fc3d_driver",
+        |c| c,
+        || driver_impl(problem, reaction, velocity, options),
+    )
 }
 
 /// Siconos' direct NSGS entry: as `fc3d_driver` with `options->solverId` = 500, the result
@@ -95,18 +106,25 @@ pub unsafe extern "C" fn fc3d_nsgs(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    let code = ffi_guard("fc3d_nsgs", |c| c, || {
-        if info.is_null() {
-            return Err(CError::null("info"));
-        }
-        if !options.is_null() && (*options).solverId != 500 {
-            return Err(CError::new(
-                FC3D_ERR_INVALID_OPTION,
-                format!("fc3d_nsgs called with options for solver {}", (*options).solverId),
-            ));
-        }
-        driver_impl(problem, reaction, velocity, options)
-    });
+    let code = ffi_guard(
+        "fc3d_nsgs",
+        |c| c,
+        || {
+            if info.is_null() {
+                return Err(CError::null("info"));
+            }
+            if !options.is_null() && (*options).solverId != 500 {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "fc3d_nsgs called with options for solver {}",
+                        (*options).solverId
+                    ),
+                ));
+            }
+            driver_impl(problem, reaction, velocity, options)
+        },
+    );
     if !info.is_null() {
         *info = code;
     }
@@ -127,24 +145,28 @@ pub unsafe extern "C" fn fc3d_compute_error(
     error: *mut c_double,
 ) -> c_int {
     let _ = options;
-    ffi_guard("fc3d_compute_error", |c| c, || {
-        if problem.is_null() {
-            return Err(CError::null("problem"));
-        }
-        if error.is_null() {
-            return Err(CError::null("error"));
-        }
-        let p = problem_from_c(&*problem)?;
-        let n = p.size();
-        let r = c_slice(z as *const c_double, n, "z")?;
-        c_slice(w as *const c_double, n, "w")?;
-        crate::error::check_finite("z", r)?;
-        let mut u = vec![0.0; n];
-        p.velocity(r, &mut u);
-        let abs = absolute_natural_map_residual(r, &u, p.mu());
-        let e = abs / relative_scale(norm.abs(), r, &u);
-        std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);
-        *error = e;
-        Ok(if e <= tolerance { 0 } else { 1 })
-    })
+    ffi_guard(
+        "fc3d_compute_error",
+        |c| c,
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            if error.is_null() {
+                return Err(CError::null("error"));
+            }
+            let p = problem_from_c(&*problem)?;
+            let n = p.size();
+            let r = c_slice(z as *const c_double, n, "z")?;
+            c_slice(w as *const c_double, n, "w")?;
+            crate::error::check_finite("z", r)?;
+            let mut u = vec![0.0; n];
+            p.velocity(r, &mut u);
+            let abs = absolute_natural_map_residual(r, &u, p.mu());
+            let e = abs / relative_scale(norm.abs(), r, &u);
+            std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);
+            *error = e;
+            Ok(if e <= tolerance { 0 } else { 1 })
+        },
+    )
 }

@@ -4,9 +4,9 @@
 
 use std::os::raw::{c_double, c_int, c_uint};
 
+use super::alloc::c_free;
 use super::matrix::c_slice;
 use super::options::{config_from_c, create_options, delete_contents};
-use super::alloc::c_free;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
 use crate::matrix::{BlockSparseMatrix, Delassus};
 use crate::problem::FrictionProblem;
@@ -41,7 +41,10 @@ unsafe fn lmgc_impl(
         if rows[k] == 0 || rows[k] as usize > nc || cols[k] == 0 || cols[k] as usize > nc {
             return Err(CError::new(
                 FC3D_ERR_INVALID_SIZE,
-                format!("block {k} at 1-based ({}, {}) is outside {nc}x{nc} blocks", rows[k], cols[k]),
+                format!(
+                    "block {k} at 1-based ({}, {}) is outside {nc}x{nc} blocks",
+                    rows[k], cols[k]
+                ),
             ));
         }
     }
@@ -108,7 +111,13 @@ pub unsafe extern "C" fn fc3d_LmgcDriver(
     ndof: c_int,
 ) -> c_int {
     let _ = (verbose, outputFile, freq_output, ndof);
-    ffi_guard("fc3d_LmgcDriver", |c| c, || {
-        lmgc_impl(reaction, velocity, q, mu, W, row, column, nc, nb, solver_id, tolerance, itermax)
-    })
+    ffi_guard(
+        "fc3d_LmgcDriver",
+        |c| c,
+        || {
+            lmgc_impl(
+                reaction, velocity, q, mu, W, row, column, nc, nb, solver_id, tolerance, itermax,
+            )
+        },
+    )
 }

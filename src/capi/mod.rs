@@ -75,7 +75,10 @@ pub(crate) struct CError {
 
 impl CError {
     pub fn new(code: c_int, message: impl Into<String>) -> Self {
-        CError { code, message: message.into() }
+        CError {
+            code,
+            message: message.into(),
+        }
     }
     pub fn null(what: &str) -> Self {
         CError::new(FC3D_ERR_NULL_POINTER, format!("{what} is NULL"))
@@ -133,7 +136,10 @@ pub(crate) fn ffi_guard<T>(
                 .map(|s| s.to_string())
                 .or_else(|| payload.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown panic".into());
-            on_error(record(function, CError::new(FC3D_ERR_INTERNAL, format!("internal error: {what}"))))
+            on_error(record(
+                function,
+                CError::new(FC3D_ERR_INTERNAL, format!("internal error: {what}")),
+            ))
         }
     }
 }
@@ -142,24 +148,34 @@ pub(crate) fn ffi_guard<T>(
 /// valid until the next failing fc3d call on the same thread; do not free it.
 #[no_mangle]
 pub extern "C" fn fc3d_last_error_message() -> *const c_char {
-    ffi_guard("fc3d_last_error_message", |_| std::ptr::null(), || {
-        Ok(LAST_ERROR.with(|l| l.borrow().1.as_ptr()))
-    })
+    ffi_guard(
+        "fc3d_last_error_message",
+        |_| std::ptr::null(),
+        || Ok(LAST_ERROR.with(|l| l.borrow().1.as_ptr())),
+    )
 }
 
 /// The code of the last failed fc3d call on this thread (0 if none).
 #[no_mangle]
 pub extern "C" fn fc3d_last_error_code() -> c_int {
-    ffi_guard("fc3d_last_error_code", |c| c, || Ok(LAST_ERROR.with(|l| l.borrow().0)))
+    ffi_guard(
+        "fc3d_last_error_code",
+        |c| c,
+        || Ok(LAST_ERROR.with(|l| l.borrow().0)),
+    )
 }
 
 /// Clears the last error of this thread.
 #[no_mangle]
 pub extern "C" fn fc3d_clear_last_error() {
-    ffi_guard("fc3d_clear_last_error", |_| (), || {
-        LAST_ERROR.with(|l| *l.borrow_mut() = (FC3D_OK, CString::default()));
-        Ok(())
-    })
+    ffi_guard(
+        "fc3d_clear_last_error",
+        |_| (),
+        || {
+            LAST_ERROR.with(|l| *l.borrow_mut() = (FC3D_OK, CString::default()));
+            Ok(())
+        },
+    )
 }
 
 /// Siconos' verbosity switch: > 0 prints rejected calls and solver summaries to stderr.

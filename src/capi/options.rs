@@ -85,7 +85,10 @@ const NAMES: &[(c_int, &CStr)] = &[
 
 /// Name of a solver id ("NONAME" if unknown, as Siconos).
 pub(crate) fn solver_name(id: c_int) -> &'static CStr {
-    NAMES.iter().find(|(i, _)| *i == id).map_or(c"NONAME", |(_, n)| n)
+    NAMES
+        .iter()
+        .find(|(i, _)| *i == id)
+        .map_or(c"NONAME", |(_, n)| n)
 }
 
 /// Siconos 4.4 defaults: (id, nonzero iparam entries, nonzero dparam entries, internal ids).
@@ -99,37 +102,234 @@ struct Defaults {
 }
 
 const DEFAULTS: &[Defaults] = &[
-    Defaults { id: 500, iparam: &[(0, 1000), (2, 1), (7, 2)], dparam: &[(0, 1e-4), (2, 10.0)], internal: &[565] },
-    Defaults { id: 501, iparam: &[(0, 1000), (2, 1), (7, 2)], dparam: &[(0, 1e-4), (2, 10.0)], internal: &[565] },
-    Defaults { id: 502, iparam: &[(0, 1000)], dparam: &[(0, 1e-4), (2, 10.0), (3, 1e4), (4, 5.0), (5, 1.0)], internal: &[504] },
-    Defaults { id: 503, iparam: &[(0, 1000)], dparam: &[(0, 1e-4), (2, 10.0)], internal: &[500] },
-    Defaults { id: 504, iparam: &[(0, 200), (3, 100000), (5, 1), (8, 1), (9, 1), (10, 2), (12, 100), (13, 1), (18, -1)], dparam: &[(0, 1e-3), (3, 1.0)], internal: &[] },
-    Defaults { id: 505, iparam: &[(0, 20000)], dparam: &[(0, 1e-3), (3, 1.0)], internal: &[] },
-    Defaults { id: 506, iparam: &[(0, 20000), (7, 1)], dparam: &[(0, 1e-3), (3, -1.0), (4, 2.0 / 3.0), (5, 1.5), (6, 0.9), (7, 0.3)], internal: &[] },
-    Defaults { id: 507, iparam: &[(0, 20000), (7, 1)], dparam: &[(0, 1e-3), (3, -1.0), (4, 2.0 / 3.0), (5, 1.5), (6, 0.9), (7, 0.3)], internal: &[] },
-    Defaults { id: 511, iparam: &[(0, 20000)], dparam: &[(0, 1e-3), (3, 1.0)], internal: &[] },
-    Defaults { id: 512, iparam: &[(0, 20000)], dparam: &[(0, 1e-3), (3, -1.0)], internal: &[] },
-    Defaults { id: 513, iparam: &[(0, 200), (1, 1), (3, 100000), (5, 1), (8, 1), (12, 100), (13, 1), (18, -1)], dparam: &[(0, 1e-3), (3, 1.0)], internal: &[] },
-    Defaults { id: 516, iparam: &[(0, 1000)], dparam: &[(0, 1e-4), (2, 10.0)], internal: &[] },
-    Defaults { id: 517, iparam: &[(0, 1000)], dparam: &[(0, 1e-4), (8, 1.0)], internal: &[] },
-    Defaults { id: 520, iparam: &[(0, 1), (1, 1), (3, 100000), (5, 1), (8, 1), (12, 100), (13, 1), (18, -1)], dparam: &[(0, 1e-3), (3, 1.0)], internal: &[] },
-    Defaults { id: 522, iparam: &[(0, 1000)], dparam: &[(0, 1e-4), (2, 10.0)], internal: &[] },
-    Defaults { id: 523, iparam: &[(0, 20000), (10, 2), (11, 1)], dparam: &[(0, 1e-6), (3, 1.0), (4, 0.999), (5, 2.0), (6, 2.0)], internal: &[] },
-    Defaults { id: 550, iparam: &[(0, 10), (9, 2), (11, -1), (14, 1), (15, 1), (16, 10)], dparam: &[(0, 1e-14), (3, 1.0)], internal: &[] },
-    Defaults { id: 551, iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)], dparam: &[(0, 1e-14), (3, 1.0)], internal: &[] },
-    Defaults { id: 565, iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)], dparam: &[(0, 1e-14), (3, 1.0)], internal: &[] },
-    Defaults { id: 552, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 553, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 554, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 555, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 557, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 558, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 561, iparam: &[(0, 1000)], dparam: &[(0, 1e-12)], internal: &[] },
-    Defaults { id: 562, iparam: &[(0, 1000)], dparam: &[(0, 1e-12)], internal: &[] },
-    Defaults { id: 563, iparam: &[(0, 1000)], dparam: &[(0, 1e-12)], internal: &[] },
-    Defaults { id: 564, iparam: &[(0, 1000)], dparam: &[(0, 1e-14)], internal: &[] },
-    Defaults { id: 508, iparam: &[(0, 20000)], dparam: &[(0, 1e-3)], internal: &[] },
-    Defaults { id: 510, iparam: &[(0, 1000)], dparam: &[(0, 1e-4)], internal: &[] },
+    Defaults {
+        id: 500,
+        iparam: &[(0, 1000), (2, 1), (7, 2)],
+        dparam: &[(0, 1e-4), (2, 10.0)],
+        internal: &[565],
+    },
+    Defaults {
+        id: 501,
+        iparam: &[(0, 1000), (2, 1), (7, 2)],
+        dparam: &[(0, 1e-4), (2, 10.0)],
+        internal: &[565],
+    },
+    Defaults {
+        id: 502,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4), (2, 10.0), (3, 1e4), (4, 5.0), (5, 1.0)],
+        internal: &[504],
+    },
+    Defaults {
+        id: 503,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4), (2, 10.0)],
+        internal: &[500],
+    },
+    Defaults {
+        id: 504,
+        iparam: &[
+            (0, 200),
+            (3, 100000),
+            (5, 1),
+            (8, 1),
+            (9, 1),
+            (10, 2),
+            (12, 100),
+            (13, 1),
+            (18, -1),
+        ],
+        dparam: &[(0, 1e-3), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 505,
+        iparam: &[(0, 20000)],
+        dparam: &[(0, 1e-3), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 506,
+        iparam: &[(0, 20000), (7, 1)],
+        dparam: &[
+            (0, 1e-3),
+            (3, -1.0),
+            (4, 2.0 / 3.0),
+            (5, 1.5),
+            (6, 0.9),
+            (7, 0.3),
+        ],
+        internal: &[],
+    },
+    Defaults {
+        id: 507,
+        iparam: &[(0, 20000), (7, 1)],
+        dparam: &[
+            (0, 1e-3),
+            (3, -1.0),
+            (4, 2.0 / 3.0),
+            (5, 1.5),
+            (6, 0.9),
+            (7, 0.3),
+        ],
+        internal: &[],
+    },
+    Defaults {
+        id: 511,
+        iparam: &[(0, 20000)],
+        dparam: &[(0, 1e-3), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 512,
+        iparam: &[(0, 20000)],
+        dparam: &[(0, 1e-3), (3, -1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 513,
+        iparam: &[
+            (0, 200),
+            (1, 1),
+            (3, 100000),
+            (5, 1),
+            (8, 1),
+            (12, 100),
+            (13, 1),
+            (18, -1),
+        ],
+        dparam: &[(0, 1e-3), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 516,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4), (2, 10.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 517,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4), (8, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 520,
+        iparam: &[
+            (0, 1),
+            (1, 1),
+            (3, 100000),
+            (5, 1),
+            (8, 1),
+            (12, 100),
+            (13, 1),
+            (18, -1),
+        ],
+        dparam: &[(0, 1e-3), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 522,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4), (2, 10.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 523,
+        iparam: &[(0, 20000), (10, 2), (11, 1)],
+        dparam: &[(0, 1e-6), (3, 1.0), (4, 0.999), (5, 2.0), (6, 2.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 550,
+        iparam: &[(0, 10), (9, 2), (11, -1), (14, 1), (15, 1), (16, 10)],
+        dparam: &[(0, 1e-14), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 551,
+        iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)],
+        dparam: &[(0, 1e-14), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 565,
+        iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)],
+        dparam: &[(0, 1e-14), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: 552,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 553,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 554,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 555,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 557,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 558,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 561,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-12)],
+        internal: &[],
+    },
+    Defaults {
+        id: 562,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-12)],
+        internal: &[],
+    },
+    Defaults {
+        id: 563,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-12)],
+        internal: &[],
+    },
+    Defaults {
+        id: 564,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: 508,
+        iparam: &[(0, 20000)],
+        dparam: &[(0, 1e-3)],
+        internal: &[],
+    },
+    Defaults {
+        id: 510,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-4)],
+        internal: &[],
+    },
 ];
 
 /// The one-contact solver id Siconos' NSGS-based families use inside when none is given.
@@ -142,7 +342,10 @@ pub(crate) fn create_options(id: c_int) -> CResult<*mut SolverOptions> {
     let d = defaults_of(id).ok_or_else(|| {
         CError::new(
             FC3D_ERR_UNSUPPORTED_SOLVER,
-            format!("unknown fc3d solver id {id} ({})", solver_name(id).to_string_lossy()),
+            format!(
+                "unknown fc3d solver id {id} ({})",
+                solver_name(id).to_string_lossy()
+            ),
         )
     })?;
     let mut ip = [0 as c_int; OPTIONS_PARAM_SIZE as usize];
@@ -216,8 +419,16 @@ unsafe fn copy_options(src: &SolverOptions) -> CResult<*mut SolverOptions> {
     let n = src.numberOfInternalSolvers;
     let internals = c_calloc::<*mut SolverOptions>(n)?;
     for k in 0..n {
-        let s = if src.internalSolvers.is_null() { null_mut() } else { *src.internalSolvers.add(k) };
-        *internals.add(k) = if s.is_null() { null_mut() } else { copy_options(&*s)? };
+        let s = if src.internalSolvers.is_null() {
+            null_mut()
+        } else {
+            *src.internalSolvers.add(k)
+        };
+        *internals.add(k) = if s.is_null() {
+            null_mut()
+        } else {
+            copy_options(&*s)?
+        };
     }
     c_box(SolverOptions {
         solverId: src.solverId,
@@ -250,12 +461,18 @@ struct Params<'a> {
 impl<'a> Params<'a> {
     unsafe fn of(o: &'a SolverOptions, what: &str) -> CResult<Self> {
         if o.iparam.is_null() || o.dparam.is_null() {
-            return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("{what}: iparam or dparam is NULL")));
+            return Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("{what}: iparam or dparam is NULL"),
+            ));
         }
         if o.iSize < OPTIONS_PARAM_SIZE || o.dSize < OPTIONS_PARAM_SIZE {
             return Err(CError::new(
                 FC3D_ERR_INVALID_OPTION,
-                format!("{what}: iSize = {} and dSize = {} must be at least {OPTIONS_PARAM_SIZE}", o.iSize, o.dSize),
+                format!(
+                    "{what}: iSize = {} and dSize = {} must be at least {OPTIONS_PARAM_SIZE}",
+                    o.iSize, o.dSize
+                ),
             ));
         }
         Ok(Params {
@@ -265,8 +482,12 @@ impl<'a> Params<'a> {
     }
 
     fn count(&self, k: usize, what: &str) -> CResult<usize> {
-        usize::try_from(self.iparam[k])
-            .map_err(|_| CError::new(FC3D_ERR_INVALID_OPTION, format!("{what} (iparam[{k}]) = {} is negative", self.iparam[k])))
+        usize::try_from(self.iparam[k]).map_err(|_| {
+            CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("{what} (iparam[{k}]) = {} is negative", self.iparam[k]),
+            )
+        })
     }
 
     fn tolerance(&self, what: &str) -> CResult<f64> {
@@ -274,7 +495,10 @@ impl<'a> Params<'a> {
         if t.is_finite() && t >= 0.0 {
             Ok(t)
         } else {
-            Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("{what} tolerance (dparam[0]) = {t} must be finite and >= 0")))
+            Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("{what} tolerance (dparam[0]) = {t} must be finite and >= 0"),
+            ))
         }
     }
 
@@ -299,7 +523,10 @@ impl<'a> Params<'a> {
         } else {
             Err(CError::new(
                 FC3D_ERR_INVALID_OPTION,
-                format!("{name} (iparam[{k}]) = {} is not implemented in fc3d (only {expected})", self.iparam[k]),
+                format!(
+                    "{name} (iparam[{k}]) = {} is not implemented in fc3d (only {expected})",
+                    self.iparam[k]
+                ),
             ))
         }
     }
@@ -308,22 +535,34 @@ impl<'a> Params<'a> {
 fn unsupported_solver(id: c_int) -> CError {
     CError::new(
         FC3D_ERR_UNSUPPORTED_SOLVER,
-        format!("solver id {id} ({}) is not implemented in fc3d", solver_name(id).to_string_lossy()),
+        format!(
+            "solver id {id} ({}) is not implemented in fc3d",
+            solver_name(id).to_string_lossy()
+        ),
     )
 }
 
 unsafe fn local_from_c(o: &SolverOptions) -> CResult<LocalSolverOptions> {
-    let kind = LocalSolverKind::from_siconos_id(o.solverId).ok_or_else(|| unsupported_solver(o.solverId))?;
+    let kind = LocalSolverKind::from_siconos_id(o.solverId)
+        .ok_or_else(|| unsupported_solver(o.solverId))?;
     let p = Params::of(o, "local solver options")?;
     let mut l = LocalSolverOptions::new(kind);
     l.max_iter = p.count(IPARAM_MAX_ITER, "local max iterations")?;
     l.tolerance = p.tolerance("local")?;
-    if matches!(kind, LocalSolverKind::NewtonAlartCurnier | LocalSolverKind::NewtonAlartCurnierGp | LocalSolverKind::NewtonHybrid) {
+    if matches!(
+        kind,
+        LocalSolverKind::NewtonAlartCurnier
+            | LocalSolverKind::NewtonAlartCurnierGp
+            | LocalSolverKind::NewtonHybrid
+    ) {
         l.rho_rule = match p.iparam[IPARAM_NSN_RHO_STRATEGY] {
             0 => {
                 let rho = p.dparam[DPARAM_NSN_RHO];
                 if !(rho > 0.0 && rho.is_finite()) {
-                    return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("constant rho (dparam[3]) = {rho} must be finite and > 0")));
+                    return Err(CError::new(
+                        FC3D_ERR_INVALID_OPTION,
+                        format!("constant rho (dparam[3]) = {rho} must be finite and > 0"),
+                    ));
                 }
                 RhoRule::Constant(rho)
             }
@@ -331,11 +570,19 @@ unsafe fn local_from_c(o: &SolverOptions) -> CResult<LocalSolverOptions> {
             2 => RhoRule::SplitSpectralNormCond,
             3 => RhoRule::SplitSpectralNorm,
             other => {
-                return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("rho strategy (iparam[9]) = {other} is not implemented in fc3d (0-3)")))
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!("rho strategy (iparam[9]) = {other} is not implemented in fc3d (0-3)"),
+                ))
             }
         };
-        p.require(IPARAM_NSN_FORMULATION, 0, "Newton formulation (only Alart-Curnier STD)")?;
-        l.line_search_max_iter = p.count(IPARAM_NSN_LINESEARCH_MAX_ITER, "line-search max iterations")?;
+        p.require(
+            IPARAM_NSN_FORMULATION,
+            0,
+            "Newton formulation (only Alart-Curnier STD)",
+        )?;
+        l.line_search_max_iter =
+            p.count(IPARAM_NSN_LINESEARCH_MAX_ITER, "line-search max iterations")?;
         l.kind = match (kind, p.iparam[IPARAM_NSN_LINESEARCH]) {
             (LocalSolverKind::NewtonHybrid, 0) => LocalSolverKind::NewtonHybrid,
             (LocalSolverKind::NewtonHybrid, -1) => {
@@ -371,13 +618,24 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
                 }
             };
             n.time_budget = p.time_budget()?;
-            p.require(IPARAM_INTERNAL_ERROR_STRATEGY, 1, "local tolerance strategy (1 = given value)")?;
+            p.require(
+                IPARAM_INTERNAL_ERROR_STRATEGY,
+                1,
+                "local tolerance strategy (1 = given value)",
+            )?;
             p.require(IPARAM_RESCALING, 0, "rescaling")?;
             p.require(IPARAM_NSGS_RELAXATION, 0, "NSGS relaxation")?;
             p.require(IPARAM_NSGS_SHUFFLE, 0, "NSGS shuffle")?;
-            p.require(IPARAM_ERROR_EVALUATION_FREQUENCY, 0, "error evaluation frequency")?;
+            p.require(
+                IPARAM_ERROR_EVALUATION_FREQUENCY,
+                0,
+                "error evaluation frequency",
+            )?;
             p.require(IPARAM_NSGS_FREEZING_CONTACT, 0, "contact freezing")?;
-            if o.numberOfInternalSolvers >= 1 && !o.internalSolvers.is_null() && !(*o.internalSolvers).is_null() {
+            if o.numberOfInternalSolvers >= 1
+                && !o.internalSolvers.is_null()
+                && !(*o.internalSolvers).is_null()
+            {
                 n.local = local_from_c(&**o.internalSolvers)?;
             }
             Ok(SolverConfig::Nsgs(n))
@@ -399,125 +657,191 @@ pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, iterations: usize, err
 /// NULL for an id that is not an fc3d solver. Release with `solver_options_delete` then `free`.
 #[no_mangle]
 pub extern "C" fn solver_options_create(solverId: c_int) -> *mut SolverOptions {
-    ffi_guard("solver_options_create", |_| null_mut(), || create_options(solverId))
+    ffi_guard(
+        "solver_options_create",
+        |_| null_mut(),
+        || create_options(solverId),
+    )
 }
 
 /// Releases everything `options` owns (parameter arrays, work arrays, internal solvers), but not
 /// the struct itself, nor `callback`, `solverParameters`, `solverData` (the caller's).
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_delete(options: *mut SolverOptions) {
-    ffi_guard("solver_options_delete", |_| (), || {
-        delete_contents(options);
-        Ok(())
-    })
+    ffi_guard(
+        "solver_options_delete",
+        |_| (),
+        || {
+            delete_contents(options);
+            Ok(())
+        },
+    )
 }
 
 /// Replaces internal solver number `internal_solver_number` of `parent` by new options for
 /// `solver_id` with their defaults (the old internal solver is released).
 #[no_mangle]
-pub unsafe extern "C" fn solver_options_update_internal(parent: *mut SolverOptions, internal_solver_number: usize, solver_id: c_int) {
-    ffi_guard("solver_options_update_internal", |_| (), || {
-        if parent.is_null() {
-            return Err(CError::null("parent"));
-        }
-        let p = &mut *parent;
-        if internal_solver_number >= p.numberOfInternalSolvers || p.internalSolvers.is_null() {
-            return Err(CError::new(
+pub unsafe extern "C" fn solver_options_update_internal(
+    parent: *mut SolverOptions,
+    internal_solver_number: usize,
+    solver_id: c_int,
+) {
+    ffi_guard(
+        "solver_options_update_internal",
+        |_| (),
+        || {
+            if parent.is_null() {
+                return Err(CError::null("parent"));
+            }
+            let p = &mut *parent;
+            if internal_solver_number >= p.numberOfInternalSolvers || p.internalSolvers.is_null() {
+                return Err(CError::new(
                 FC3D_ERR_INVALID_OPTION,
                 format!("internal solver {internal_solver_number} does not exist ({} internal solvers)", p.numberOfInternalSolvers),
             ));
-        }
-        let fresh = create_options(solver_id)?;
-        let slot = p.internalSolvers.add(internal_solver_number);
-        delete_contents(*slot);
-        c_free(*slot);
-        *slot = fresh;
-        Ok(())
-    })
+            }
+            let fresh = create_options(solver_id)?;
+            let slot = p.internalSolvers.add(internal_solver_number);
+            delete_contents(*slot);
+            c_free(*slot);
+            *slot = fresh;
+            Ok(())
+        },
+    )
 }
 
 /// Sets internal solver `n` of `options` to `NSO`, which `options` then owns (the previous one is
 /// released).
 #[no_mangle]
-pub unsafe extern "C" fn solver_options_set_internal_solver(options: *mut SolverOptions, n: usize, NSO: *mut SolverOptions) {
-    ffi_guard("solver_options_set_internal_solver", |_| (), || {
-        if options.is_null() {
-            return Err(CError::null("options"));
-        }
-        let o = &mut *options;
-        if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
-            return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("internal solver {n} does not exist ({} internal solvers)", o.numberOfInternalSolvers)));
-        }
-        let slot = o.internalSolvers.add(n);
-        if *slot != NSO {
-            delete_contents(*slot);
-            c_free(*slot);
-            *slot = NSO;
-        }
-        Ok(())
-    })
+pub unsafe extern "C" fn solver_options_set_internal_solver(
+    options: *mut SolverOptions,
+    n: usize,
+    NSO: *mut SolverOptions,
+) {
+    ffi_guard(
+        "solver_options_set_internal_solver",
+        |_| (),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            let o = &mut *options;
+            if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "internal solver {n} does not exist ({} internal solvers)",
+                        o.numberOfInternalSolvers
+                    ),
+                ));
+            }
+            let slot = o.internalSolvers.add(n);
+            if *slot != NSO {
+                delete_contents(*slot);
+                c_free(*slot);
+                *slot = NSO;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// Internal solver `n` of `options` (owned by `options`), or NULL.
 #[no_mangle]
-pub unsafe extern "C" fn solver_options_get_internal_solver(options: *mut SolverOptions, n: usize) -> *mut SolverOptions {
-    ffi_guard("solver_options_get_internal_solver", |_| null_mut(), || {
-        if options.is_null() {
-            return Err(CError::null("options"));
-        }
-        let o = &*options;
-        if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
-            return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("internal solver {n} does not exist ({} internal solvers)", o.numberOfInternalSolvers)));
-        }
-        Ok(*o.internalSolvers.add(n))
-    })
+pub unsafe extern "C" fn solver_options_get_internal_solver(
+    options: *mut SolverOptions,
+    n: usize,
+) -> *mut SolverOptions {
+    ffi_guard(
+        "solver_options_get_internal_solver",
+        |_| null_mut(),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            let o = &*options;
+            if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "internal solver {n} does not exist ({} internal solvers)",
+                        o.numberOfInternalSolvers
+                    ),
+                ));
+            }
+            Ok(*o.internalSolvers.add(n))
+        },
+    )
 }
 
 /// A deep copy of `source` (parameters and internal solvers); `callback`, `solverParameters` and
 /// `solverData` are shared, as in Siconos.
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_copy(source: *mut SolverOptions) -> *mut SolverOptions {
-    ffi_guard("solver_options_copy", |_| null_mut(), || {
-        if source.is_null() {
-            return Err(CError::null("source"));
-        }
-        copy_options(&*source)
-    })
+    ffi_guard(
+        "solver_options_copy",
+        |_| null_mut(),
+        || {
+            if source.is_null() {
+                return Err(CError::null("source"));
+            }
+            copy_options(&*source)
+        },
+    )
 }
 
 /// Siconos' name of a solver id ("NONAME" if unknown); a static string, do not free.
 #[no_mangle]
 pub extern "C" fn solver_options_id_to_name(Id: c_int) -> *const c_char {
-    ffi_guard("solver_options_id_to_name", |_| c"NONAME".as_ptr(), || Ok(solver_name(Id).as_ptr()))
+    ffi_guard(
+        "solver_options_id_to_name",
+        |_| c"NONAME".as_ptr(),
+        || Ok(solver_name(Id).as_ptr()),
+    )
 }
 
 /// The id of a Siconos solver name, 0 if unknown.
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_name_to_id(pName: *const c_char) -> c_int {
-    ffi_guard("solver_options_name_to_id", |_| 0, || {
-        if pName.is_null() {
-            return Err(CError::null("pName"));
-        }
-        let name = CStr::from_ptr(pName);
-        Ok(NAMES.iter().find(|(_, n)| *n == name).map_or(0, |(i, _)| *i))
-    })
+    ffi_guard(
+        "solver_options_name_to_id",
+        |_| 0,
+        || {
+            if pName.is_null() {
+                return Err(CError::null("pName"));
+            }
+            let name = CStr::from_ptr(pName);
+            Ok(NAMES
+                .iter()
+                .find(|(_, n)| *n == name)
+                .map_or(0, |(i, _)| *i))
+        },
+    )
 }
 
 /// Prints the options (and internal solvers) to stdout.
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_print(options: *mut SolverOptions) {
-    ffi_guard("solver_options_print", |_| (), || {
-        if options.is_null() {
-            return Err(CError::null("options"));
-        }
-        print_options(&*options, 0);
-        Ok(())
-    })
+    ffi_guard(
+        "solver_options_print",
+        |_| (),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            print_options(&*options, 0);
+            Ok(())
+        },
+    )
 }
 
 unsafe fn print_options(o: &SolverOptions, depth: usize) {
     let pad = "  ".repeat(depth);
-    println!("{pad}solver {} ({})", o.solverId, solver_name(o.solverId).to_string_lossy());
+    println!(
+        "{pad}solver {} ({})",
+        o.solverId,
+        solver_name(o.solverId).to_string_lossy()
+    );
     if let Ok(p) = Params::of(o, "") {
         println!("{pad}  iparam: {:?}", p.iparam);
         println!("{pad}  dparam: {:?}", p.dparam);

@@ -15,20 +15,31 @@ use std::ptr::null_mut;
 use super::alloc::{c_box, c_copy, c_free};
 use super::matrix::{c_slice, delassus_from_c, matrix_to_c, nm_clear_impl};
 use super::types::{FrictionContactProblem, NumericsMatrix};
-use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_IO};
+use super::{
+    ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_IO,
+};
 use crate::matrix::{Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
 
 /// The core view of a C problem; dense W, q and mu are borrowed, not copied.
-pub(crate) unsafe fn problem_from_c<'a>(p: &'a FrictionContactProblem) -> CResult<FrictionProblem<'a>> {
+pub(crate) unsafe fn problem_from_c<'a>(
+    p: &'a FrictionContactProblem,
+) -> CResult<FrictionProblem<'a>> {
     if p.dimension != 3 {
         return Err(CError::new(
             FC3D_ERR_INVALID_PROBLEM,
-            format!("dimension {} is not supported (fc3d solves dimension 3 only)", p.dimension),
+            format!(
+                "dimension {} is not supported (fc3d solves dimension 3 only)",
+                p.dimension
+            ),
         ));
     }
-    let nc = usize::try_from(p.numberOfContacts)
-        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, format!("numberOfContacts = {} is negative", p.numberOfContacts)))?;
+    let nc = usize::try_from(p.numberOfContacts).map_err(|_| {
+        CError::new(
+            FC3D_ERR_INVALID_SIZE,
+            format!("numberOfContacts = {} is negative", p.numberOfContacts),
+        )
+    })?;
     let n = 3 * nc;
     let w = if p.M.is_null() {
         if nc > 0 {
@@ -40,14 +51,21 @@ pub(crate) unsafe fn problem_from_c<'a>(p: &'a FrictionContactProblem) -> CResul
         if m.size0 != n as c_int || m.size1 != n as c_int {
             return Err(CError::new(
                 FC3D_ERR_INVALID_SIZE,
-                format!("M is {}x{} but {nc} contacts need {n}x{n}", m.size0, m.size1),
+                format!(
+                    "M is {}x{} but {nc} contacts need {n}x{n}",
+                    m.size0, m.size1
+                ),
             ));
         }
         delassus_from_c(m)?
     };
     let q = c_slice(p.q as *const c_double, n, "problem->q")?;
     let mu = c_slice(p.mu as *const c_double, nc, "problem->mu")?;
-    Ok(FrictionProblem::new(w, Cow::Borrowed(q), Cow::Borrowed(mu))?)
+    Ok(FrictionProblem::new(
+        w,
+        Cow::Borrowed(q),
+        Cow::Borrowed(mu),
+    )?)
 }
 
 /// A C-allocated problem holding a copy of `p` (W in the same storage).
@@ -57,7 +75,13 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
     let m = matrix_to_c(p.w())?;
     let q = c_copy(p.q())?;
     let mu = c_copy(p.mu())?;
-    c_box(FrictionContactProblem { dimension: 3, numberOfContacts: nc, M: m, q, mu })
+    c_box(FrictionContactProblem {
+        dimension: 3,
+        numberOfContacts: nc,
+        M: m,
+        q,
+        mu,
+    })
 }
 
 unsafe fn c_path<'a>(filename: *const c_char) -> CResult<&'a str> {
@@ -102,55 +126,97 @@ unsafe fn write_stream(file: *mut libc::FILE, text: &[u8]) -> CResult<()> {
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
 #[no_mangle]
 pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
-    ffi_guard("frictionContactProblem_new", |_| null_mut(), || {
-        c_box(FrictionContactProblem { dimension: 0, numberOfContacts: 0, M: null_mut(), q: null_mut(), mu: null_mut() })
-    })
+    ffi_guard(
+        "frictionContactProblem_new",
+        |_| null_mut(),
+        || {
+            c_box(FrictionContactProblem {
+                dimension: 0,
+                numberOfContacts: 0,
+                M: null_mut(),
+                q: null_mut(),
+                mu: null_mut(),
+            })
+        },
+    )
 }
 
 /// A problem that takes `M`, `q` and `mu` as they are (no copy): they then belong to the
 /// problem and are released by `frictionContactProblem_free`.
 #[no_mangle]
-pub extern "C" fn frictionContactProblem_new_with_data(dim: c_int, nc: c_int, M: *mut NumericsMatrix, q: *mut c_double, mu: *mut c_double) -> *mut FrictionContactProblem {
-    ffi_guard("frictionContactProblem_new_with_data", |_| null_mut(), || {
-        c_box(FrictionContactProblem { dimension: dim, numberOfContacts: nc, M, q, mu })
-    })
+pub extern "C" fn frictionContactProblem_new_with_data(
+    dim: c_int,
+    nc: c_int,
+    M: *mut NumericsMatrix,
+    q: *mut c_double,
+    mu: *mut c_double,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContactProblem_new_with_data",
+        |_| null_mut(),
+        || {
+            c_box(FrictionContactProblem {
+                dimension: dim,
+                numberOfContacts: nc,
+                M,
+                q,
+                mu,
+            })
+        },
+    )
 }
 
 /// Releases `M` (storage and struct), `q`, `mu` and the problem struct. NULL is a no-op.
 #[no_mangle]
 pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionContactProblem) {
-    ffi_guard("frictionContactProblem_free", |_| (), || {
-        if problem.is_null() {
-            return Ok(());
-        }
-        let p = &mut *problem;
-        nm_clear_impl(p.M);
-        c_free(p.M);
-        c_free(p.q);
-        c_free(p.mu);
-        c_free(problem);
-        Ok(())
-    })
+    ffi_guard(
+        "frictionContactProblem_free",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Ok(());
+            }
+            let p = &mut *problem;
+            nm_clear_impl(p.M);
+            c_free(p.M);
+            c_free(p.q);
+            c_free(p.mu);
+            c_free(problem);
+            Ok(())
+        },
+    )
 }
 
 /// Reads a problem from a Siconos .dat file. NULL on failure (see `fc3d_last_error_message`).
 #[no_mangle]
-pub unsafe extern "C" fn frictionContact_new_from_filename(filename: *const c_char) -> *mut FrictionContactProblem {
-    ffi_guard("frictionContact_new_from_filename", |_| null_mut(), || {
-        let path = c_path(filename)?;
-        let p = crate::io::dat::read_dat_file(std::path::Path::new(path))?;
-        problem_to_c(&p)
-    })
+pub unsafe extern "C" fn frictionContact_new_from_filename(
+    filename: *const c_char,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContact_new_from_filename",
+        |_| null_mut(),
+        || {
+            let path = c_path(filename)?;
+            let p = crate::io::dat::read_dat_file(std::path::Path::new(path))?;
+            problem_to_c(&p)
+        },
+    )
 }
 
 /// Reads a problem from an open stream (up to its end). NULL on failure.
 #[no_mangle]
-pub unsafe extern "C" fn frictionContact_newFromFile(file: *mut libc::FILE) -> *mut FrictionContactProblem {
-    ffi_guard("frictionContact_newFromFile", |_| null_mut(), || {
-        let text = read_stream(file)?;
-        let p = crate::io::dat::parse_dat(&text, "<FILE stream>")?;
-        problem_to_c(&p)
-    })
+pub unsafe extern "C" fn frictionContact_newFromFile(
+    file: *mut libc::FILE,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContact_newFromFile",
+        |_| null_mut(),
+        || {
+            let text = read_stream(file)?;
+            let p = crate::io::dat::parse_dat(&text, "<FILE stream>")?;
+            problem_to_c(&p)
+        },
+    )
 }
 
 fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
@@ -162,50 +228,69 @@ fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
 /// Returns 0 on success.
 #[no_mangle]
-pub unsafe extern "C" fn frictionContact_printInFile(problem: *mut FrictionContactProblem, file: *mut libc::FILE) -> c_int {
-    ffi_guard("frictionContact_printInFile", |c| c, || {
-        if problem.is_null() {
-            return Err(CError::null("problem"));
-        }
-        let p = problem_from_c(&*problem)?;
-        write_stream(file, &dat_text(&p)?)?;
-        Ok(0)
-    })
+pub unsafe extern "C" fn frictionContact_printInFile(
+    problem: *mut FrictionContactProblem,
+    file: *mut libc::FILE,
+) -> c_int {
+    ffi_guard(
+        "frictionContact_printInFile",
+        |c| c,
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            write_stream(file, &dat_text(&p)?)?;
+            Ok(0)
+        },
+    )
 }
 
 /// Writes `problem` to the file `filename` (created or truncated). Returns 0 on success.
 #[no_mangle]
-pub unsafe extern "C" fn frictionContact_printInFilename(problem: *mut FrictionContactProblem, filename: *mut c_char) -> c_int {
-    ffi_guard("frictionContact_printInFilename", |c| c, || {
-        if problem.is_null() {
-            return Err(CError::null("problem"));
-        }
-        let p = problem_from_c(&*problem)?;
-        let path = c_path(filename)?;
-        let text = dat_text(&p)?;
-        std::fs::write(path, text).map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: {e}")))?;
-        Ok(0)
-    })
+pub unsafe extern "C" fn frictionContact_printInFilename(
+    problem: *mut FrictionContactProblem,
+    filename: *mut c_char,
+) -> c_int {
+    ffi_guard(
+        "frictionContact_printInFilename",
+        |c| c,
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            let path = c_path(filename)?;
+            let text = dat_text(&p)?;
+            std::fs::write(path, text)
+                .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: {e}")))?;
+            Ok(0)
+        },
+    )
 }
 
 /// Prints a summary of the problem (sizes, storage, mu, q) to stdout.
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactProblem) {
-    ffi_guard("frictionContact_display", |_| (), || {
-        if problem.is_null() {
-            return Err(CError::null("problem"));
-        }
-        let p = problem_from_c(&*problem)?;
-        println!(
-            "FrictionContactProblem: dimension 3, {} contacts, W {}x{} ({}), ||q|| = {:e}",
-            p.n_contacts(),
-            p.w().nrows(),
-            p.w().ncols(),
-            p.w().storage_name(),
-            crate::linalg::norm(p.q())
-        );
-        println!("  mu = {:?}", p.mu());
-        println!("  q = {:?}", p.q());
-        Ok(())
-    })
+    ffi_guard(
+        "frictionContact_display",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            println!(
+                "FrictionContactProblem: dimension 3, {} contacts, W {}x{} ({}), ||q|| = {:e}",
+                p.n_contacts(),
+                p.w().nrows(),
+                p.w().ncols(),
+                p.w().storage_name(),
+                crate::linalg::norm(p.q())
+            );
+            println!("  mu = {:?}", p.mu());
+            println!("  q = {:?}", p.q());
+            Ok(())
+        },
+    )
 }
