@@ -5,7 +5,9 @@
 //! * `fc3d FILE.dat [MORE FILES OR DIRECTORIES]` solves Siconos `.dat` problem files instead; a
 //!   directory stands for the `*.dat` files directly in it (sorted by name; files that hold a problem
 //!   fc3d does not handle, e.g. a 2D one, are skipped with a note on stderr).
-//! * `fc3d solve ...` is the same as `fc3d ...`; further subcommands will sit beside it.
+//! * `fc3d solve ...` is the same as `fc3d ...`.
+//! * `fc3d bench [FILES]` measures the speed–accuracy trade of the solvers: CSV, summary,
+//!   performance profiles and work–precision pictures (see the `bench` module).
 //!
 //! Defaults: NSGS with the hybrid Alart-Curnier local solver (565, Siconos' default), tolerance
 //! 1e-8 on the natural-map error, at most 100000 sweeps. The tolerance is tighter than Siconos'
@@ -23,6 +25,8 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use clap::{Args, Parser, Subcommand};
+
+mod bench;
 use fc3d::{
     solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolveStatus,
     SolverConfig,
@@ -31,7 +35,7 @@ use fc3d::{
 /// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
 ///
 /// Without FILES, solves the built-in scenes. A file name that is also a subcommand's name
-/// (`solve`) must be written with a path, e.g. `./solve`.
+/// (`solve`, `bench`) must be written with a path, e.g. `./solve`.
 #[derive(Parser, Debug)]
 #[command(name = "fc3d", version, args_conflicts_with_subcommands = true)]
 struct Cli {
@@ -45,6 +49,8 @@ struct Cli {
 enum Command {
     /// Solve the built-in scenes or the given .dat files (what `fc3d` does without a subcommand).
     Solve(SolveArgs),
+    /// Benchmark solvers: CSV, summary, performance profiles, work–precision curves.
+    Bench(bench::BenchArgs),
 }
 
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -114,6 +120,7 @@ fn main() -> ExitCode {
     };
     let args = match cli.command {
         Some(Command::Solve(args)) => args,
+        Some(Command::Bench(args)) => return bench::run(&args),
         None => cli.solve,
     };
     run_solve(&args)
@@ -156,30 +163,13 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
 
     let mut table = Table::new();
     for input in inputs {
-        let (name, problem) = match input {
-            Input::Scene(s) => (s.name.to_string(), s.problem),
-            Input::File {
-                path,
-                from_directory,
-            } => match fc3d::io::dat::read_dat_file(&path) {
-                Ok(p) => (display_name(&path), p),
-                // The reader's messages name the file.
-                Err(Fc3dError::Unsupported(why)) if from_directory => {
-                    eprintln!("fc3d: skipping {why}");
-                    continue;
-                }
-                // A folder of Siconos test data holds other inputs too (global problems,
-                // unit-test tables): they are not counted as failures when found by a scan.
-                Err(e) if from_directory => {
-                    eprintln!("fc3d: skipping (not a local fc3d problem) {e}");
-                    continue;
-                }
-                Err(e) => {
-                    eprintln!("fc3d: {e}");
-                    failed = true;
-                    continue;
-                }
-            },
+        let (name, problem) = match load_input(input) {
+            Loaded::Problem(name, problem) => (name, problem),
+            Loaded::Skipped => continue,
+            Loaded::Failed => {
+                failed = true;
+                continue;
+            }
         };
         match solve_one(&problem, &config) {
             Ok((report, time)) => {
@@ -209,6 +199,43 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+/// What reading one input gave.
+enum Loaded {
+    Problem(String, FrictionProblem<'static>),
+    /// Found by a folder scan but not a problem fc3d handles (a note was printed).
+    Skipped,
+    /// Could not be read (a message naming it was printed).
+    Failed,
+}
+
+/// Reads one input; messages go to stderr.
+fn load_input(input: Input) -> Loaded {
+    match input {
+        Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
+        Input::File {
+            path,
+            from_directory,
+        } => match fc3d::io::dat::read_dat_file(&path) {
+            Ok(p) => Loaded::Problem(display_name(&path), p),
+            // The reader's messages name the file.
+            Err(Fc3dError::Unsupported(why)) if from_directory => {
+                eprintln!("fc3d: skipping {why}");
+                Loaded::Skipped
+            }
+            // A folder of Siconos test data holds other inputs too (global problems,
+            // unit-test tables): they are not counted as failures when found by a scan.
+            Err(e) if from_directory => {
+                eprintln!("fc3d: skipping (not a local fc3d problem) {e}");
+                Loaded::Skipped
+            }
+            Err(e) => {
+                eprintln!("fc3d: {e}");
+                Loaded::Failed
+            }
+        },
     }
 }
 
@@ -424,8 +451,24 @@ mod tests {
                 assert_eq!(a.paths, vec![PathBuf::from("x.dat")]);
                 assert_eq!(a.local, LocalSolverKind::ProjectionOnCylinder);
             }
-            None => panic!("expected the solve subcommand"),
+            _ => panic!("expected the solve subcommand"),
         }
+
+        // `bench` is a subcommand; its flags do not leak into `fc3d` / `fc3d solve`.
+        let cli = Cli::try_parse_from(["fc3d", "bench", "x.dat", "--reps", "1"]).unwrap();
+        match cli.command {
+            Some(Command::Bench(a)) => {
+                assert_eq!(a.paths, vec![PathBuf::from("x.dat")]);
+                assert_eq!(a.reps, 1);
+            }
+            _ => panic!("expected the bench subcommand"),
+        }
+        assert!(Cli::try_parse_from(["fc3d", "--reps", "1"]).is_err());
+        assert!(Cli::try_parse_from(["fc3d", "solve", "--budget", "1ms"]).is_err());
+        // A file named like the subcommand, written with a path, is still a file.
+        let cli = Cli::try_parse_from(["fc3d", "./bench"]).unwrap();
+        assert!(cli.command.is_none());
+        assert_eq!(cli.solve.paths, vec![PathBuf::from("./bench")]);
     }
 
     #[test]

@@ -1,0 +1,304 @@
+//! Solver specs of `fc3d bench --solvers`: what the user writes, and the one function that turns a
+//! spec into a [`SolverConfig`].
+//!
+//! Grammar (case-insensitive, specs separated by commas):
+//!
+//! * `all` — every implemented combination: NSGS with each local solver of
+//!   [`LocalSolverKind::ALL`];
+//! * `SOLVER` — a solver with its default local solver: `500` or `NSGS` (= `500/565`);
+//! * `SOLVER/LOCAL` — a solver with a local solver given by Siconos id or name:
+//!
+//! | id | names |
+//! | --- | --- |
+//! | 550 | `NSN`, `NSN-AC` |
+//! | 551 | `NSN-GP`, `NSN-AC-GP` |
+//! | 552 | `PROJ`, `SBP`, `FP-DS-ONE` |
+//! | 553 | `PROJ-ITER` |
+//! | 557 | `CYL`, `SAL` |
+//! | 565 | `HYBRID`, `NSN-GP-HYBRID` |
+//!
+//! A new solver family plugs in as a variant of [`SolverFamily`], a row of [`FAMILIES`] and an arm
+//! of [`solver_config`].
+
+use std::time::Duration;
+
+use fc3d::{LocalSolverKind, NsgsOptions, SolverConfig};
+
+/// Solver families `fc3d bench` knows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SolverFamily {
+    /// Nonsmooth Gauss-Seidel (Siconos id 500).
+    Nsgs,
+}
+
+/// (family, Siconos id, name) for every family.
+const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
+
+/// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
+const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
+    (LocalSolverKind::NewtonAlartCurnier, &["NSN", "NSN-AC"]),
+    (
+        LocalSolverKind::NewtonAlartCurnierGp,
+        &["NSN-GP", "NSN-AC-GP"],
+    ),
+    (
+        LocalSolverKind::ProjectionOnCone,
+        &["PROJ", "SBP", "FP-DS-ONE"],
+    ),
+    (
+        LocalSolverKind::ProjectionOnConeWithLocalIteration,
+        &["PROJ-ITER"],
+    ),
+    (LocalSolverKind::ProjectionOnCylinder, &["CYL", "SAL"]),
+    (LocalSolverKind::NewtonHybrid, &["HYBRID", "NSN-GP-HYBRID"]),
+];
+
+/// One solver to benchmark: a family and, for NSGS, its local solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SolverSpec {
+    pub family: SolverFamily,
+    pub local: LocalSolverKind,
+}
+
+impl SolverSpec {
+    /// The label of the CSV and the tables, e.g. `NSGS/552` (the CLI's `SolverConfig::label`).
+    pub fn label(&self) -> String {
+        solver_config(self, 1e-8, 1, None).label()
+    }
+
+    /// The label with the local solver's short name, for legends: `NSGS/552 PROJ`.
+    pub fn legend(&self) -> String {
+        format!("{} {}", self.label(), local_short_name(self.local))
+    }
+}
+
+/// The one place where a spec becomes a solver configuration: Siconos' defaults for everything
+/// else, from r given by the caller.
+pub fn solver_config(
+    spec: &SolverSpec,
+    tolerance: f64,
+    max_iter: usize,
+    time_budget: Option<Duration>,
+) -> SolverConfig {
+    match spec.family {
+        SolverFamily::Nsgs => {
+            let mut o = NsgsOptions::with_local(spec.local);
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Nsgs(o)
+        }
+    }
+}
+
+/// Every implemented combination (what `all` stands for).
+pub fn all_specs() -> Vec<SolverSpec> {
+    LocalSolverKind::ALL
+        .iter()
+        .map(|&local| SolverSpec {
+            family: SolverFamily::Nsgs,
+            local,
+        })
+        .collect()
+}
+
+/// Short name of a local solver (`PROJ`, `HYBRID`, ...).
+pub fn local_short_name(kind: LocalSolverKind) -> &'static str {
+    LOCAL_NAMES
+        .iter()
+        .find(|(k, _)| *k == kind)
+        .map(|(_, names)| names[0])
+        .unwrap_or("?")
+}
+
+fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
+    if let Ok(id) = s.parse::<i32>() {
+        return LocalSolverKind::from_siconos_id(id).ok_or_else(|| {
+            format!(
+                "unknown local solver id {id} (one of {})",
+                LocalSolverKind::ALL
+                    .iter()
+                    .map(|k| k.siconos_id().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        });
+    }
+    let upper = s.to_ascii_uppercase().replace('_', "-");
+    LOCAL_NAMES
+        .iter()
+        .find(|(_, names)| names.contains(&upper.as_str()))
+        .map(|(k, _)| *k)
+        .ok_or_else(|| {
+            let names: Vec<&str> = LOCAL_NAMES
+                .iter()
+                .flat_map(|(_, n)| n.iter().copied())
+                .collect();
+            format!(
+                "unknown local solver '{s}' (a Siconos id or one of {})",
+                names.join(", ")
+            )
+        })
+}
+
+/// Parses one spec (not `all`).
+pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
+    let s = s.trim();
+    let (solver, local) = match s.split_once('/') {
+        Some((a, b)) => (a.trim(), Some(b.trim())),
+        None => (s, None),
+    };
+    let family = FAMILIES
+        .iter()
+        .find(|(_, id, name)| solver == id.to_string() || solver.eq_ignore_ascii_case(name))
+        .map(|(f, _, _)| *f)
+        .ok_or_else(|| {
+            format!(
+                "unknown solver '{solver}' in '{s}' (implemented: {}; or `all`)",
+                FAMILIES
+                    .iter()
+                    .map(|(_, id, name)| format!("{id} = {name}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })?;
+    let local = match (family, local) {
+        (SolverFamily::Nsgs, None) => LocalSolverKind::NewtonHybrid,
+        (SolverFamily::Nsgs, Some(l)) => parse_local(l)?,
+    };
+    Ok(SolverSpec { family, local })
+}
+
+/// Parses the `--solvers` list: comma-separated specs, `all` anywhere stands for every
+/// combination; duplicates are dropped, the order of first appearance is kept.
+pub fn parse_spec_list(s: &str) -> Result<Vec<SolverSpec>, String> {
+    let mut specs: Vec<SolverSpec> = Vec::new();
+    for item in s.split(',').map(str::trim) {
+        if item.is_empty() {
+            return Err(format!("empty solver spec in '{s}'"));
+        }
+        let new = if item.eq_ignore_ascii_case("all") {
+            all_specs()
+        } else {
+            vec![parse_spec(item)?]
+        };
+        for spec in new {
+            if !specs.contains(&spec) {
+                specs.push(spec);
+            }
+        }
+    }
+    Ok(specs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn nsgs(local: LocalSolverKind) -> SolverSpec {
+        SolverSpec {
+            family: SolverFamily::Nsgs,
+            local,
+        }
+    }
+
+    #[test]
+    fn ids_names_and_defaults() {
+        assert_eq!(parse_spec("500"), Ok(nsgs(LocalSolverKind::NewtonHybrid)));
+        assert_eq!(parse_spec("nsgs"), Ok(nsgs(LocalSolverKind::NewtonHybrid)));
+        assert_eq!(
+            parse_spec("500/552"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCone))
+        );
+        assert_eq!(
+            parse_spec(" NSGS/SBP "),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCone))
+        );
+        assert_eq!(
+            parse_spec("NSGS/sal"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCylinder))
+        );
+        assert_eq!(
+            parse_spec("500/nsn_gp"),
+            Ok(nsgs(LocalSolverKind::NewtonAlartCurnierGp))
+        );
+        assert_eq!(
+            parse_spec("NSGS/proj-iter"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnConeWithLocalIteration))
+        );
+        assert_eq!(
+            parse_spec("NSGS/550"),
+            Ok(nsgs(LocalSolverKind::NewtonAlartCurnier))
+        );
+        // Every local solver is reachable by id and by each of its names.
+        for (kind, names) in LOCAL_NAMES {
+            assert_eq!(
+                parse_spec(&format!("500/{}", kind.siconos_id())),
+                Ok(nsgs(kind))
+            );
+            for n in names {
+                assert_eq!(parse_spec(&format!("NSGS/{n}")), Ok(nsgs(kind)));
+            }
+        }
+        assert_eq!(LOCAL_NAMES.len(), LocalSolverKind::ALL.len());
+    }
+
+    #[test]
+    fn bad_specs_are_errors() {
+        for bad in [
+            "",
+            "501",
+            "NSGS/500",
+            "NSGS/xyz",
+            "PSOR",
+            "500/",
+            "/552",
+            "500/552/1",
+        ] {
+            assert!(parse_spec(bad).is_err(), "{bad:?}");
+        }
+        assert!(parse_spec_list("500,,552").is_err());
+        assert!(parse_spec_list("500,foo").is_err());
+    }
+
+    #[test]
+    fn lists_and_all() {
+        let all = parse_spec_list("all").unwrap();
+        assert_eq!(all.len(), LocalSolverKind::ALL.len());
+        assert_eq!(
+            all.iter().map(|s| s.local).collect::<Vec<_>>(),
+            LocalSolverKind::ALL.to_vec()
+        );
+        // Duplicates are dropped, first appearance kept.
+        let l = parse_spec_list("500/552, NSGS, 500/565, NSGS/SBP").unwrap();
+        assert_eq!(
+            l,
+            vec![
+                nsgs(LocalSolverKind::ProjectionOnCone),
+                nsgs(LocalSolverKind::NewtonHybrid)
+            ]
+        );
+        assert!(parse_spec_list("552x").is_err());
+        let l = parse_spec_list("500/557,ALL").unwrap();
+        assert_eq!(l[0], nsgs(LocalSolverKind::ProjectionOnCylinder));
+        assert_eq!(l.len(), LocalSolverKind::ALL.len());
+    }
+
+    #[test]
+    fn config_and_labels() {
+        let spec = nsgs(LocalSolverKind::ProjectionOnCone);
+        let c = solver_config(&spec, 1e-6, 77, Some(Duration::from_millis(5)));
+        assert_eq!(c.tolerance(), 1e-6);
+        assert_eq!(c.max_iter(), 77);
+        assert_eq!(c.time_budget(), Some(Duration::from_millis(5)));
+        assert_eq!(c.siconos_id(), 500);
+        #[allow(irrefutable_let_patterns)]
+        let SolverConfig::Nsgs(o) = c
+        else {
+            panic!("expected NSGS")
+        };
+        assert_eq!(o.local.kind, LocalSolverKind::ProjectionOnCone);
+        assert_eq!(spec.label(), "NSGS/552");
+        assert_eq!(spec.legend(), "NSGS/552 PROJ");
+    }
+}
