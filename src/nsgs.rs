@@ -49,6 +49,18 @@ impl Sweeper {
     pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
         sweep(&self.rows, q, mu, &mut self.local, r)
     }
+
+    /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
+    /// blocks (cheaper than the host's storage when W is dense but sparsely coupled).
+    pub fn natural_map_error(
+        &self,
+        problem: &FrictionProblem<'_>,
+        r: &[f64],
+        u: &mut [f64],
+    ) -> f64 {
+        self.rows.velocity(problem.q(), r, u);
+        crate::measure::natural_map_error_of(problem, r, u)
+    }
 }
 
 /// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
@@ -99,9 +111,16 @@ pub(crate) fn nsgs(
                 }
             }
         };
-        if let (true, Some(b)) = (full, best.as_mut()) {
-            if error < b.error {
-                b.error = error;
+        if let Some(b) = best.as_mut() {
+            // Under a time budget the run may be cut at any sweep: measure every iterate so the
+            // one returned is the best seen, not merely the last one measured.
+            let e = if full {
+                error
+            } else {
+                sweeper.natural_map_error(problem, r, u)
+            };
+            if e < b.error {
+                b.error = e;
                 b.r.copy_from_slice(r);
             }
         }
@@ -118,9 +137,8 @@ pub(crate) fn nsgs(
         }
         if deadline.is_some_and(|d| Instant::now() >= d) {
             if let Some(b) = best {
-                if b.error < natural_map_error(problem, r, u) {
-                    r.copy_from_slice(&b.r);
-                }
+                // b holds the best measured iterate, the current one included.
+                r.copy_from_slice(&b.r);
             }
             return Ok(NsgsOutcome {
                 iterations: iteration,

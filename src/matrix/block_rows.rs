@@ -121,6 +121,16 @@ impl BlockRows {
         &self.diagonal[c]
     }
 
+    /// `u <- W r + q` through the stored blocks (zero blocks skipped, so a dense W costs what
+    /// its coupling costs).
+    pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
+        for c in 0..self.n_contacts {
+            let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+            let uc = crate::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
+            u[3 * c..3 * c + 3].copy_from_slice(&uc);
+        }
+    }
+
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
     #[inline]
     pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> Vec3 {
