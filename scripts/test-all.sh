@@ -66,4 +66,7 @@ for p in Rover1039 Rover4396 Confeti-ex13-Fc3D-SBM Confeti-ex03-Fc3D-SBM OneObje
   agree=$((agree + 1))
 done
 echo "Siconos host program: $agree problems, same info and iterations with both libraries"
+
+echo "== side by side with Siconos (compare-siconos.sh --quick: same info, iterations, cross-scored errors)"
+bash scripts/compare-siconos.sh --quick
 echo "== all checks passed"
