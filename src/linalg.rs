@@ -15,9 +15,19 @@ pub fn norm3(a: &Vec3) -> f64 {
     dot3(a, a).sqrt()
 }
 
+/// `sqrt(x^2 + y^2)`. The plain formula is exact to an ulp and several times faster than libm's
+/// `hypot` (which was 17% of an NSGS run); `hypot` is kept for the squares that overflow or
+/// underflow.
 #[inline(always)]
 pub fn norm2(x: f64, y: f64) -> f64 {
-    x.hypot(y)
+    let s = x * x + y * y;
+    if s >= f64::MIN_POSITIVE && s < f64::INFINITY {
+        s.sqrt()
+    } else if x == 0.0 && y == 0.0 {
+        0.0
+    } else {
+        x.hypot(y)
+    }
 }
 
 #[inline(always)]
@@ -136,12 +146,16 @@ pub fn lambda_min_sym2(a: f64, b: f64, c: f64, d: f64) -> f64 {
     0.5 * (a + d) - (0.25 * (a - d) * (a - d) + off * off).sqrt()
 }
 
-/// Euclidean norm of a slice.
+/// Euclidean norm of a slice: one pass of squares, and a scaled second pass only when the sum of
+/// squares overflows or underflows (W scaled by 1e8 with reactions beyond 1e150).
 pub fn norm(x: &[f64]) -> f64 {
-    // Two-pass scaled sum avoids overflow for W scaled up to 1e8 and r up to 1e150.
+    let s: f64 = x.iter().map(|v| v * v).sum();
+    if s >= f64::MIN_POSITIVE && s < f64::INFINITY {
+        return s.sqrt();
+    }
     let amax = x.iter().fold(0.0_f64, |a, &v| a.max(v.abs()));
     if amax == 0.0 || !amax.is_finite() {
-        return amax;
+        return if s.is_nan() { f64::NAN } else { amax };
     }
     let s: f64 = x.iter().map(|v| (v / amax) * (v / amax)).sum();
     amax * s.sqrt()
@@ -176,8 +190,23 @@ mod tests {
     }
 
     #[test]
+    fn norm2_is_exact_where_squares_do_not_fit() {
+        assert_eq!(norm2(3.0, 4.0), 5.0);
+        assert_eq!(norm2(0.0, -0.0), 0.0);
+        assert_relative_eq!(norm2(3e200, 4e200), 5e200, max_relative = 1e-15);
+        assert_relative_eq!(norm2(3e-200, 4e-200), 5e-200, max_relative = 1e-15);
+        assert!(norm2(f64::NAN, 1.0).is_nan());
+        assert_eq!(norm2(f64::INFINITY, 1.0), f64::INFINITY);
+    }
+
+    #[test]
     fn norm_is_overflow_safe() {
         assert_relative_eq!(norm(&[3e200, 4e200]), 5e200, max_relative = 1e-15);
+        assert_relative_eq!(norm(&[3e-200, 4e-200]), 5e-200, max_relative = 1e-15);
+        assert_relative_eq!(norm(&[3.0, 4.0, 12.0]), 13.0, max_relative = 1e-15);
         assert_eq!(norm(&[]), 0.0);
+        assert_eq!(norm(&[0.0, -0.0]), 0.0);
+        assert!(norm(&[1.0, f64::NAN]).is_nan());
+        assert_eq!(norm(&[1.0, f64::INFINITY]), f64::INFINITY);
     }
 }

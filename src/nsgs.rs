@@ -31,6 +31,8 @@ struct BestIterate {
 pub struct Sweeper {
     rows: BlockRows,
     local: AnyLocalSolver,
+    /// Each contact's penalty parameters for the local solver (they depend on W_cc only).
+    rho: Vec<(f64, f64)>,
 }
 
 impl Sweeper {
@@ -38,16 +40,18 @@ impl Sweeper {
         problem: &FrictionProblem<'_>,
         local: &crate::options::LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
-        Ok(Sweeper {
-            rows: problem.w().block_rows()?,
-            local: AnyLocalSolver::new(local),
-        })
+        let rows = problem.w().block_rows()?;
+        let local = AnyLocalSolver::new(local);
+        let rho = (0..rows.n_contacts())
+            .map(|c| local.rho(rows.diagonal(c)))
+            .collect();
+        Ok(Sweeper { rows, local, rho })
     }
 
     /// One sweep over all contacts in order, updating `r` in place; returns
     /// `sum_c ||r_c^new - r_c^old||^2`.
     pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
-        sweep(&self.rows, q, mu, &mut self.local, r)
+        sweep(&self.rows, &self.rho, q, mu, &mut self.local, r)
     }
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
@@ -156,6 +160,7 @@ pub(crate) fn nsgs(
 /// A local solution that is not finite is discarded (the contact keeps its previous reaction).
 fn sweep(
     rows: &BlockRows,
+    rho: &[(f64, f64)],
     q: &[f64],
     mu: &[f64],
     local: &mut AnyLocalSolver,
@@ -170,7 +175,7 @@ fn sweep(
         };
         let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
         let mut rc = old;
-        local.solve(&p, &mut rc);
+        local.solve_with_rho(&p, rho[c], &mut rc);
         if !rc.iter().all(|v| v.is_finite()) {
             rc = old;
         }

@@ -50,7 +50,24 @@ pub struct LocalOutcome {
 /// A one-contact solver. `solve` starts from the value in `r` and leaves its answer there.
 /// Implementations allocate nothing.
 pub trait LocalSolver {
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome;
+    /// The penalty parameters `(rho_N, rho_T)` this solver uses for a contact whose diagonal
+    /// block is `w`. They depend on `w` only, so a sweep computes them once per contact.
+    fn rho(&self, w: &Mat3) -> (f64, f64);
+
+    /// Solves with penalty parameters `rho` obtained from [`LocalSolver::rho`] for `p.w`.
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome;
+
+    /// Solves, computing rho from `p.w`.
+    #[inline]
+    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
+        let rho = self.rho(p.w);
+        self.solve_with_rho(p, rho, r)
+    }
 }
 
 /// Penalty parameters `(rho_N, rho_T)` of a contact from its diagonal block, by `rule`.
@@ -133,13 +150,27 @@ impl AnyLocalSolver {
 }
 
 impl LocalSolver for AnyLocalSolver {
-    #[inline]
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
         match self {
-            AnyLocalSolver::Newton(s) => s.solve(p, r),
-            AnyLocalSolver::Cone(s) => s.solve(p, r),
-            AnyLocalSolver::ConeIterated(s) => s.solve(p, r),
-            AnyLocalSolver::Cylinder(s) => s.solve(p, r),
+            AnyLocalSolver::Newton(s) => s.rho(w),
+            AnyLocalSolver::Cone(s) => s.rho(w),
+            AnyLocalSolver::ConeIterated(s) => s.rho(w),
+            AnyLocalSolver::Cylinder(s) => s.rho(w),
+        }
+    }
+
+    #[inline]
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        match self {
+            AnyLocalSolver::Newton(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Cone(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::ConeIterated(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Cylinder(s) => s.solve_with_rho(p, rho, r),
         }
     }
 }

@@ -26,6 +26,24 @@ pub fn alart_curnier_function(
     rho_t: f64,
     r: &Vec3,
 ) -> (Vec3, Mat3) {
+    ac_eval::<true>(p, rho_n, rho_t, r)
+}
+
+/// The Alart-Curnier function alone (the Jacobian is not formed): convergence tests and
+/// line-search trials need only F.
+#[inline]
+fn alart_curnier_residual(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+    ac_eval::<false>(p, rho_n, rho_t, r).0
+}
+
+/// F and, when `JAC`, the Jacobian `A + B w` (otherwise a zero matrix); one branch logic for both.
+#[inline(always)]
+fn ac_eval<const JAC: bool>(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
     let u = p.velocity(r);
     let mu = p.mu;
     let mut f = [0.0; 3];
@@ -55,20 +73,25 @@ pub fn alart_curnier_function(
         let e = [s_t[0] / ns, s_t[1] / ns];
         f[1] = r[1] - radius * e[0];
         f[2] = r[2] - radius * e[1];
-        let k = radius / ns;
-        let g = [
-            [k * (1.0 - e[0] * e[0]), -k * e[0] * e[1]],
-            [-k * e[1] * e[0], k * (1.0 - e[1] * e[1])],
-        ];
-        let dn = if active { mu } else { 0.0 };
-        for i in 0..2 {
-            a[1 + i][0] = -dn * e[i];
-            b[1 + i][0] = dn * rho_n * e[i];
-            for j in 0..2 {
-                a[1 + i][1 + j] = if i == j { 1.0 } else { 0.0 } - g[i][j];
-                b[1 + i][1 + j] = rho_t * g[i][j];
+        if JAC {
+            let k = radius / ns;
+            let g = [
+                [k * (1.0 - e[0] * e[0]), -k * e[0] * e[1]],
+                [-k * e[1] * e[0], k * (1.0 - e[1] * e[1])],
+            ];
+            let dn = if active { mu } else { 0.0 };
+            for i in 0..2 {
+                a[1 + i][0] = -dn * e[i];
+                b[1 + i][0] = dn * rho_n * e[i];
+                for j in 0..2 {
+                    a[1 + i][1 + j] = if i == j { 1.0 } else { 0.0 } - g[i][j];
+                    b[1 + i][1 + j] = rho_t * g[i][j];
+                }
             }
         }
+    }
+    if !JAC {
+        return (f, [[0.0; 3]; 3]);
     }
     let bw = mat3_mul(&b, p.w);
     let mut jac = a;
@@ -112,38 +135,39 @@ impl AlartCurnierNewton {
         let tol = self.options.tolerance;
         // F has the units of a reaction; compare it with the reaction scale.
         let scale = norm3(r).max(rho_n * norm3(&p.q)).max(f64::MIN_POSITIVE);
-        let (mut f, mut jac) = alart_curnier_function(p, rho_n, rho_t, r);
+        // The Jacobian is formed only where a step is taken: the last F of a converging run
+        // (most local solves late in NSGS) needs none.
+        let mut f = alart_curnier_residual(p, rho_n, rho_t, r);
         for it in 0..self.options.max_iter {
             let nf = norm3(&f);
             if nf <= tol * scale {
                 return (true, it);
             }
+            let (_, jac) = alart_curnier_function(p, rho_n, rho_t, r);
             let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
                 return (false, it);
             };
-            let (r_new, f_new, jac_new) = if self.line_search {
+            let (r_new, f_new) = if self.line_search {
                 match self.goldstein_price(p, rho, r, &d, nf * nf) {
                     Some(x) => x,
                     None => return (false, it),
                 }
             } else {
                 let rn = [r[0] + d[0], r[1] + d[1], r[2] + d[2]];
-                let (fnew, jnew) = alart_curnier_function(p, rho_n, rho_t, &rn);
-                (rn, fnew, jnew)
+                (rn, alart_curnier_residual(p, rho_n, rho_t, &rn))
             };
             if !r_new.iter().all(|v| v.is_finite()) {
                 return (false, it);
             }
             *r = r_new;
             f = f_new;
-            jac = jac_new;
         }
         (norm3(&f) <= tol * scale, self.options.max_iter)
     }
 
     /// Goldstein-Price search along the Newton direction `d` on `psi = ||F||^2 / 2`, whose slope
-    /// along `d` is `-||F||^2`. Returns the accepted point with its F and J, or the best point
-    /// that decreased psi, or `None` when no trial step decreased it.
+    /// along `d` is `-||F||^2`. Returns the accepted point with its F, or the best point that
+    /// decreased psi, or `None` when no trial step decreased it.
     fn goldstein_price(
         &self,
         p: &LocalProblem<'_>,
@@ -151,22 +175,22 @@ impl AlartCurnierNewton {
         r: &Vec3,
         d: &Vec3,
         f_sq: f64,
-    ) -> Option<(Vec3, Vec3, Mat3)> {
+    ) -> Option<(Vec3, Vec3)> {
         let psi0 = 0.5 * f_sq;
         let slope = -f_sq;
         let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
         let mut alpha = 1.0;
-        let mut best: Option<(f64, Vec3, Vec3, Mat3)> = None;
+        let mut best: Option<(f64, Vec3, Vec3)> = None;
         for _ in 0..self.options.line_search_max_iter.max(1) {
             let rt = [
                 r[0] + alpha * d[0],
                 r[1] + alpha * d[1],
                 r[2] + alpha * d[2],
             ];
-            let (ft, jt) = alart_curnier_function(p, rho.0, rho.1, &rt);
+            let ft = alart_curnier_residual(p, rho.0, rho.1, &rt);
             let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
             if psi < best.as_ref().map_or(psi0, |b| b.0) {
-                best = Some((psi, rt, ft, jt));
+                best = Some((psi, rt, ft));
             }
             let ratio = (psi - psi0) / (alpha * slope);
             if ratio < GP_M1 {
@@ -174,7 +198,7 @@ impl AlartCurnierNewton {
             } else if ratio > GP_M2 {
                 lo = alpha; // too short: decrease almost linear, try longer
             } else {
-                return Some((rt, ft, jt));
+                return Some((rt, ft));
             }
             alpha = if hi.is_finite() {
                 0.5 * (lo + hi)
@@ -182,13 +206,21 @@ impl AlartCurnierNewton {
                 2.0 * alpha
             };
         }
-        best.map(|(_, rt, ft, jt)| (rt, ft, jt))
+        best.map(|(_, rt, ft)| (rt, ft))
     }
 }
 
 impl LocalSolver for AlartCurnierNewton {
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
-        let rho = local_rho(p.w, self.options.rho_rule);
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
+        local_rho(w, self.options.rho_rule)
+    }
+
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
         let start = *r;
         let (converged, mut iterations) = self.newton(p, rho, r);
         if converged || !self.hybrid {

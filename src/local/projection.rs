@@ -3,13 +3,14 @@
 
 use super::{local_rho, LocalOutcome, LocalProblem, LocalSolver};
 use crate::cone::{modified_velocity, project_on_cone, project_on_cylinder};
-use crate::linalg::{norm3, sub3, Vec3};
+use crate::linalg::{norm3, sub3, Mat3, Vec3};
 use crate::options::{LocalSolverOptions, RhoRule};
 
-/// `rho = 1 / W_NN` (with the degenerate-block fallback of [`local_rho`]).
+/// `rho = 1 / W_NN` for every component (with the degenerate-block fallback of [`local_rho`]).
 #[inline]
-fn normal_rho(p: &LocalProblem<'_>) -> f64 {
-    local_rho(p.w, RhoRule::SplitSpectralNorm).0
+fn normal_rho(w: &Mat3) -> (f64, f64) {
+    let rho = local_rho(w, RhoRule::SplitSpectralNorm).0;
+    (rho, rho)
 }
 
 /// One step `r <- P_K(r - rho ũ(r))`, with ũ the De Saxcé velocity.
@@ -27,9 +28,18 @@ fn cone_step(p: &LocalProblem<'_>, r: &Vec3, rho: f64) -> Vec3 {
 pub struct ProjectionOnCone;
 
 impl LocalSolver for ProjectionOnCone {
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
+        normal_rho(w)
+    }
+
     #[inline]
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
-        let next = cone_step(p, r, normal_rho(p));
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        let next = cone_step(p, r, rho.0);
         let converged = next == *r;
         *r = next;
         LocalOutcome {
@@ -44,9 +54,18 @@ impl LocalSolver for ProjectionOnCone {
 pub struct ProjectionOnCylinder;
 
 impl LocalSolver for ProjectionOnCylinder {
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
+        normal_rho(w)
+    }
+
     #[inline]
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
-        let rho = normal_rho(p);
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        let rho = rho.0;
         let u = p.velocity(r);
         let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
         let next = project_on_cylinder(&tau, p.mu * tau[0].max(0.0));
@@ -81,8 +100,17 @@ impl ProjectionOnConeWithLocalIteration {
 }
 
 impl LocalSolver for ProjectionOnConeWithLocalIteration {
-    fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
-        let mut rho = normal_rho(p);
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
+        normal_rho(w)
+    }
+
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        let mut rho = rho.0;
         let mut ut = modified_velocity(&p.velocity(r), p.mu);
         for it in 0..self.max_iter {
             let next = project_on_cone(
