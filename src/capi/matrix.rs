@@ -13,11 +13,12 @@
 #![allow(non_snake_case)]
 
 use std::borrow::Cow;
-use std::ffi::{c_char, CStr};
+use std::ffi::c_char;
 use std::os::raw::{c_double, c_int, c_uint};
 use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_calloc, c_copy, c_free};
+use super::stream::{c_filename, read_rest, write_all};
 use super::types::*;
 use super::{
     ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE, FC3D_ERR_INVALID_STORAGE, FC3D_ERR_IO,
@@ -1080,15 +1081,6 @@ pub unsafe extern "C" fn SBM_free_from_SBCM(M: *mut SparseBlockStructuredMatrix)
 /// The label of a stream in error messages.
 const STREAM_LABEL: &str = "<FILE stream>";
 
-unsafe fn c_filename<'a>(filename: *const c_char) -> CResult<&'a str> {
-    if filename.is_null() {
-        return Err(CError::null("filename"));
-    }
-    CStr::from_ptr(filename)
-        .to_str()
-        .map_err(|_| CError::new(FC3D_ERR_IO, "filename is not valid UTF-8"))
-}
-
 /// Reads a matrix from `file` with `parse`, which returns the value and the number of bytes it
 /// used, then convert it with `to_c`. The whole rest of the stream is read, then, when the stream
 /// is seekable (`ftell` works), it is repositioned just after what was used on success (the next
@@ -1103,35 +1095,27 @@ unsafe fn read_from_stream<T, U>(
         return Err(CError::null("file"));
     }
     let start = libc::ftell(file);
-    let mut bytes = Vec::new();
-    let mut buf = [0u8; 65536];
-    loop {
-        let got = libc::fread(buf.as_mut_ptr() as *mut libc::c_void, 1, buf.len(), file);
-        bytes.extend_from_slice(&buf[..got]);
-        if got < buf.len() {
-            break;
-        }
-    }
-    let result = if libc::ferror(file) != 0 {
-        Err(CError::new(FC3D_ERR_IO, "read error on the stream"))
-    } else {
-        // Matrix text is ASCII: a byte that is not UTF-8 can only end it (data after the matrix),
-        // so only the valid prefix is parsed; byte offsets stay those of the stream.
-        let (text, bad_byte) = match std::str::from_utf8(&bytes) {
-            Ok(t) => (t, None),
-            Err(e) => (
-                std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or(""),
-                Some(e.valid_up_to()),
-            ),
-        };
-        match parse(text) {
-            Ok((value, used)) => to_c(&value).map(|c| (c, used)),
-            Err(e) => {
-                let mut err = CError::from(e);
-                if let Some(at) = bad_byte {
-                    err.message += &format!(" (the stream holds a byte that is not text at offset {at} from where reading started)");
+    let result = match read_rest(file) {
+        Err(e) => Err(e),
+        Ok(bytes) => {
+            // Matrix text is ASCII: a byte that is not UTF-8 can only end it (data after the matrix),
+            // so only the valid prefix is parsed; byte offsets stay those of the stream.
+            let (text, bad_byte) = match std::str::from_utf8(&bytes) {
+                Ok(t) => (t, None),
+                Err(e) => (
+                    std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or(""),
+                    Some(e.valid_up_to()),
+                ),
+            };
+            match parse(text) {
+                Ok((value, used)) => to_c(&value).map(|c| (c, used)),
+                Err(e) => {
+                    let mut err = CError::from(e);
+                    if let Some(at) = bad_byte {
+                        err.message += &format!(" (the stream holds a byte that is not text at offset {at} from where reading started)");
+                    }
+                    Err(err)
                 }
-                Err(err)
             }
         }
     };
@@ -1238,11 +1222,7 @@ pub unsafe extern "C" fn NM_write_in_file(M: *const NumericsMatrix, file: *mut l
             if file.is_null() {
                 return Err(CError::null("file"));
             }
-            if libc::fwrite(text.as_ptr() as *const libc::c_void, 1, text.len(), file) != text.len()
-            {
-                return Err(CError::new(FC3D_ERR_IO, "write error on the stream"));
-            }
-            Ok(())
+            write_all(file, &text)
         },
     )
 }

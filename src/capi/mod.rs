@@ -21,6 +21,7 @@ mod lmgc;
 mod matrix;
 mod options;
 mod problem;
+mod stream;
 
 use std::cell::RefCell;
 use std::ffi::{c_char, CString};

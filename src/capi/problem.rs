@@ -8,12 +8,13 @@
 #![allow(non_snake_case)]
 
 use std::borrow::Cow;
-use std::ffi::{c_char, CStr};
+use std::ffi::c_char;
 use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
 use super::matrix::{c_slice, delassus_from_c, matrix_to_c, nm_clear_impl};
+use super::stream::{c_filename, read_rest, write_all};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{
     ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_IO,
@@ -84,43 +85,10 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
     })
 }
 
-unsafe fn c_path<'a>(filename: *const c_char) -> CResult<&'a str> {
-    if filename.is_null() {
-        return Err(CError::null("filename"));
-    }
-    CStr::from_ptr(filename)
-        .to_str()
-        .map_err(|_| CError::new(FC3D_ERR_IO, "filename is not valid UTF-8"))
-}
-
-/// Reads everything left in a C stream.
+/// Reads everything left in a C stream as text.
 unsafe fn read_stream(file: *mut libc::FILE) -> CResult<String> {
-    if file.is_null() {
-        return Err(CError::null("file"));
-    }
-    let mut bytes = Vec::new();
-    let mut buf = [0u8; 65536];
-    loop {
-        let got = libc::fread(buf.as_mut_ptr() as *mut libc::c_void, 1, buf.len(), file);
-        bytes.extend_from_slice(&buf[..got]);
-        if got < buf.len() {
-            if libc::ferror(file) != 0 {
-                return Err(CError::new(FC3D_ERR_IO, "read error on the stream"));
-            }
-            break;
-        }
-    }
-    String::from_utf8(bytes).map_err(|_| CError::new(FC3D_ERR_IO, "the stream is not text"))
-}
-
-unsafe fn write_stream(file: *mut libc::FILE, text: &[u8]) -> CResult<()> {
-    if file.is_null() {
-        return Err(CError::null("file"));
-    }
-    if libc::fwrite(text.as_ptr() as *const libc::c_void, 1, text.len(), file) != text.len() {
-        return Err(CError::new(FC3D_ERR_IO, "write error on the stream"));
-    }
-    Ok(())
+    String::from_utf8(read_rest(file)?)
+        .map_err(|_| CError::new(FC3D_ERR_IO, "the stream is not text"))
 }
 
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
@@ -196,7 +164,7 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
         "frictionContact_new_from_filename",
         |_| null_mut(),
         || {
-            let path = c_path(filename)?;
+            let path = c_filename(filename)?;
             let p = crate::io::dat::read_dat_file(std::path::Path::new(path))?;
             problem_to_c(&p)
         },
@@ -240,7 +208,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
                 return Err(CError::null("problem"));
             }
             let p = problem_from_c(&*problem)?;
-            write_stream(file, &dat_text(&p)?)?;
+            write_all(file, &dat_text(&p)?)?;
             Ok(0)
         },
     )
@@ -260,7 +228,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
                 return Err(CError::null("problem"));
             }
             let p = problem_from_c(&*problem)?;
-            let path = c_path(filename)?;
+            let path = c_filename(filename)?;
             let text = dat_text(&p)?;
             std::fs::write(path, text)
                 .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: {e}")))?;
