@@ -31,7 +31,8 @@ fn checked_in_header_is_up_to_date() {
 /// OPTIONS_PARAM_SIZE), so core constants cannot leak into C programs.
 #[test]
 fn header_exports_only_c_layer_names() {
-    let header = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/include/fc3d.h")).unwrap();
+    let header =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/include/fc3d.h")).unwrap();
     for line in header.lines().filter(|l| l.starts_with("#define ")) {
         let name = line.split_whitespace().nth(1).unwrap();
         assert!(
@@ -39,5 +40,8 @@ fn header_exports_only_c_layer_names() {
             "unexpected macro {name} in include/fc3d.h: exclude it in cbindgen.toml"
         );
     }
-    assert!(!header.contains("LocalSolverKind"), "core enum leaked into the header");
+    assert!(
+        !header.contains("LocalSolverKind"),
+        "core enum leaked into the header"
+    );
 }

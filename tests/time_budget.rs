@@ -7,8 +7,11 @@ use fc3d::io::dat::read_dat_file;
 use fc3d::{solve, solve_with_observer, ErrorEvaluation, NsgsOptions, SolveStatus, SolverConfig};
 
 fn rockpile() -> fc3d::FrictionProblem<'static> {
-    read_dat_file(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data/siconos/RockPile_tob1.dat")))
-        .unwrap()
+    read_dat_file(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../shared/data/siconos/RockPile_tob1.dat"
+    )))
+    .unwrap()
 }
 
 #[test]
@@ -25,8 +28,14 @@ fn budget_stops_the_solver_and_returns_the_best_measured_iterate() {
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
     let mut seen = Vec::new();
     let start = Instant::now();
-    let report =
-        solve_with_observer(&p, &SolverConfig::Nsgs(options), &mut r, &mut u, &mut |ev| seen.push(ev.error)).unwrap();
+    let report = solve_with_observer(
+        &p,
+        &SolverConfig::Nsgs(options),
+        &mut r,
+        &mut u,
+        &mut |ev| seen.push(ev.error),
+    )
+    .unwrap();
     let elapsed = start.elapsed();
     assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
     assert_eq!(report.status.info_code(), 2);
@@ -36,7 +45,11 @@ fn budget_stops_the_solver_and_returns_the_best_measured_iterate() {
     assert!(elapsed < Duration::from_secs(5), "ran {elapsed:?}");
     // With the full error measured at every sweep, the returned iterate is the best of them.
     let best = seen.iter().cloned().fold(f64::INFINITY, f64::min);
-    assert_eq!(report.error, best, "returned error {} vs best seen {best}", report.error);
+    assert_eq!(
+        report.error, best,
+        "returned error {} vs best seen {best}",
+        report.error
+    );
     // ...and the reported error is the true error of the returned reaction.
     let mut u2 = vec![0.0; n];
     assert_eq!(report.error, fc3d::natural_map_error(&p, &r, &mut u2));
@@ -51,8 +64,14 @@ fn a_generous_budget_does_not_change_the_result() {
     )))
     .unwrap();
     let n = p.size();
-    let base = NsgsOptions { tolerance: 1e-10, ..Default::default() };
-    let with_budget = NsgsOptions { time_budget: Some(Duration::from_secs(3600)), ..base };
+    let base = NsgsOptions {
+        tolerance: 1e-10,
+        ..Default::default()
+    };
+    let with_budget = NsgsOptions {
+        time_budget: Some(Duration::from_secs(3600)),
+        ..base
+    };
     let (mut r1, mut u1) = (vec![0.0; n], vec![0.0; n]);
     let (mut r2, mut u2) = (vec![0.0; n], vec![0.0; n]);
     let a = solve(&p, &SolverConfig::Nsgs(base), &mut r1, &mut u1).unwrap();
@@ -66,7 +85,10 @@ fn a_generous_budget_does_not_change_the_result() {
 fn a_zero_budget_is_rejected() {
     let p = rockpile();
     let n = p.size();
-    let options = NsgsOptions { time_budget: Some(Duration::ZERO), ..Default::default() };
+    let options = NsgsOptions {
+        time_budget: Some(Duration::ZERO),
+        ..Default::default()
+    };
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
     assert!(solve(&p, &SolverConfig::Nsgs(options), &mut r, &mut u).is_err());
     assert!(r.iter().all(|&v| v == 0.0));
@@ -84,15 +106,28 @@ fn with_the_default_cheap_error_the_budget_still_returns_the_best_iterate() {
         time_budget: Some(Duration::from_millis(30)),
         ..Default::default()
     };
-    assert_eq!(options.error_evaluation, ErrorEvaluation::LightWithFullFinal);
+    assert_eq!(
+        options.error_evaluation,
+        ErrorEvaluation::LightWithFullFinal
+    );
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
     let mut best_seen = f64::INFINITY;
     let mut scratch = vec![0.0; n];
-    let report = solve_with_observer(&p, &SolverConfig::Nsgs(options), &mut r, &mut u, &mut |ev| {
-        best_seen = best_seen.min(fc3d::natural_map_error(&p, ev.reaction, &mut scratch));
-    })
+    let report = solve_with_observer(
+        &p,
+        &SolverConfig::Nsgs(options),
+        &mut r,
+        &mut u,
+        &mut |ev| {
+            best_seen = best_seen.min(fc3d::natural_map_error(&p, ev.reaction, &mut scratch));
+        },
+    )
     .unwrap();
     assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
     // Equal up to the rounding of W r + q computed through blocks vs through the host storage.
-    assert!(report.error <= best_seen * (1.0 + 1e-9), "returned {} but an iterate reached {best_seen}", report.error);
+    assert!(
+        report.error <= best_seen * (1.0 + 1e-9),
+        "returned {} but an iterate reached {best_seen}",
+        report.error
+    );
 }

@@ -26,7 +26,10 @@ fn single_contacts_with_analytic_answers() {
 
 #[test]
 fn bad_input_is_rejected_with_codes_and_messages() {
-    assert_eq!(unsafe { capi_check_bad_input(cstr(&data_dir()).as_ptr()) }, 0);
+    assert_eq!(
+        unsafe { capi_check_bad_input(cstr(&data_dir()).as_ptr()) },
+        0
+    );
 }
 
 #[test]
@@ -46,9 +49,16 @@ fn problems() -> Vec<PathBuf> {
         .filter(|p| {
             let n = p.file_name().unwrap().to_str().unwrap();
             n.ends_with(".dat")
-                && !["GFC3D_", "gfc2d_", "fc2d_", "FC2D_", "FrictionContactProblem", "ACinputs"]
-                    .iter()
-                    .any(|pre| n.starts_with(pre))
+                && ![
+                    "GFC3D_",
+                    "gfc2d_",
+                    "fc2d_",
+                    "FC2D_",
+                    "FrictionContactProblem",
+                    "ACinputs",
+                ]
+                .iter()
+                .any(|pre| n.starts_with(pre))
         })
         .collect();
     v.sort();
@@ -57,7 +67,11 @@ fn problems() -> Vec<PathBuf> {
 
 /// Problems on which NSGS (ours and Siconos 4.4 alike) stalls above 1e-6 within 1e5 sweeps:
 /// they are run with a short iteration budget and must report an honest failure.
-const STALLING: [&str; 3] = ["BoxesStack1-i100000-32.hdf5.dat", "OneObject-i100000-316.hdf5.dat", "RockPile_tob1.dat"];
+const STALLING: [&str; 3] = [
+    "BoxesStack1-i100000-32.hdf5.dat",
+    "OneObject-i100000-316.hdf5.dat",
+    "RockPile_tob1.dat",
+];
 
 fn rust_problem(p: &FrictionProblem<'static>, storage: c_int) -> FrictionProblem<'static> {
     let w = match storage {
@@ -79,7 +93,11 @@ fn shared_problems_through_the_c_api_in_all_storages() {
     let tol = 1e-6;
     let mut table = Vec::new();
     let files = problems();
-    assert!(files.len() >= 30, "expected the 30 shared 3D problems, found {}", files.len());
+    assert!(
+        files.len() >= 30,
+        "expected the 30 shared 3D problems, found {}",
+        files.len()
+    );
     for path in &files {
         let name = path.file_name().unwrap().to_str().unwrap().to_string();
         let stalls = STALLING.contains(&name.as_str());
@@ -87,7 +105,12 @@ fn shared_problems_through_the_c_api_in_all_storages() {
         let problem = read_dat_file(path).unwrap();
         let n = problem.size();
         let mut first_r: Option<Vec<f64>> = None;
-        for storage in [STORAGE_AS_FILE, STORAGE_DENSE, STORAGE_SPARSE_BLOCK, STORAGE_CSR] {
+        for storage in [
+            STORAGE_AS_FILE,
+            STORAGE_DENSE,
+            STORAGE_SPARSE_BLOCK,
+            STORAGE_CSR,
+        ] {
             let mut r = vec![0.0; n];
             let mut u = vec![0.0; n];
             let mut res = CSolveResult::default();
@@ -109,28 +132,60 @@ fn shared_problems_through_the_c_api_in_all_storages() {
             let rp = rust_problem(&problem, storage);
             let mut rr = vec![0.0; n];
             let mut ru = vec![0.0; n];
-            let config = SolverConfig::Nsgs(NsgsOptions { tolerance: tol, max_iter: max_iter as usize, ..NsgsOptions::with_local(LocalSolverKind::NewtonHybrid) });
+            let config = SolverConfig::Nsgs(NsgsOptions {
+                tolerance: tol,
+                max_iter: max_iter as usize,
+                ..NsgsOptions::with_local(LocalSolverKind::NewtonHybrid)
+            });
             let report = solve(&rp, &config, &mut rr, &mut ru).unwrap();
-            assert_eq!(r, rr, "{name} storage {storage}: C and Rust reactions differ");
-            assert_eq!(u, ru, "{name} storage {storage}: C and Rust velocities differ");
-            assert_eq!(res.iterations as usize, report.iterations, "{name}: iterations");
-            assert_eq!(res.reported_error, report.error, "{name}: dparam[1] differs from the Rust report");
+            assert_eq!(
+                r, rr,
+                "{name} storage {storage}: C and Rust reactions differ"
+            );
+            assert_eq!(
+                u, ru,
+                "{name} storage {storage}: C and Rust velocities differ"
+            );
+            assert_eq!(
+                res.iterations as usize, report.iterations,
+                "{name}: iterations"
+            );
+            assert_eq!(
+                res.reported_error, report.error,
+                "{name}: dparam[1] differs from the Rust report"
+            );
             // dparam[1] is an error actually measured on the returned (r, u).
-            assert!(rel_close(res.reported_error, res.api_error, 1e-12), "{name}: dparam[1] {} vs fc3d_compute_error {}", res.reported_error, res.api_error);
+            assert!(
+                rel_close(res.reported_error, res.api_error, 1e-12),
+                "{name}: dparam[1] {} vs fc3d_compute_error {}",
+                res.reported_error,
+                res.api_error
+            );
             // Summation order differs in the plain-C product W r + q: allow rounding noise of the
             // normalised residual (1e-14 absolute) on top of 1e-9 relative.
             assert!(
-                (res.reported_error - res.independent_error).abs() <= 1e-9 * res.reported_error.max(res.independent_error) + 1e-14,
+                (res.reported_error - res.independent_error).abs()
+                    <= 1e-9 * res.reported_error.max(res.independent_error) + 1e-14,
                 "{name}: dparam[1] {} vs independent {}",
                 res.reported_error,
                 res.independent_error
             );
-            assert!(r.iter().chain(u.iter()).all(|v| v.is_finite()), "{name}: non-finite output");
+            assert!(
+                r.iter().chain(u.iter()).all(|v| v.is_finite()),
+                "{name}: non-finite output"
+            );
             if stalls {
-                assert_eq!(res.info, 1, "{name}: expected an honest failure at {tol} in {max_iter} sweeps");
+                assert_eq!(
+                    res.info, 1,
+                    "{name}: expected an honest failure at {tol} in {max_iter} sweeps"
+                );
                 assert!(res.reported_error > tol);
             } else {
-                assert_eq!(res.info, 0, "{name} storage {storage}: not converged, error {}", res.reported_error);
+                assert_eq!(
+                    res.info, 0,
+                    "{name} storage {storage}: not converged, error {}",
+                    res.reported_error
+                );
                 assert!(res.reported_error <= tol);
             }
             // Every storage gives the same reactions (the sweep sees the same blocks).
@@ -138,12 +193,25 @@ fn shared_problems_through_the_c_api_in_all_storages() {
                 None => first_r = Some(r.clone()),
                 Some(r0) => {
                     let scale = fc3d::linalg::norm(r0).max(1e-300);
-                    let diff = r.iter().zip(r0).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-                    assert!(diff <= 1e-12 * scale, "{name}: storage {storage} differs by {diff:e}");
+                    let diff = r
+                        .iter()
+                        .zip(r0)
+                        .map(|(a, b)| (a - b).abs())
+                        .fold(0.0, f64::max);
+                    assert!(
+                        diff <= 1e-12 * scale,
+                        "{name}: storage {storage} differs by {diff:e}"
+                    );
                 }
             }
             if storage == STORAGE_AS_FILE {
-                table.push(format!("{name:40} nc={:4} info={} iter={:6} error={:.3e}", problem.n_contacts(), res.info, res.iterations, res.reported_error));
+                table.push(format!(
+                    "{name:40} nc={:4} info={} iter={:6} error={:.3e}",
+                    problem.n_contacts(),
+                    res.info,
+                    res.iterations,
+                    res.reported_error
+                ));
             }
         }
     }
