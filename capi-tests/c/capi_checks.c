@@ -731,6 +731,56 @@ int capi_check_ownership(const char* data_dir, const char* scratch_dir) {
   return 0;
 }
 
+/* ---- per-iteration callback ------------------------------------------------------------------ */
+
+typedef struct {
+  int calls;
+  int bad;
+  double last_error;
+} CallbackLog;
+
+static void collect(void* env, int size, double* reaction, double* velocity, double error, void* extra) {
+  CallbackLog* log = env;
+  log->calls++;
+  log->last_error = error;
+  if (size != 6 || !reaction || !velocity || extra != NULL || !(error >= 0.0)) log->bad++;
+  /* velocity must be W r + q for the reaction handed over (W = diag(2, 1), q below) */
+  if (fabs(velocity[0] - (2.0 * reaction[0] - 2.0)) > 1e-12 || fabs(velocity[3] - (reaction[3] - 1.0)) > 1e-12)
+    log->bad++;
+}
+
+int capi_check_callback(void) {
+  double W[36] = {0};
+  for (int i = 0; i < 3; i++) {
+    W[i + 6 * i] = 2.0;
+    W[(i + 3) + 6 * (i + 3)] = 1.0;
+  }
+  double q[6] = {-2, 0.3, 0, -1, 0, 0.2}, mu[2] = {0.5, 0.5}, r[6] = {0}, u[6] = {0};
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 6;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 2, &M, q, mu};
+  CallbackLog log = {0, 0, -1.0};
+  Callback cb = {&log, collect};
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  o->callback = &cb;
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+  o->iparam[SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] = SICONOS_FRICTION_3D_NSGS_ERROR_EVALUATION_FULL;
+  int info = fc3d_driver(&p, r, u, o);
+  int iterations = o->iparam[SICONOS_IPARAM_ITER_DONE];
+  double error = o->dparam[SICONOS_DPARAM_RESIDU];
+  o->callback = NULL; /* the callback is ours, not the options' */
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == 0, "callback run: info %d", info);
+  CHECK(log.calls == iterations && log.calls >= 1, "callback called %d times for %d iterations", log.calls, iterations);
+  CHECK(log.bad == 0, "callback got %d bad arguments", log.bad);
+  /* With FULL evaluation the last reported error is the error of the returned reaction. */
+  CHECK(fabs(log.last_error - error) <= 1e-15, "last callback error %g vs dparam[1] %g", log.last_error, error);
+  return 0;
+}
+
 /* ---- options, names, defaults ---------------------------------------------------------------- */
 
 int capi_check_options(void) {

@@ -6,6 +6,7 @@ int capi_check_ownership(const char* data_dir, const char* scratch_dir);
 int capi_check_bad_input(const char* data_dir);
 int capi_check_options(void);
 int capi_check_single_contacts(void);
+int capi_check_callback(void);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -15,6 +16,7 @@ int main(int argc, char** argv) {
   failed += capi_check_single_contacts() != 0;
   failed += capi_check_bad_input(data) != 0;
   failed += capi_check_ownership(data, scratch) != 0;
-  printf("%d passed, %d failed\n", 4 - failed, failed);
+  failed += capi_check_callback() != 0;
+  printf("%d passed, %d failed\n", 5 - failed, failed);
   return failed != 0;
 }

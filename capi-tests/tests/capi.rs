@@ -20,6 +20,11 @@ fn options_names_and_defaults() {
 }
 
 #[test]
+fn callback_sees_every_iteration() {
+    assert_eq!(unsafe { capi_check_callback() }, 0);
+}
+
+#[test]
 fn single_contacts_with_analytic_answers() {
     assert_eq!(unsafe { capi_check_single_contacts() }, 0);
 }
