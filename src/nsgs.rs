@@ -12,10 +12,13 @@ use crate::options::{ErrorEvaluation, NsgsOptions};
 use crate::problem::FrictionProblem;
 use crate::solver::IterationEvent;
 
-/// How an NSGS run ended (the caller measures the final error and sets the status).
+/// How an NSGS run ended (the caller sets the status from the final error).
 pub(crate) struct NsgsOutcome {
     pub iterations: usize,
     pub out_of_time: bool,
+    /// The natural-map error of the returned reaction when the last sweep measured it on the
+    /// host's storage (then `u = W r + q` too); `None` when the caller must measure it.
+    pub final_error: Option<f64>,
 }
 
 /// The best iterate by full natural-map error, kept only when a time budget may cut the run
@@ -87,6 +90,7 @@ pub(crate) fn nsgs(
         error: f64::INFINITY,
     });
 
+    let mut last_measured = None;
     for iteration in 1..=options.max_iter {
         let increment_sq = sweeper.sweep(q, mu, r);
 
@@ -133,10 +137,13 @@ pub(crate) fn nsgs(
             reaction: r,
             error,
         });
+        let measured = full.then_some(error);
+        last_measured = measured;
         if converged {
             return Ok(NsgsOutcome {
                 iterations: iteration,
                 out_of_time: false,
+                final_error: measured,
             });
         }
         if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -147,12 +154,14 @@ pub(crate) fn nsgs(
             return Ok(NsgsOutcome {
                 iterations: iteration,
                 out_of_time: true,
+                final_error: None,
             });
         }
     }
     Ok(NsgsOutcome {
         iterations: options.max_iter,
         out_of_time: false,
+        final_error: last_measured,
     })
 }
 

@@ -144,9 +144,13 @@ pub fn solve_with_observer(
         SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
     };
 
-    // The reported error is always measured here, on the returned (r, u), whatever the solver's
-    // own stopping test was.
-    let error = natural_map_error(problem, r, u);
+    // The reported error is always the natural-map error of the returned (r, u) on the host's
+    // storage, whatever the solver's own stopping test was: measured here unless the solver's
+    // last step already measured exactly that (same function, same r, u = W r + q).
+    let error = match outcome.final_error {
+        Some(e) => e,
+        None => natural_map_error(problem, r, u),
+    };
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
     } else if outcome.out_of_time {
