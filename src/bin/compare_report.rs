@@ -278,52 +278,17 @@ fn report(path: &str, comparisons: &[Comparison], criteria: &Criteria) -> String
 
     let _ = writeln!(s, "\n## Agreement\n");
     let _ = writeln!(s, "### Solved by one library only\n");
-    let mut rows = Vec::new();
-    for c in comparisons {
-        if let (Some(a), Some(b)) = (&c.runs[0], &c.runs[1]) {
-            if a.solved(c.tol) != b.solved(c.tol) {
-                rows.push(format!(
-                    "| {} | {} | {} | {} | {} |",
-                    c.solver,
-                    c.tol_text,
-                    c.problem,
-                    a.short(),
-                    b.short()
-                ));
-            }
-        }
-    }
-    table(
-        &mut s,
-        "| solver | tol | problem | fc3d | Siconos |\n| --- | --- | --- | --- | --- |",
-        &rows,
-    );
+    pair_table(&mut s, comparisons, |c, a, b| {
+        a.solved(c.tol) != b.solved(c.tol)
+    });
 
     let _ = writeln!(
         s,
         "### Iteration counts that differ (both runs completed)\n"
     );
-    let mut rows = Vec::new();
-    for c in comparisons {
-        if let (Some(a), Some(b)) = (&c.runs[0], &c.runs[1]) {
-            if a.completed() && b.completed() && (a.iterations != b.iterations || a.info != b.info)
-            {
-                rows.push(format!(
-                    "| {} | {} | {} | {} | {} |",
-                    c.solver,
-                    c.tol_text,
-                    c.problem,
-                    a.short(),
-                    b.short()
-                ));
-            }
-        }
-    }
-    table(
-        &mut s,
-        "| solver | tol | problem | fc3d | Siconos |\n| --- | --- | --- | --- | --- |",
-        &rows,
-    );
+    pair_table(&mut s, comparisons, |_, a, b| {
+        a.completed() && b.completed() && (a.iterations != b.iterations || a.info != b.info)
+    });
 
     let _ = writeln!(s, "### Runs that did not complete\n");
     let mut rows = Vec::new();
@@ -417,6 +382,33 @@ fn geo_mean(values: impl Iterator<Item = f64>) -> Option<f64> {
         n += 1;
     }
     (n > 0).then(|| (sum / n as f64).exp())
+}
+
+/// A table of the comparisons whose two runs (fc3d, Siconos) satisfy `keep`, side by side.
+fn pair_table(
+    s: &mut String,
+    comparisons: &[Comparison],
+    keep: impl Fn(&Comparison, &Run, &Run) -> bool,
+) {
+    let rows: Vec<String> = comparisons
+        .iter()
+        .filter_map(|c| match (&c.runs[0], &c.runs[1]) {
+            (Some(a), Some(b)) if keep(c, a, b) => Some(format!(
+                "| {} | {} | {} | {} | {} |",
+                c.solver,
+                c.tol_text,
+                c.problem,
+                a.short(),
+                b.short()
+            )),
+            _ => None,
+        })
+        .collect();
+    table(
+        s,
+        "| solver | tol | problem | fc3d | Siconos |\n| --- | --- | --- | --- | --- |",
+        &rows,
+    );
 }
 
 fn table(s: &mut String, header: &str, rows: &[String]) {
