@@ -218,7 +218,7 @@ fn load_input(input: Input) -> Loaded {
         Input::File {
             path,
             from_directory,
-        } => match fc3d::io::dat::read_dat_file(&path) {
+        } => match read_problem(&path) {
             Ok(p) => Loaded::Problem(display_name(&path), p),
             // The reader's messages name the file.
             Err(Fc3dError::Unsupported(why)) if from_directory => {
@@ -286,11 +286,26 @@ fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
     (inputs, errors)
 }
 
+/// `.hdf5`/`.h5` files are FCLIB problems (read when built with the `fclib` feature, refused
+/// with a clear message otherwise); any other path is read as a Siconos `.dat` file.
+fn read_problem(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError> {
+    if is_fclib(path) {
+        fc3d::io::read_problem_file(path)
+    } else {
+        fc3d::io::dat::read_dat_file(path)
+    }
+}
+
+fn is_fclib(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("hdf5") || e.eq_ignore_ascii_case("h5"))
+}
+
 fn dat_files_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     for entry in std::fs::read_dir(dir)? {
         let path = entry?.path();
-        if !path.is_file() || !path.extension().is_some_and(|e| e == "dat") {
+        if !path.is_file() || !(path.extension().is_some_and(|e| e == "dat") || is_fclib(&path)) {
             continue;
         }
         // Siconos names global problems (M, H, q, b, mu) GFC3D_/gfc3d_/gfc2d_: their text
