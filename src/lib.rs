@@ -28,7 +28,7 @@ pub mod solver;
 
 pub use error::Fc3dError;
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
-pub use measure::{natural_map_error, ErrorMeasure};
+pub use measure::natural_map_error;
 pub use nsgs::Sweeper;
 pub use options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOptions, RhoRule};
 pub use problem::FrictionProblem;

@@ -9,15 +9,6 @@ use crate::cone::{modified_velocity, project_on_cone};
 use crate::linalg::{norm, Vec3};
 use crate::problem::FrictionProblem;
 
-/// Which figure of merit a solver loop tests for convergence.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ErrorMeasure {
-    /// Relative natural-map error (133) with Siconos' normalisation.
-    NaturalMap,
-    /// Cheap error (134): `||r_{k+1} - r_k|| / ||r_{k+1}||`.
-    CheapIncrement,
-}
-
 /// Squared natural-map residual of one contact, `|| r - P_K(r - ũ) ||^2`.
 #[inline]
 pub fn contact_residual_sq(r: &Vec3, u: &Vec3, mu: f64) -> f64 {

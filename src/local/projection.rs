@@ -23,6 +23,17 @@ fn cone_step(p: &LocalProblem<'_>, r: &Vec3, rho: f64) -> Vec3 {
     )
 }
 
+/// Moves a one-step solver to `next`; it has converged when the step left `r` unchanged.
+#[inline]
+fn take_step(r: &mut Vec3, next: Vec3) -> LocalOutcome {
+    let converged = next == *r;
+    *r = next;
+    LocalOutcome {
+        converged,
+        iterations: 1,
+    }
+}
+
 /// [552] Dumont's SBP: a single projection step on the Coulomb cone along the De Saxcé
 /// direction, rho = 1 / W_NN. Reports convergence when the step left r unchanged.
 pub struct ProjectionOnCone;
@@ -39,13 +50,7 @@ impl LocalSolver for ProjectionOnCone {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        let next = cone_step(p, r, rho.0);
-        let converged = next == *r;
-        *r = next;
-        LocalOutcome {
-            converged,
-            iterations: 1,
-        }
+        take_step(r, cone_step(p, r, rho.0))
     }
 }
 
@@ -68,13 +73,7 @@ impl LocalSolver for ProjectionOnCylinder {
         let rho = rho.0;
         let u = p.velocity(r);
         let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
-        let next = project_on_cylinder(&tau, p.mu * tau[0].max(0.0));
-        let converged = next == *r;
-        *r = next;
-        LocalOutcome {
-            converged,
-            iterations: 1,
-        }
+        take_step(r, project_on_cylinder(&tau, p.mu * tau[0].max(0.0)))
     }
 }
 
