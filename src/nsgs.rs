@@ -10,16 +10,7 @@ use crate::matrix::BlockRows;
 use crate::measure::{cheap_error, natural_map_error};
 use crate::options::{ErrorEvaluation, NsgsOptions};
 use crate::problem::FrictionProblem;
-use crate::solver::IterationEvent;
-
-/// How an NSGS run ended (the caller sets the status from the final error).
-pub(crate) struct NsgsOutcome {
-    pub iterations: usize,
-    pub out_of_time: bool,
-    /// The natural-map error of the returned reaction when the last sweep measured it on the
-    /// host's storage (then `u = W r + q` too); `None` when the caller must measure it.
-    pub final_error: Option<f64>,
-}
+use crate::solver::{IterationEvent, SolverOutcome};
 
 /// The best iterate by full natural-map error, kept only when a time budget may cut the run
 /// short (the copy is allocated once, before the loop).
@@ -78,7 +69,7 @@ pub(crate) fn nsgs(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut dyn FnMut(&IterationEvent<'_>),
-) -> Result<NsgsOutcome, Fc3dError> {
+) -> Result<SolverOutcome, Fc3dError> {
     // Everything that can fail happens before r is touched.
     let mut sweeper = Sweeper::new(problem, &options.local)?;
     let (q, mu) = (problem.q(), problem.mu());
@@ -140,7 +131,7 @@ pub(crate) fn nsgs(
         let measured = full.then_some(error);
         last_measured = measured;
         if converged {
-            return Ok(NsgsOutcome {
+            return Ok(SolverOutcome {
                 iterations: iteration,
                 out_of_time: false,
                 final_error: measured,
@@ -151,14 +142,14 @@ pub(crate) fn nsgs(
                 // b holds the best measured iterate, the current one included.
                 r.copy_from_slice(&b.r);
             }
-            return Ok(NsgsOutcome {
+            return Ok(SolverOutcome {
                 iterations: iteration,
                 out_of_time: true,
                 final_error: None,
             });
         }
     }
-    Ok(NsgsOutcome {
+    Ok(SolverOutcome {
         iterations: options.max_iter,
         out_of_time: false,
         final_error: last_measured,

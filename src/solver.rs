@@ -9,6 +9,12 @@ use crate::problem::FrictionProblem;
 use crate::report::{SolveReport, SolveStatus};
 
 /// Which solver to run, with its typed options.
+///
+/// A new family plugs in as: a variant here (one options struct with documented defaults), an
+/// arm in each method below and in [`solve_with_observer`]'s dispatch (a function
+/// `fn(&FrictionProblem, &Options, r, u, observer) -> Result<SolverOutcome, Fc3dError>` that
+/// starts from the `r` given and validates before touching it), an arm in
+/// `capi::options::config_from_c` and a `Defaults` row there, and a family in `bench::spec`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SolverConfig {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
@@ -75,6 +81,19 @@ impl SolverConfig {
         }
         Ok(())
     }
+}
+
+/// How a solver family's run ended. Every family returns this; [`solve_with_observer`] then sets
+/// the status from the error it measures on the returned `(r, u)`.
+pub(crate) struct SolverOutcome {
+    /// Iterations done (sweeps for NSGS, Newton steps for NSN, ...).
+    pub iterations: usize,
+    /// The run stopped because its time budget was spent.
+    pub out_of_time: bool,
+    /// The natural-map error of the returned reaction when the family's last step measured it
+    /// with [`natural_map_error`] on the host's storage, leaving `u = W r + q`; `None` when the
+    /// caller must measure it (always safe).
+    pub final_error: Option<f64>,
 }
 
 /// Progress of an iterative solver, handed to an observer after every iteration.
