@@ -22,6 +22,15 @@
 // Siconos' fc3d solvers leave unused.
 #define FC3D_DPARAM_TIME_BUDGET 19
 
+// Index in `dparam` where NSGS writes Dumont's criterion (37) at its last test when it ran with
+// `iparam[7] = FC3D_ERROR_EVALUATION_DUMONT` (output; untouched otherwise). Unused by Siconos.
+#define FC3D_DPARAM_DUMONT_CRITERION 18
+
+// Value of NSGS's `iparam[7]` (error evaluation) selecting Dumont's criterion (37) as the
+// stopping test, beside Siconos' 0 (full), 1 (light) and 2 (light with full final). The
+// reported error `dparam[1]` stays the natural-map error.
+#define FC3D_ERROR_EVALUATION_DUMONT 20
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 

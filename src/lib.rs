@@ -30,7 +30,10 @@ pub use error::Fc3dError;
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
 pub use nsgs::Sweeper;
-pub use options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOptions, RhoRule};
+pub use options::{
+    ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
+    NsgsOptions, RhoRule,
+};
 pub use problem::FrictionProblem;
 pub use report::{SolveReport, SolveStatus};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};

@@ -98,3 +98,31 @@ mod tests {
         assert_eq!(u, [-1.0, 0.0, 0.0]);
     }
 }
+
+/// Dumont's global criterion (37) of `(r, u)`, `u = W r + q`, with `u_solved` the velocities the
+/// contacts were solved with during the sweep:
+/// `(1/nc) sum_c ( ||u_solved_c - u_c|| + ||r_c - P_K(r_c)|| + |u_c·r_c + mu r_N ||u_T||| + max(0, -u_N) )`.
+///
+/// The paper's `ũ` is the velocity the contact law acts on, our `u` (not the De Saxcé velocity,
+/// with which the friction work would be counted twice): `u·r + mu r_N ||u_T||` vanishes exactly
+/// on the three branches of Coulomb's law for an `r` in its cone. Absolute, not normalised.
+pub fn dumont_criterion(r: &[f64], u: &[f64], u_solved: &[f64], mu: &[f64]) -> f64 {
+    let nc = mu.len();
+    if nc == 0 {
+        return 0.0;
+    }
+    let mut sum = 0.0;
+    for (c, &m) in mu.iter().enumerate() {
+        let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+        let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
+        let us = [u_solved[3 * c], u_solved[3 * c + 1], u_solved[3 * c + 2]];
+        let motion = crate::linalg::norm3(&crate::linalg::sub3(&us, &uc));
+        let p = project_on_cone(&rc, m);
+        let proj = crate::linalg::norm3(&crate::linalg::sub3(&rc, &p));
+        let ut_norm = crate::linalg::norm2(uc[1], uc[2]);
+        let bipotential = (crate::linalg::dot3(&uc, &rc) + m * rc[0] * ut_norm).abs();
+        let penetration = (-uc[0]).max(0.0);
+        sum += motion + proj + bipotential + penetration;
+    }
+    sum / nc as f64
+}

@@ -1,6 +1,11 @@
-//! Nonsmooth Gauss-Seidel (NSGS, Algorithm 7 with omega = 1): sweep over contacts, solve each
-//! one-contact problem FC(W_cc, q_c + sum_{b != c} W_cb r_b, mu_c) with the chosen local solver,
-//! and write its reaction back before moving to the next contact.
+//! Nonsmooth Gauss-Seidel (NSGS, Algorithm 7): sweep over contacts, solve each one-contact problem
+//! FC(W_cc, q_c + sum_{b != c} W_cb r_b, mu_c) with the chosen local solver, and write its
+//! reaction back (relaxed by omega when asked) before moving to the next contact.
+//!
+//! Sweep options, all off by default: over-relaxation (PSOR), shuffled contact order, freezing of
+//! contacts that stopped moving, adaptive local tolerance, a stopping test every k sweeps, and
+//! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
+//! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
 
 use std::time::Instant;
 
@@ -8,7 +13,9 @@ use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver};
 use crate::matrix::BlockRows;
 use crate::measure::{cheap_error, natural_map_error};
-use crate::options::{ErrorEvaluation, NsgsOptions};
+use crate::options::{
+    ContactOrder, ErrorEvaluation, LocalSolverOptions, LocalTolerance, NsgsOptions,
+};
 use crate::problem::FrictionProblem;
 use crate::solver::{IterationEvent, SolverOutcome};
 
@@ -19,33 +26,229 @@ struct BestIterate {
     error: f64,
 }
 
-/// One Gauss-Seidel sweep's state, prepared once per problem: the block-row view of W and the
-/// local solver. Public so that benchmarks and hosts that drive their own loop can sweep
-/// without re-preparing; a sweep allocates nothing.
+/// A small, portable pseudo-random generator (SplitMix64): the same seed gives the same contact
+/// orders on every platform and run, which makes shuffled runs reproducible bit for bit.
+#[derive(Debug, Clone)]
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `0..n` (n > 0), by rejection so that no index is favoured.
+    fn below(&mut self, n: usize) -> usize {
+        let n = n as u64;
+        let zone = u64::MAX - u64::MAX % n;
+        loop {
+            let x = self.next();
+            if x < zone {
+                return (x % n) as usize;
+            }
+        }
+    }
+
+    /// Fisher-Yates shuffle in place.
+    fn shuffle(&mut self, v: &mut [usize]) {
+        for i in (1..v.len()).rev() {
+            let j = self.below(i + 1);
+            v.swap(i, j);
+        }
+    }
+}
+
+/// What a sweep does beyond visiting every contact in index order once.
+#[derive(Debug, Clone, Default)]
+struct SweepPlan {
+    /// Visiting order; empty means index order.
+    order: Vec<usize>,
+    /// Draws a new order before each sweep when set.
+    reshuffle: Option<SplitMix64>,
+    /// PSOR factor omega.
+    relaxation: Option<f64>,
+    /// (sweeps a still contact stays frozen, relative increment below which it is still).
+    freezing: Option<(u32, f64)>,
+    /// Sweeps left before each frozen contact is visited again (empty without freezing).
+    frozen: Vec<u32>,
+    /// The velocity each contact was solved with (Dumont's motion term); empty unless needed.
+    u_solved: Vec<f64>,
+}
+
+/// One Gauss-Seidel sweep's state, prepared once per problem: the block-row view of W, the
+/// local solver and the sweep options. Public so that benchmarks and hosts that drive their own
+/// loop can sweep without re-preparing; a sweep allocates nothing.
 pub struct Sweeper {
     rows: BlockRows,
+    local_options: LocalSolverOptions,
     local: AnyLocalSolver,
     /// Each contact's penalty parameters for the local solver (they depend on W_cc only).
     rho: Vec<(f64, f64)>,
+    plan: SweepPlan,
 }
 
 impl Sweeper {
+    /// A plain sweeper: contacts in index order, no relaxation, no freezing.
     pub fn new(
         problem: &FrictionProblem<'_>,
-        local: &crate::options::LocalSolverOptions,
+        local: &LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
-        let local = AnyLocalSolver::new(local);
+        let local_solver = AnyLocalSolver::new(local);
         let rho = (0..rows.n_contacts())
-            .map(|c| local.rho(rows.diagonal(c)))
+            .map(|c| local_solver.rho(rows.diagonal(c)))
             .collect();
-        Ok(Sweeper { rows, local, rho })
+        Ok(Sweeper {
+            rows,
+            local_options: *local,
+            local: local_solver,
+            rho,
+            plan: SweepPlan::default(),
+        })
     }
 
-    /// One sweep over all contacts in order, updating `r` in place; returns
+    /// A sweeper with the sweep options of `options` (order, relaxation, freezing, and the
+    /// bookkeeping Dumont's criterion needs). Rejects an omega outside (0, 2).
+    pub fn with_options(
+        problem: &FrictionProblem<'_>,
+        options: &NsgsOptions,
+    ) -> Result<Self, Fc3dError> {
+        let mut s = Sweeper::new(problem, &options.local)?;
+        let nc = s.rows.n_contacts();
+        if let Some(omega) = options.relaxation {
+            if !(omega > 0.0 && omega < 2.0) {
+                return Err(Fc3dError::InvalidOption(format!(
+                    "relaxation omega must lie in (0, 2), got {omega}"
+                )));
+            }
+            s.plan.relaxation = Some(omega);
+        }
+        match options.order {
+            ContactOrder::Natural => {}
+            ContactOrder::ShuffledOnce { seed } => {
+                s.plan.order = (0..nc).collect();
+                SplitMix64(seed).shuffle(&mut s.plan.order);
+            }
+            ContactOrder::ShuffledEachSweep { seed } => {
+                s.plan.order = (0..nc).collect();
+                s.plan.reshuffle = Some(SplitMix64(seed));
+            }
+        }
+        if let Some(k) = options.freezing {
+            if k > 0 {
+                s.plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), options.tolerance));
+                s.plan.frozen = vec![0; nc];
+            }
+        }
+        if options.error_evaluation == ErrorEvaluation::DumontCriterion {
+            s.plan.u_solved = vec![0.0; 3 * nc];
+        }
+        Ok(s)
+    }
+
+    /// One sweep over all contacts, updating `r` in place; returns
     /// `sum_c ||r_c^new - r_c^old||^2`.
     pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
-        sweep(&self.rows, &self.rho, q, mu, &mut self.local, r)
+        if let Some(rng) = self.plan.reshuffle.as_mut() {
+            rng.shuffle(&mut self.plan.order);
+        }
+        let nc = self.rows.n_contacts();
+        let mut increment_sq = 0.0;
+        for k in 0..nc {
+            let c = if self.plan.order.is_empty() {
+                k
+            } else {
+                self.plan.order[k]
+            };
+            increment_sq += self.update_contact(c, q, mu, r);
+        }
+        increment_sq
+    }
+
+    /// Solves contact `c` against the current reactions of the others and writes its new
+    /// reaction into `r`; returns the squared increment.
+    #[inline]
+    fn update_contact(&mut self, c: usize, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
+        if let Some(left) = self.plan.frozen.get_mut(c) {
+            if *left > 0 {
+                *left -= 1;
+                return 0.0;
+            }
+        }
+        let w = self.rows.diagonal(c);
+        let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+        let wnn = w[0][0];
+        let frictionless = mu[c] == 0.0 && wnn > 0.0 && wnn.is_finite();
+        let mut local_q = None;
+        let mut rc = if frictionless && self.plan.u_solved.is_empty() {
+            // The cone is the half-line R+ e_N: only the normal row of the coupling matters.
+            let qn = self.rows.local_q_normal(c, q, r);
+            [(-qn / wnn).max(0.0), 0.0, 0.0]
+        } else {
+            let lq = self.rows.local_q(c, q, r);
+            local_q = Some(lq);
+            if frictionless {
+                [(-lq[0] / wnn).max(0.0), 0.0, 0.0]
+            } else {
+                let p = LocalProblem {
+                    w,
+                    q: lq,
+                    mu: mu[c],
+                };
+                let mut rc = old;
+                self.local.solve_with_rho(&p, self.rho[c], &mut rc);
+                if rc.iter().all(|v| v.is_finite()) {
+                    rc
+                } else {
+                    old
+                }
+            }
+        };
+        if let Some(omega) = self.plan.relaxation {
+            rc = [
+                omega * rc[0] + (1.0 - omega) * old[0],
+                omega * rc[1] + (1.0 - omega) * old[1],
+                omega * rc[2] + (1.0 - omega) * old[2],
+            ];
+            if omega > 1.0 {
+                // Over-relaxation can leave the cone; the iterate must stay admissible.
+                rc = crate::cone::project_on_cone(&rc, mu[c]);
+            }
+        }
+        let d = [rc[0] - old[0], rc[1] - old[1], rc[2] - old[2]];
+        let d_sq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        if let Some((sweeps, tol)) = self.plan.freezing {
+            let r_sq = rc[0] * rc[0] + rc[1] * rc[1] + rc[2] * rc[2];
+            if d_sq <= tol * tol * r_sq {
+                self.plan.frozen[c] = sweeps;
+            }
+        }
+        r[3 * c..3 * c + 3].copy_from_slice(&rc);
+        if let Some(lq) = local_q.filter(|_| !self.plan.u_solved.is_empty()) {
+            let uc = crate::linalg::mat3_vec_add(w, &rc, &lq);
+            self.plan.u_solved[3 * c..3 * c + 3].copy_from_slice(&uc);
+        }
+        d_sq
+    }
+
+    fn any_frozen(&self) -> bool {
+        self.plan.frozen.iter().any(|&f| f > 0)
+    }
+
+    /// Unfreezes every contact.
+    fn thaw(&mut self) {
+        self.plan.frozen.iter_mut().for_each(|f| *f = 0);
+    }
+
+    /// Sets the local solver's tolerance (adaptive local tolerance strategies).
+    fn set_local_tolerance(&mut self, tolerance: f64) {
+        if tolerance != self.local_options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
+            self.local_options.tolerance = tolerance;
+            self.local = AnyLocalSolver::new(&self.local_options);
+        }
     }
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
@@ -59,6 +262,18 @@ impl Sweeper {
         self.rows.velocity(problem.q(), r, u);
         crate::measure::natural_map_error_of(problem, r, u)
     }
+
+    /// Dumont's criterion (37) after the last sweep (`u` receives `W r + q`).
+    fn dumont_criterion(&self, problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
+        self.rows.velocity(problem.q(), r, u);
+        crate::measure::dumont_criterion(r, u, &self.plan.u_solved, problem.mu())
+    }
+}
+
+/// An NSGS run: how it ended, plus Dumont's criterion at the last test when that was the mode.
+pub(crate) struct NsgsRun {
+    pub outcome: SolverOutcome,
+    pub dumont_criterion: Option<f64>,
 }
 
 /// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
@@ -69,11 +284,13 @@ pub(crate) fn nsgs(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut dyn FnMut(&IterationEvent<'_>),
-) -> Result<SolverOutcome, Fc3dError> {
+) -> Result<NsgsRun, Fc3dError> {
     // Everything that can fail happens before r is touched.
-    let mut sweeper = Sweeper::new(problem, &options.local)?;
+    let mut sweeper = Sweeper::with_options(problem, options)?;
     let (q, mu) = (problem.q(), problem.mu());
+    let nc = problem.n_contacts().max(1) as f64;
     let tol = options.tolerance;
+    let frequency = options.evaluation_frequency.max(1);
     let mut light_tol = tol;
     let deadline = options.time_budget.map(|b| Instant::now() + b);
     let mut best = deadline.map(|_| BestIterate {
@@ -82,34 +299,64 @@ pub(crate) fn nsgs(
     });
 
     let mut last_measured = None;
+    let mut last_tested = f64::INFINITY;
+    let mut dumont = None;
     for iteration in 1..=options.max_iter {
         let increment_sq = sweeper.sweep(q, mu, r);
+        let test_now = iteration % frequency == 0 || iteration == options.max_iter;
 
         // (error tested this sweep, whether it is the full error, converged)
-        let (error, full, converged) = match options.error_evaluation {
-            ErrorEvaluation::Full => {
-                let e = natural_map_error(problem, r, u);
-                (e, true, e <= tol)
-            }
-            ErrorEvaluation::Light => {
-                let e = cheap_error(increment_sq, r);
-                (e, false, e <= tol)
-            }
-            ErrorEvaluation::LightWithFullFinal => {
-                let light = cheap_error(increment_sq, r);
-                if light <= light_tol {
-                    let full = natural_map_error(problem, r, u);
-                    if full > tol {
-                        // Assume full/light stays roughly proportional and ask the cheap error
-                        // for what the full one still lacks.
-                        light_tol = light * tol / full;
+        let (error, full, mut converged) = if !test_now {
+            (last_tested, false, false)
+        } else {
+            match options.error_evaluation {
+                ErrorEvaluation::Full => {
+                    let e = natural_map_error(problem, r, u);
+                    (e, true, e <= tol)
+                }
+                ErrorEvaluation::Light => {
+                    let e = cheap_error(increment_sq, r);
+                    (e, false, e <= tol)
+                }
+                ErrorEvaluation::LightWithFullFinal => {
+                    let light = cheap_error(increment_sq, r);
+                    if light <= light_tol {
+                        let full = natural_map_error(problem, r, u);
+                        if full > tol {
+                            // Assume full/light stays roughly proportional and ask the cheap
+                            // error for what the full one still lacks.
+                            light_tol = light * tol / full;
+                        }
+                        (full, true, full <= tol)
+                    } else {
+                        (light, false, false)
                     }
-                    (full, true, full <= tol)
-                } else {
-                    (light, false, false)
+                }
+                ErrorEvaluation::DumontCriterion => {
+                    let e = sweeper.dumont_criterion(problem, r, u);
+                    dumont = Some(e);
+                    (e, false, e <= tol)
                 }
             }
         };
+        if converged && !full && sweeper.any_frozen() {
+            // A cheap test cannot see frozen contacts (they did not move because they were not
+            // visited): visit everything again before believing it.
+            sweeper.thaw();
+            converged = false;
+        }
+        if test_now {
+            last_tested = error;
+            match options.local_tolerance {
+                LocalTolerance::Given => {}
+                LocalTolerance::Adaptive { ratio } => {
+                    sweeper.set_local_tolerance((error / ratio).max(tol / nc))
+                }
+                LocalTolerance::AdaptivePerContact { ratio } => {
+                    sweeper.set_local_tolerance(error / (ratio * nc))
+                }
+            }
+        }
         if let Some(b) = best.as_mut() {
             // Under a time budget the run may be cut at any sweep: measure every iterate so the
             // one returned is the best seen, not merely the last one measured.
@@ -129,12 +376,17 @@ pub(crate) fn nsgs(
             error,
         });
         let measured = full.then_some(error);
-        last_measured = measured;
+        if test_now {
+            last_measured = measured;
+        }
         if converged {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: false,
-                final_error: measured,
+            return Ok(NsgsRun {
+                outcome: SolverOutcome {
+                    iterations: iteration,
+                    out_of_time: false,
+                    final_error: measured,
+                },
+                dumont_criterion: dumont,
             });
         }
         if deadline.is_some_and(|d| Instant::now() >= d) {
@@ -142,46 +394,22 @@ pub(crate) fn nsgs(
                 // b holds the best measured iterate, the current one included.
                 r.copy_from_slice(&b.r);
             }
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: true,
-                final_error: None,
+            return Ok(NsgsRun {
+                outcome: SolverOutcome {
+                    iterations: iteration,
+                    out_of_time: true,
+                    final_error: None,
+                },
+                dumont_criterion: dumont,
             });
         }
     }
-    Ok(SolverOutcome {
-        iterations: options.max_iter,
-        out_of_time: false,
-        final_error: last_measured,
+    Ok(NsgsRun {
+        outcome: SolverOutcome {
+            iterations: options.max_iter,
+            out_of_time: false,
+            final_error: last_measured,
+        },
+        dumont_criterion: dumont,
     })
-}
-
-/// One Gauss-Seidel sweep in contact order; returns `sum_c ||r_c^new - r_c^old||^2`.
-/// A local solution that is not finite is discarded (the contact keeps its previous reaction).
-fn sweep(
-    rows: &BlockRows,
-    rho: &[(f64, f64)],
-    q: &[f64],
-    mu: &[f64],
-    local: &mut AnyLocalSolver,
-    r: &mut [f64],
-) -> f64 {
-    let mut increment_sq = 0.0;
-    for c in 0..rows.n_contacts() {
-        let p = LocalProblem {
-            w: rows.diagonal(c),
-            q: rows.local_q(c, q, r),
-            mu: mu[c],
-        };
-        let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-        let mut rc = old;
-        local.solve_with_rho(&p, rho[c], &mut rc);
-        if !rc.iter().all(|v| v.is_finite()) {
-            rc = old;
-        }
-        let d = [rc[0] - old[0], rc[1] - old[1], rc[2] - old[2]];
-        increment_sq += d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-        r[3 * c..3 * c + 3].copy_from_slice(&rc);
-    }
-    increment_sq
 }

@@ -130,6 +130,35 @@ pub enum ErrorEvaluation {
     /// Cheap error each sweep; when it passes, confirm with the full error and tighten the cheap
     /// tolerance if the full one does not pass (Siconos' default).
     LightWithFullFinal,
+    /// Dumont's global criterion (37): the mean over contacts of the motion error (how far the
+    /// velocity a contact was solved with is from `W r + q` after the sweep), the distance of
+    /// `r_c` to its cone, the bi-potential `|u·r + mu r_N ||u_T|||` and the penetration
+    /// `max(0, -u_N)`. It is absolute (in the units of `r·u`), so its tolerance is the solver's
+    /// tolerance taken in those units. The reported error stays the natural-map error; the
+    /// criterion is reported beside it ([`SolveReport::dumont_criterion`](crate::SolveReport)).
+    DumontCriterion,
+}
+
+/// How the local solver's tolerance is set during NSGS (Siconos iparam[2], ratio in dparam[2]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LocalTolerance {
+    /// The local solver's own tolerance, fixed (Siconos' default, "given value").
+    Given,
+    /// After each measured sweep: `max(error / ratio, tolerance / n_contacts)` ("adaptive").
+    Adaptive { ratio: f64 },
+    /// After each measured sweep: `error / (ratio * n_contacts)` ("adaptive per contact").
+    AdaptivePerContact { ratio: f64 },
+}
+
+/// Order in which a sweep visits the contacts (Siconos iparam[5], seed iparam[6]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactOrder {
+    /// Contacts in index order (default).
+    Natural,
+    /// One random permutation drawn from `seed` before the first sweep.
+    ShuffledOnce { seed: u64 },
+    /// A new random permutation before every sweep, drawn from a generator seeded with `seed`.
+    ShuffledEachSweep { seed: u64 },
 }
 
 /// Options of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500).
@@ -141,8 +170,23 @@ pub struct NsgsOptions {
     pub tolerance: f64,
     /// Error evaluation strategy (default [`ErrorEvaluation::LightWithFullFinal`]).
     pub error_evaluation: ErrorEvaluation,
+    /// The stopping test runs every `evaluation_frequency` sweeps (default 1; Siconos iparam[8],
+    /// where 0 also means every sweep). The last allowed sweep is always tested.
+    pub evaluation_frequency: usize,
     /// The one-contact solver and its options (default [`LocalSolverKind::NewtonHybrid`]).
     pub local: LocalSolverOptions,
+    /// How the local tolerance evolves (default [`LocalTolerance::Given`]).
+    pub local_tolerance: LocalTolerance,
+    /// Over-relaxation (PSOR): each contact takes `omega r_new + (1 - omega) r_old`, projected on
+    /// its cone when `omega > 1` would leave it. `None` (default) is plain Gauss-Seidel. `omega`
+    /// must lie in (0, 2).
+    pub relaxation: Option<f64>,
+    /// Contact visiting order (default [`ContactOrder::Natural`]).
+    pub order: ContactOrder,
+    /// Freezing: a contact whose reaction moved by less than `tolerance * ||r_c||` in a sweep is
+    /// skipped for this many following sweeps (default `None`: never frozen). Convergence is
+    /// always confirmed on all contacts.
+    pub freezing: Option<usize>,
     /// Wall-clock budget (default none). When it is spent, NSGS stops after the current sweep
     /// and returns the best iterate it measured, with
     /// [`SolveStatus::TimeBudgetExhausted`](crate::SolveStatus::TimeBudgetExhausted).
@@ -155,7 +199,12 @@ impl Default for NsgsOptions {
             max_iter: 1000,
             tolerance: 1e-4,
             error_evaluation: ErrorEvaluation::LightWithFullFinal,
+            evaluation_frequency: 1,
             local: LocalSolverOptions::default(),
+            local_tolerance: LocalTolerance::Given,
+            relaxation: None,
+            order: ContactOrder::Natural,
+            freezing: None,
             time_budget: None,
         }
     }

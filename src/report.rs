@@ -31,6 +31,10 @@ pub struct SolveReport {
     pub iterations: usize,
     /// Relative natural-map error of the returned `(r, u)`, recomputed after the solver stopped.
     pub error: f64,
+    /// Dumont's global criterion (37) at the last sweep, when NSGS ran with
+    /// [`ErrorEvaluation::DumontCriterion`](crate::ErrorEvaluation::DumontCriterion); reported beside
+    /// `error`, never instead of it.
+    pub dumont_criterion: Option<f64>,
 }
 
 impl SolveReport {

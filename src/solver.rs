@@ -156,11 +156,15 @@ pub fn solve_with_observer(
             status,
             iterations: 0,
             error,
+            dumont_criterion: None,
         });
     }
 
-    let outcome = match config {
-        SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
+    let (outcome, dumont_criterion) = match config {
+        SolverConfig::Nsgs(o) => {
+            let run = nsgs::nsgs(problem, o, r, u, observer)?;
+            (run.outcome, run.dumont_criterion)
+        }
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's
@@ -181,5 +185,6 @@ pub fn solve_with_observer(
         status,
         iterations: outcome.iterations,
         error,
+        dumont_criterion,
     })
 }

@@ -60,7 +60,7 @@ unsafe fn driver_impl(
 
     std::ptr::copy_nonoverlapping(r.as_ptr(), reaction, n);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, n);
-    write_outputs(&mut *options, report.iterations, report.error);
+    write_outputs(&mut *options, &report);
     if verbose() > 0 {
         eprintln!(
             "fc3d: {} on {} contacts: {:?} after {} iterations, error {:e} (tolerance {:e})",

@@ -40,6 +40,13 @@ pub const FC3D_TIME_BUDGET_EXHAUSTED: c_int = 2;
 /// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 /// Siconos' fc3d solvers leave unused.
 pub const FC3D_DPARAM_TIME_BUDGET: c_int = 19;
+/// Index in `dparam` where NSGS writes Dumont's criterion (37) at its last test when it ran with
+/// `iparam[7] = FC3D_ERROR_EVALUATION_DUMONT` (output; untouched otherwise). Unused by Siconos.
+pub const FC3D_DPARAM_DUMONT_CRITERION: c_int = 18;
+/// Value of NSGS's `iparam[7]` (error evaluation) selecting Dumont's criterion (37) as the
+/// stopping test, beside Siconos' 0 (full), 1 (light) and 2 (light with full final). The
+/// reported error `dparam[1]` stays the natural-map error.
+pub const FC3D_ERROR_EVALUATION_DUMONT: c_int = 20;
 /// A required pointer argument (or a pointer inside a struct) is NULL.
 pub const FC3D_ERR_NULL_POINTER: c_int = -1;
 /// Sizes are negative, inconsistent, or too large.

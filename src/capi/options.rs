@@ -11,7 +11,10 @@ use std::ptr::null_mut;
 use super::alloc::{c_box, c_calloc, c_copy, c_free};
 use super::types::SolverOptions;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
-use crate::options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOptions, RhoRule};
+use crate::options::{
+    ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
+    NsgsOptions, RhoRule,
+};
 use crate::solver::SolverConfig;
 
 /// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
@@ -24,6 +27,7 @@ pub(crate) const IPARAM_INTERNAL_ERROR_STRATEGY: usize = 2;
 pub(crate) const IPARAM_RESCALING: usize = 3;
 pub(crate) const IPARAM_NSGS_RELAXATION: usize = 4;
 pub(crate) const IPARAM_NSGS_SHUFFLE: usize = 5;
+pub(crate) const IPARAM_NSGS_SHUFFLE_SEED: usize = 6;
 pub(crate) const IPARAM_ERROR_EVALUATION: usize = 7;
 pub(crate) const IPARAM_ERROR_EVALUATION_FREQUENCY: usize = 8;
 pub(crate) const IPARAM_NSN_RHO_STRATEGY: usize = 9;
@@ -35,7 +39,9 @@ pub(crate) const IPARAM_NSN_HYBRID_MAX_ITER: usize = 16;
 pub(crate) const IPARAM_NSGS_FREEZING_CONTACT: usize = 19;
 pub(crate) const DPARAM_TOL: usize = 0;
 pub(crate) const DPARAM_RESIDU: usize = 1;
+pub(crate) const DPARAM_INTERNAL_ERROR_RATIO: usize = 2;
 pub(crate) const DPARAM_NSN_RHO: usize = 3;
+pub(crate) const DPARAM_NSGS_RELAXATION_VALUE: usize = 8;
 
 /// Siconos 4.4 names of solver ids (`solver_options_id_to_name`).
 const NAMES: &[(c_int, &CStr)] = &[
@@ -613,25 +619,14 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
                 0 => ErrorEvaluation::Full,
                 1 => ErrorEvaluation::Light,
                 2 => ErrorEvaluation::LightWithFullFinal,
+                super::FC3D_ERROR_EVALUATION_DUMONT => ErrorEvaluation::DumontCriterion,
                 other => {
-                    return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light, 2 light with full final)")))
+                    return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light, 2 light with full final, {} Dumont's criterion)", super::FC3D_ERROR_EVALUATION_DUMONT)))
                 }
             };
             n.time_budget = p.time_budget()?;
-            p.require(
-                IPARAM_INTERNAL_ERROR_STRATEGY,
-                1,
-                "local tolerance strategy (1 = given value)",
-            )?;
+            nsgs_sweep_options_from_c(&p, &mut n)?;
             p.require(IPARAM_RESCALING, 0, "rescaling")?;
-            p.require(IPARAM_NSGS_RELAXATION, 0, "NSGS relaxation")?;
-            p.require(IPARAM_NSGS_SHUFFLE, 0, "NSGS shuffle")?;
-            p.require(
-                IPARAM_ERROR_EVALUATION_FREQUENCY,
-                0,
-                "error evaluation frequency",
-            )?;
-            p.require(IPARAM_NSGS_FREEZING_CONTACT, 0, "contact freezing")?;
             if o.numberOfInternalSolvers >= 1
                 && !o.internalSolvers.is_null()
                 && !(*o.internalSolvers).is_null()
@@ -644,10 +639,81 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
     }
 }
 
-/// Writes the outputs Siconos hosts read: iterations done and final error.
-pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, iterations: usize, error: f64) {
-    *o.iparam.add(IPARAM_ITER_DONE) = c_int::try_from(iterations).unwrap_or(c_int::MAX);
-    *o.dparam.add(DPARAM_RESIDU) = error;
+/// NSGS's sweep options: local tolerance strategy (iparam[2], ratio dparam[2]), relaxation
+/// (iparam[4], omega dparam[8]), shuffling (iparam[5], seed iparam[6]), evaluation frequency
+/// (iparam[8]) and freezing (iparam[19]).
+fn nsgs_sweep_options_from_c(p: &Params<'_>, n: &mut NsgsOptions) -> CResult<()> {
+    let invalid = |msg: String| CError::new(FC3D_ERR_INVALID_OPTION, msg);
+    let ratio = || {
+        let x = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
+        if x > 0.0 && x.is_finite() {
+            Ok(x)
+        } else {
+            Err(invalid(format!(
+                "internal error ratio (dparam[2]) = {x} must be finite and > 0"
+            )))
+        }
+    };
+    n.local_tolerance = match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
+        0 => LocalTolerance::Adaptive { ratio: ratio()? },
+        1 => LocalTolerance::Given,
+        2 => LocalTolerance::AdaptivePerContact { ratio: ratio()? },
+        other => {
+            return Err(invalid(format!(
+                "local tolerance strategy (iparam[2]) = {other} is not one of 0 (adaptive), 1 (given value), 2 (adaptive per contact)"
+            )))
+        }
+    };
+    n.relaxation = match p.iparam[IPARAM_NSGS_RELAXATION] {
+        0 => None,
+        1 => {
+            let omega = p.dparam[DPARAM_NSGS_RELAXATION_VALUE];
+            if !(omega > 0.0 && omega < 2.0) {
+                return Err(invalid(format!(
+                    "relaxation omega (dparam[8]) = {omega} must lie in (0, 2)"
+                )));
+            }
+            Some(omega)
+        }
+        other => {
+            return Err(invalid(format!(
+                "relaxation (iparam[4]) = {other} is not 0 (off) or 1 (on, omega in dparam[8])"
+            )))
+        }
+    };
+    // The seed is an int in C; every value, negative included, is a valid seed.
+    let seed = p.iparam[IPARAM_NSGS_SHUFFLE_SEED] as i64 as u64;
+    n.order = match p.iparam[IPARAM_NSGS_SHUFFLE] {
+        0 => ContactOrder::Natural,
+        1 => ContactOrder::ShuffledOnce { seed },
+        2 => ContactOrder::ShuffledEachSweep { seed },
+        other => {
+            return Err(invalid(format!(
+                "shuffle (iparam[5]) = {other} is not 0 (off), 1 (once) or 2 (each sweep)"
+            )))
+        }
+    };
+    n.evaluation_frequency = p
+        .count(
+            IPARAM_ERROR_EVALUATION_FREQUENCY,
+            "error evaluation frequency",
+        )?
+        .max(1);
+    n.freezing = match p.count(IPARAM_NSGS_FREEZING_CONTACT, "contact freezing sweeps")? {
+        0 => None,
+        k => Some(k),
+    };
+    Ok(())
+}
+
+/// Writes the outputs Siconos hosts read: iterations done and final error (and Dumont's
+/// criterion where it was measured).
+pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, report: &crate::SolveReport) {
+    *o.iparam.add(IPARAM_ITER_DONE) = c_int::try_from(report.iterations).unwrap_or(c_int::MAX);
+    *o.dparam.add(DPARAM_RESIDU) = report.error;
+    if let Some(d) = report.dumont_criterion {
+        *o.dparam.add(super::FC3D_DPARAM_DUMONT_CRITERION as usize) = d;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

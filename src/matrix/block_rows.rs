@@ -131,6 +131,19 @@ impl BlockRows {
         }
     }
 
+    /// The normal component of [`BlockRows::local_q`]: all a frictionless contact needs (one
+    /// row of each coupled block instead of three).
+    #[inline]
+    pub fn local_q_normal(&self, c: usize, q: &[f64], r: &[f64]) -> f64 {
+        let mut acc = q[3 * c];
+        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
+            let b = self.cols[k];
+            let row = &self.blocks[k][0];
+            acc += row[0] * r[3 * b] + row[1] * r[3 * b + 1] + row[2] * r[3 * b + 2];
+        }
+        acc
+    }
+
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
     #[inline]
     pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> Vec3 {
