@@ -264,6 +264,7 @@ fn solve_allocations_do_not_grow_with_iterations() {
             ErrorEvaluation::Full,
             ErrorEvaluation::Light,
             ErrorEvaluation::LightWithFullFinal,
+            ErrorEvaluation::DumontCriterion,
         ] {
             for kind in [
                 LocalSolverKind::NewtonHybrid,
@@ -289,5 +290,20 @@ fn solve_allocations_do_not_grow_with_iterations() {
                 }
             }
         }
+    }
+    // Every sweep option at once: shuffled each sweep, relaxed, frozen, adaptive local tolerance
+    // (which rebuilds the local solver), tested every 3 sweeps.
+    for (name, p) in cases {
+        let options = NsgsOptions {
+            order: fc3d::ContactOrder::ShuffledEachSweep { seed: 3 },
+            relaxation: Some(1.2),
+            freezing: Some(4),
+            local_tolerance: fc3d::LocalTolerance::AdaptivePerContact { ratio: 10.0 },
+            evaluation_frequency: 3,
+            ..NsgsOptions::default()
+        };
+        let one = solve_allocations(p, options, 1);
+        let many = solve_allocations(p, options, 200);
+        assert_eq!(one, many, "{name}, all sweep options: {one} vs {many}");
     }
 }

@@ -45,6 +45,7 @@ extern "C" {
     pub fn capi_check_ownership(data_dir: *const c_char, scratch_dir: *const c_char) -> c_int;
     pub fn capi_check_options() -> c_int;
     pub fn capi_check_callback() -> c_int;
+    pub fn capi_check_nsgs_options(data_dir: *const c_char) -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.

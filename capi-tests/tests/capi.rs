@@ -38,6 +38,14 @@ fn bad_input_is_rejected_with_codes_and_messages() {
 }
 
 #[test]
+fn nsgs_sweep_options_through_siconos_indices() {
+    assert_eq!(
+        unsafe { capi_check_nsgs_options(cstr(&data_dir()).as_ptr()) },
+        0
+    );
+}
+
+#[test]
 fn ownership_paths() {
     let scratch = std::env::temp_dir().join(format!("fc3d-capi-{}", std::process::id()));
     std::fs::create_dir_all(&scratch).unwrap();
