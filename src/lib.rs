@@ -23,6 +23,7 @@ pub mod nsgs;
 pub mod options;
 pub mod problem;
 pub mod report;
+pub mod scaling;
 pub mod scenes;
 pub mod solver;
 
@@ -36,6 +37,7 @@ pub use options::{
 };
 pub use problem::FrictionProblem;
 pub use report::{SolveReport, SolveStatus};
+pub use scaling::{solve_rescaled, Rescaling};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};
 
 /// The README's Rust examples are compiled and run as doctests.

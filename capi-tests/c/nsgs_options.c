@@ -94,6 +94,12 @@ static void dumont(SolverOptions* o) {
   o->iparam[SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION] = FC3D_ERROR_EVALUATION_DUMONT;
   o->dparam[SICONOS_DPARAM_TOL] = 1e-6;
 }
+static void rescale_scalar(SolverOptions* o) {
+  o->iparam[SICONOS_FRICTION_3D_IPARAM_RESCALING] = SICONOS_FRICTION_3D_RESCALING_SCALAR;
+}
+static void bad_rescaling(SolverOptions* o) {
+  o->iparam[SICONOS_FRICTION_3D_IPARAM_RESCALING] = SICONOS_FRICTION_3D_RESCALING_BALANCING_M;
+}
 static void bad_omega(SolverOptions* o) {
   relax(o);
   o->dparam[SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE] = 2.5;
@@ -138,8 +144,8 @@ int capi_check_nsgs_options(const char* data_dir) {
   }
 
   /* Each option converges, and reports its honest error (checked in solve_with). */
-  void (*converging[])(SolverOptions*) = {relax, freeze, adaptive, adaptive_n, every_5};
-  for (int k = 0; k < 5; k++) {
+  void (*converging[])(SolverOptions*) = {relax, freeze, adaptive, adaptive_n, every_5, rescale_scalar};
+  for (int k = 0; k < 6; k++) {
     if (solve_with(p, converging[k], r1, u1, &a)) return 1;
     CHECK(a.info == 0 && a.error <= 1e-8, "option %d: info %d, error %g", k, a.info, a.error);
   }
@@ -152,9 +158,10 @@ int capi_check_nsgs_options(const char* data_dir) {
   CHECK((a.info == 0) == (a.error <= 1e-6), "info %d with error %g", a.info, a.error);
 
   /* Bad values: rejected, outputs untouched. */
-  void (*bad[])(SolverOptions*) = {bad_omega,     bad_relaxation_flag, bad_shuffle,   bad_ratio,
-                                   bad_strategy,  bad_frequency,       bad_freezing,  bad_evaluation};
-  for (int k = 0; k < 8; k++) {
+  void (*bad[])(SolverOptions*) = {bad_omega,    bad_relaxation_flag, bad_shuffle,    bad_ratio,
+                                   bad_strategy, bad_frequency,       bad_freezing,   bad_evaluation,
+                                   bad_rescaling};
+  for (int k = 0; k < 9; k++) {
     SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
     bad[k](o);
     for (int i = 0; i < n; i++) r1[i] = u1[i] = 42.0;

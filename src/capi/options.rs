@@ -15,6 +15,7 @@ use crate::options::{
     ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
     NsgsOptions, RhoRule,
 };
+use crate::scaling::Rescaling;
 use crate::solver::SolverConfig;
 
 /// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
@@ -626,7 +627,6 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
             };
             n.time_budget = p.time_budget()?;
             nsgs_sweep_options_from_c(&p, &mut n)?;
-            p.require(IPARAM_RESCALING, 0, "rescaling")?;
             if o.numberOfInternalSolvers >= 1
                 && !o.internalSolvers.is_null()
                 && !(*o.internalSolvers).is_null()
@@ -636,6 +636,24 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
             Ok(SolverConfig::Nsgs(n))
         }
         id => Err(unsupported_solver(id)),
+    }
+}
+
+/// The rescaling a solver runs under. Only NSGS gives `iparam[3]` this meaning (other families
+/// use index 3 for their own options): 0 none, 1 scalar; Siconos' balancing values 2-4 scale the
+/// global formulation (M, H) and are rejected for the reduced problem.
+pub(crate) unsafe fn rescaling_from_c(o: &SolverOptions) -> CResult<Rescaling> {
+    if o.solverId != 500 {
+        return Ok(Rescaling::None);
+    }
+    let p = Params::of(o, "NSGS options")?;
+    match p.iparam[IPARAM_RESCALING] {
+        0 => Ok(Rescaling::None),
+        1 => Ok(Rescaling::Scalar),
+        other => Err(CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            format!("rescaling (iparam[3]) = {other} is not 0 (none) or 1 (scalar); balancing (2-4) applies to the global formulation only"),
+        )),
     }
 }
 

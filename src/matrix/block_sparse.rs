@@ -63,6 +63,15 @@ impl BlockSparseMatrix {
         })
     }
 
+    /// `alpha * self`, same block structure.
+    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix {
+        let mut m = self.clone();
+        for b in &mut m.blocks {
+            b.iter_mut().for_each(|v| *v *= alpha);
+        }
+        m
+    }
+
     pub fn nrows(&self) -> usize {
         3 * self.n_block_rows
     }

@@ -12,6 +12,13 @@ pub struct CsrMatrix {
 }
 
 impl CsrMatrix {
+    /// `alpha * self`, same structure.
+    pub fn scaled(&self, alpha: f64) -> CsrMatrix {
+        let mut m = self.clone();
+        m.values.iter_mut().for_each(|v| *v *= alpha);
+        m
+    }
+
     /// From triplets `(row, col, value)`, in any order; duplicates are summed.
     pub fn from_triplets(
         nrows: usize,

@@ -72,6 +72,15 @@ impl<'a> DenseMatrix<'a> {
     }
 
     /// An owned copy that no longer borrows the host.
+    /// `alpha * self`, owned.
+    pub fn scaled(&self, alpha: f64) -> DenseMatrix<'static> {
+        DenseMatrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            data: Cow::Owned(self.data.iter().map(|v| alpha * v).collect()),
+        }
+    }
+
     pub fn into_owned(self) -> DenseMatrix<'static> {
         DenseMatrix {
             nrows: self.nrows,

@@ -62,6 +62,15 @@ impl<'a> Delassus<'a> {
         self.mul_add(r, u);
     }
 
+    /// `alpha W` in the same storage (owned).
+    pub fn scaled(&self, alpha: f64) -> Delassus<'static> {
+        match self {
+            Delassus::Dense(m) => Delassus::Dense(m.scaled(alpha)),
+            Delassus::SparseBlock(m) => Delassus::SparseBlock(m.scaled(alpha)),
+            Delassus::Sparse(m) => Delassus::Sparse(m.scaled(alpha)),
+        }
+    }
+
     /// Entry (i, j), zero where nothing is stored.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         match self {
