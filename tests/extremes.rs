@@ -3,7 +3,8 @@
 //! a return code of 0, 1 or 2 (never a crash or a rejection of valid input); r and u finite;
 //! `dparam[1]` equal to `fc3d_compute_error` on the returned reaction and to an independent
 //! recomputation; `info == 0` exactly when that error is within the tolerance; the iteration limit
-//! respected; and the time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) respected within a margin.
+//! respected; the time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) respected within a margin; and
+//! determinism: a second identical call returns the same bits.
 //! The matrix (solver x problem: solved / honest failure) is printed and written to
 //! `target/extremes-matrix.md`.
 
@@ -68,7 +69,9 @@ impl Variant {
         }
         *(*o).iparam = MAX_ITER;
         *(*o).dparam = TOL;
-        *(*o).dparam.add(fc3d::capi::FC3D_DPARAM_TIME_BUDGET as usize) = BUDGET;
+        *(*o)
+            .dparam
+            .add(fc3d::capi::FC3D_DPARAM_TIME_BUDGET as usize) = BUDGET;
         o
     }
 }
@@ -136,7 +139,11 @@ fn independent_error(w: &[f64], q: &[f64], mu: &[f64], r: &[f64]) -> f64 {
     for (c, &m) in mu.iter().enumerate() {
         let (rn, rt1, rt2) = (r[3 * c], r[3 * c + 1], r[3 * c + 2]);
         let (un, ut1, ut2) = (u[3 * c], u[3 * c + 1], u[3 * c + 2]);
-        let x = [rn - (un + m * (ut1 * ut1 + ut2 * ut2).sqrt()), rt1 - ut1, rt2 - ut2];
+        let x = [
+            rn - (un + m * (ut1 * ut1 + ut2 * ut2).sqrt()),
+            rt1 - ut1,
+            rt2 - ut2,
+        ];
         let t = (x[1] * x[1] + x[2] * x[2]).sqrt();
         let p = if t <= m * x[0] {
             x
@@ -203,11 +210,19 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
     let problems = extreme_problems(20261122);
     let mut probe = CProblem::new(&problems[2].1);
     let variants = implemented_variants(&mut probe);
-    assert!(variants.len() >= 7, "only {} variants found", variants.len());
+    assert!(
+        variants.len() >= 7,
+        "only {} variants found",
+        variants.len()
+    );
 
     let mut table = vec![format!(
         "| solver | {} |",
-        problems.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(" | ")
+        problems
+            .iter()
+            .map(|(n, _)| n.as_str())
+            .collect::<Vec<_>>()
+            .join(" | ")
     )];
     table.push(format!("| --- |{}", " --- |".repeat(problems.len())));
     let mut failures = Vec::new();
@@ -229,6 +244,29 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
             };
             let elapsed = t.elapsed().as_secs_f64();
             let what = format!("{} on {name}", v.label());
+            // Determinism: the same call again gives the same bits (unless the wall clock
+            // decided, i.e. the time budget ran out).
+            if rc != 2 {
+                let mut r2 = vec![0.0; n];
+                let mut u2 = vec![0.0; n];
+                let again = unsafe {
+                    let o = v.options();
+                    let mut raw = cp.raw();
+                    let rc2 = fc3d_driver(&mut raw, r2.as_mut_ptr(), u2.as_mut_ptr(), o);
+                    let out = (rc2, *(*o).iparam.add(1), (*(*o).dparam.add(1)).to_bits());
+                    release(o);
+                    out
+                };
+                let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                if again != (rc, iters, reported.to_bits())
+                    || bits(&r) != bits(&r2)
+                    || bits(&u) != bits(&u2)
+                {
+                    failures.push(format!(
+                        "{what}: a second identical call gave different bits"
+                    ));
+                }
+            }
             if !(0..=2).contains(&rc) {
                 failures.push(format!("{what}: returned {rc}"));
                 row.push(format!("ERR {rc}"));
@@ -243,15 +281,27 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
             unsafe {
                 let mut raw = cp.raw();
                 let o = v.options();
-                fc3d_compute_error(&mut raw, r.as_mut_ptr(), w2.as_mut_ptr(), TOL, o, qn, &mut api);
+                fc3d_compute_error(
+                    &mut raw,
+                    r.as_mut_ptr(),
+                    w2.as_mut_ptr(),
+                    TOL,
+                    o,
+                    qn,
+                    &mut api,
+                );
                 release(o);
             }
             if reported != api {
-                failures.push(format!("{what}: dparam[1] = {reported:e} but fc3d_compute_error = {api:e}"));
+                failures.push(format!(
+                    "{what}: dparam[1] = {reported:e} but fc3d_compute_error = {api:e}"
+                ));
             }
             let indep = independent_error(&cp.w, p.q(), p.mu(), &r);
             if (reported - indep).abs() > 1e-9 * indep.max(1e-300) + 1e-14 {
-                failures.push(format!("{what}: dparam[1] = {reported:e}, recomputed {indep:e}"));
+                failures.push(format!(
+                    "{what}: dparam[1] = {reported:e}, recomputed {indep:e}"
+                ));
             }
             if (rc == 0) != (reported <= TOL) {
                 failures.push(format!("{what}: info {rc} with error {reported:e}"));
@@ -274,7 +324,12 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
     println!("{text}");
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/extremes-matrix.md");
     let _ = std::fs::write(out, format!("{text}\n"));
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]

@@ -140,7 +140,10 @@ pub fn extreme_problems(seed: u64) -> Vec<(String, FrictionProblem<'static>)> {
         let (contacts, v) = stack(&mut rng, &base_masses, 2);
         let (w, q) = assemble(&base_masses, &contacts, &v);
         let n = w.len().isqrt();
-        out.push((format!("mu={mu:e}"), dense(n, w, q, vec![mu; contacts.len()])));
+        out.push((
+            format!("mu={mu:e}"),
+            dense(n, w, q, vec![mu; contacts.len()]),
+        ));
     }
     // W scaled by 1e-8 and 1e8 (units of a host in grams and kilometres).
     for scale in [1e-8, 1e8] {
@@ -148,7 +151,10 @@ pub fn extreme_problems(seed: u64) -> Vec<(String, FrictionProblem<'static>)> {
         let (w, q) = assemble(&base_masses, &contacts, &v);
         let n = w.len().isqrt();
         let w = w.iter().map(|x| x * scale).collect();
-        out.push((format!("W*{scale:e}"), dense(n, w, q, vec![0.3; contacts.len()])));
+        out.push((
+            format!("W*{scale:e}"),
+            dense(n, w, q, vec![0.3; contacts.len()]),
+        ));
     }
     // Masses over twelve decades: cond(W) ~ 1e12.
     {
@@ -156,21 +162,30 @@ pub fn extreme_problems(seed: u64) -> Vec<(String, FrictionProblem<'static>)> {
         let (contacts, v) = stack(&mut rng, &masses, 2);
         let (w, q) = assemble(&masses, &contacts, &v);
         let n = w.len().isqrt();
-        out.push(("cond~1e12".into(), dense(n, w, q, vec![0.5; contacts.len()])));
+        out.push((
+            "cond~1e12".into(),
+            dense(n, w, q, vec![0.5; contacts.len()]),
+        ));
     }
     // Contact density 3: three contacts per body, 9 unknowns per 3 degrees of freedom.
     {
         let (contacts, v) = stack(&mut rng, &base_masses[..3], 3);
         let (w, q) = assemble(&base_masses[..3], &contacts, &v);
         let n = w.len().isqrt();
-        out.push(("rank-deficient (density 3)".into(), dense(n, w, q, vec![0.6; contacts.len()])));
+        out.push((
+            "rank-deficient (density 3)".into(),
+            dense(n, w, q, vec![0.6; contacts.len()]),
+        ));
     }
     // q = 0: nothing pushes, r = 0.
     {
         let (contacts, v) = stack(&mut rng, &base_masses, 1);
         let (w, _) = assemble(&base_masses, &contacts, &v);
         let n = w.len().isqrt();
-        out.push(("q=0".into(), dense(n, w, vec![0.0; n], vec![0.3; contacts.len()])));
+        out.push((
+            "q=0".into(),
+            dense(n, w, vec![0.0; n], vec![0.3; contacts.len()]),
+        ));
     }
     // The same contact twice (a duplicated collision pair).
     {
@@ -178,7 +193,10 @@ pub fn extreme_problems(seed: u64) -> Vec<(String, FrictionProblem<'static>)> {
         contacts.push(contacts[1]);
         let (w, q) = assemble(&base_masses, &contacts, &v);
         let n = w.len().isqrt();
-        out.push(("duplicated contact".into(), dense(n, w, q, vec![0.4; contacts.len()])));
+        out.push((
+            "duplicated contact".into(),
+            dense(n, w, q, vec![0.4; contacts.len()]),
+        ));
     }
     // Slightly non-symmetric W (Coriolis-like): a skew part of 1e-3 max|W| (x^T W x unchanged).
     {
@@ -193,14 +211,20 @@ pub fn extreme_problems(seed: u64) -> Vec<(String, FrictionProblem<'static>)> {
                 w[j + i * n] -= s;
             }
         }
-        out.push(("non-symmetric 1e-3".into(), dense(n, w, q, vec![0.3; contacts.len()])));
+        out.push((
+            "non-symmetric 1e-3".into(),
+            dense(n, w, q, vec![0.3; contacts.len()]),
+        ));
     }
     // No contact at all.
     out.push(("zero contacts".into(), dense(0, vec![], vec![], vec![])));
     // One contact at the cone apex: q_N just below zero, r = O(1e-15).
     {
         let w = vec![1.0, 0.1, 0.0, 0.1, 2.0, 0.2, 0.0, 0.2, 1.5];
-        out.push(("apex".into(), dense(3, w, vec![-1e-15, 1.0, 0.0], vec![0.3])));
+        out.push((
+            "apex".into(),
+            dense(3, w, vec![-1e-15, 1.0, 0.0], vec![0.3]),
+        ));
     }
     // One contact sticking exactly: q = -W r* with r* inside the cone, so u = 0 and u_T = 0.
     {
