@@ -42,6 +42,7 @@ LD_LIBRARY_PATH=$LIB "$BUILD/stack"
 
 echo "== C checks under valgrind"
 cc "${CFLAGS[@]}" -Iinclude/siconos-compat capi-tests/c/ownership_main.c capi-tests/c/capi_checks.c \
+  capi-tests/c/nsgs_options.c \
   -L$LIB -lfc3d -lm -o "$BUILD/capi_checks"
 LD_LIBRARY_PATH=$LIB valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
   "$BUILD/capi_checks" "$DATA" "$BUILD"

@@ -7,6 +7,7 @@ int capi_check_bad_input(const char* data_dir);
 int capi_check_options(void);
 int capi_check_single_contacts(void);
 int capi_check_callback(void);
+int capi_check_nsgs_options(const char* data_dir);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -17,6 +18,7 @@ int main(int argc, char** argv) {
   failed += capi_check_bad_input(data) != 0;
   failed += capi_check_ownership(data, scratch) != 0;
   failed += capi_check_callback() != 0;
-  printf("%d passed, %d failed\n", 5 - failed, failed);
+  failed += capi_check_nsgs_options(data) != 0;
+  printf("%d passed, %d failed\n", 6 - failed, failed);
   return failed != 0;
 }
