@@ -35,7 +35,7 @@ pub enum SolverFamily {
 const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
-const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
+const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 15] = [
     (LocalSolverKind::NewtonAlartCurnier, &["NSN", "NSN-AC"]),
     (
         LocalSolverKind::NewtonAlartCurnierGp,
@@ -51,6 +51,24 @@ const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
     ),
     (LocalSolverKind::ProjectionOnCylinder, &["CYL", "SAL"]),
     (LocalSolverKind::NewtonHybrid, &["HYBRID", "NSN-GP-HYBRID"]),
+    (
+        LocalSolverKind::ProjectionOnConeWithRegularization,
+        &["PROJ-REG"],
+    ),
+    (
+        LocalSolverKind::ProjectionOnConeWithDiagonalization,
+        &["PROJ-DIAG"],
+    ),
+    (LocalSolverKind::ProjectionOnConeVelocity, &["PROJ-VEL"]),
+    (LocalSolverKind::FischerBurmeisterNewton, &["FB", "NSN-FB"]),
+    (LocalSolverKind::Quartic, &["QUARTIC"]),
+    (
+        LocalSolverKind::ProjectionOnCylinderWithLocalIteration,
+        &["CYL-ITER"],
+    ),
+    (LocalSolverKind::FpViUpk, &["FP-VI-UPK"]),
+    (LocalSolverKind::EnhancedBipotential, &["EBP"]),
+    (LocalSolverKind::EnhancedAugmentedLagrangian, &["EAL"]),
 ];
 
 /// One solver to benchmark: a family and, for NSGS, its local solver.

@@ -26,7 +26,11 @@ const EYE: Mat3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 fn is_one_step(kind: LocalSolverKind) -> bool {
     matches!(
         kind,
-        LocalSolverKind::ProjectionOnCone | LocalSolverKind::ProjectionOnCylinder
+        LocalSolverKind::ProjectionOnCone
+            | LocalSolverKind::ProjectionOnCylinder
+            | LocalSolverKind::ProjectionOnConeWithRegularization
+            | LocalSolverKind::ProjectionOnConeWithDiagonalization
+            | LocalSolverKind::ProjectionOnConeVelocity
     )
 }
 
@@ -34,7 +38,11 @@ fn is_one_step(kind: LocalSolverKind) -> bool {
 /// get one call, the one-step solvers up to 10000 calls until a call reports convergence (a
 /// fixed point). Returns r and the number of calls.
 fn solve_local(kind: LocalSolverKind, w: &Mat3, q: Vec3, mu: f64, start: Vec3) -> (Vec3, usize) {
-    let mut solver = AnyLocalSolver::new(&LocalSolverOptions::new(kind));
+    // Every solver at 1e-14: the answers are compared to 1e-11 on contacts with W as small as
+    // 0.05, where 561's and 562's default 1e-12 residual allows a larger error in r.
+    let mut options = LocalSolverOptions::new(kind);
+    options.tolerance = options.tolerance.min(1e-14);
+    let mut solver = AnyLocalSolver::new(&options);
     let p = LocalProblem { w, q, mu };
     let mut r = start;
     let max_calls = if is_one_step(kind) { 10_000 } else { 1 };
@@ -57,8 +65,11 @@ fn check_all(w: &Mat3, q: Vec3, mu: f64, r_expected: Vec3, u_expected: Vec3, tol
             let (r, calls) = solve_local(kind, w, q, mu, start);
             let u = mat3_vec_add(w, &r, &q);
             for i in 0..3 {
-                assert_relative_eq!(r[i], r_expected[i], epsilon = tol * scale);
-                assert_relative_eq!(u[i], u_expected[i], epsilon = tol * scale);
+                assert!(
+                    (r[i] - r_expected[i]).abs() <= tol * scale
+                        && (u[i] - u_expected[i]).abs() <= tol * scale,
+                    "{kind:?} from {start:?}: r = {r:?}, u = {u:?}, expected {r_expected:?}, {u_expected:?}"
+                );
             }
             let p = LocalProblem { w, q, mu };
             assert!(
@@ -224,7 +235,12 @@ fn one_step_solvers_cannot_stick_when_tangent_is_stiffer_than_twice_normal() {
     for kind in LocalSolverKind::ALL {
         let (r, _) = solve_local(kind, &w, q, 0.5, [0.0; 3]);
         let p = LocalProblem { w: &w, q, mu: 0.5 };
-        if is_one_step(kind) {
+        if kind == LocalSolverKind::ProjectionOnConeWithDiagonalization {
+            // Its tangential step is 1 / W_TT, not 1 / W_NN: it sticks.
+            for i in 0..3 {
+                assert_relative_eq!(r[i], expected[i], epsilon = 1e-12);
+            }
+        } else if is_one_step(kind) {
             assert!(p.residual(&r) > 1e-3, "{kind:?} unexpectedly converged");
             assert!(r.iter().all(|v| v.is_finite()));
             // Bounded by the cone all the same.
