@@ -16,6 +16,15 @@
 //! | 553 | `PROJ-ITER` |
 //! | 557 | `CYL`, `SAL` |
 //! | 565 | `HYBRID`, `NSN-GP-HYBRID` |
+//! | 554 | `PROJ-REG` |
+//! | 555 | `PROJ-DIAG` |
+//! | 558 | `PROJ-VEL` |
+//! | 561 | `FB`, `NSN-FB` |
+//! | 562 | `QUARTIC` |
+//! | 564 | `CYL-ITER` |
+//! | 570 | `FP-VI-UPK` |
+//! | 571 | `EBP` |
+//! | 572 | `EAL` |
 //!
 //! A new solver family plugs in as a variant of [`SolverFamily`], a row of [`FAMILIES`] and an arm
 //! of [`solver_config`].

@@ -1,7 +1,7 @@
 //! One-contact solvers: FC(w, q, mu) with a 3x3 `w`, behind one trait so that the Gauss-Seidel
 //! sweep does not know which one it drives.
 
-mod dumont;
+pub(crate) mod dumont;
 mod fischer_burmeister;
 mod newton;
 mod projection;
