@@ -67,7 +67,10 @@ struct SolveArgs {
     max_iter: usize,
     /// Local solver, by Siconos id: 550 (Alart-Curnier Newton), 551 (Newton with Goldstein-Price
     /// line search), 552 (one projection on the cone), 553 (projection on the cone with local
-    /// iterations), 557 (one projection on the cylinder), 565 (hybrid Newton, the default).
+    /// iterations), 557 (one projection on the cylinder), 565 (hybrid Newton, the default),
+    /// 554 (projection with regularization), 555 (projection with diagonalization), 558
+    /// (projection in velocity), 561 (Fischer-Burmeister Newton), 562 (QUARTIC, exact), 564
+    /// (cylinder with local iterations), 570 (FP-VI-UPK), 571 (Dumont's EBP), 572 (Dumont's EAL).
     #[arg(long, value_name = "ID", default_value = "565", value_parser = parse_local)]
     local: LocalSolverKind,
 }

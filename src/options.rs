@@ -20,6 +20,39 @@ pub enum LocalSolverKind {
     /// One augmented-Lagrangian projection on the cylinder `R+ x B(0, mu r_N)` with the radius
     /// taken from the new normal reaction: Dumont's SAL [557 ProjectionOnCylinder].
     ProjectionOnCylinder,
+    /// One projection step on the cone for the proximally regularized contact
+    /// (`w + eps I`, `q - eps r`): a step `rho = 1 / (W_NN + eps)` along the De Saxcé direction;
+    /// with Siconos' default `eps = 0` it is the step of 552
+    /// [554 ProjectionOnConeWithRegularization].
+    ProjectionOnConeWithRegularization,
+    /// One separated step with the diagonal of `w` as metric:
+    /// `r_N <- (r_N - u_N / W_NN)_+`, `r_T <- P_{B(0, mu r_N)}(r_T - u_T ./ diag(W_TT))`
+    /// [555 ProjectionOnConeWithDiagonalization]; checked against Siconos on one step.
+    ProjectionOnConeWithDiagonalization,
+    /// The step of 552 computed in velocity space through Moreau's decomposition,
+    /// `r <- r - rho ũ + P_{K*}(rho ũ - r)` [558 ProjectionOnCone_velocity].
+    ProjectionOnConeVelocity,
+    /// Newton on the Fischer-Burmeister function of the second-order cone (Jordan algebra) in
+    /// the variables `(mu r_N, r_T)`, `(ũ_N, mu ũ_T)`, with an Armijo line search
+    /// [561 NCPGlockerFBNewton].
+    FischerBurmeisterNewton,
+    /// The exact solution by enumeration of take-off, stick and slide; the slide direction is a
+    /// root of a quartic (Bonnefon-Daviet) [562 QUARTIC].
+    Quartic,
+    /// Augmented-Lagrangian steps on the cylinder (557) with a self-adaptive rho until the local
+    /// residual is below the local tolerance [564 ProjectionOnCylinderWithLocalIteration].
+    ProjectionOnCylinderWithLocalIteration,
+    /// FP-VI-UPK of Table 3 applied to one contact: projection steps (95) with the
+    /// self-adaptive rule (98), started from rho of the rho rule (default (110)); the algorithm of
+    /// 553 with another initial rho [fc3d 570].
+    FpViUpk,
+    /// Dumont's EBP: Newton on the bipotential fixed point `r = P_K(r - rho ũ)` with the
+    /// condensed 3x3 system (32) [fc3d 571].
+    EnhancedBipotential,
+    /// Dumont's EAL: Newton on the augmented-Lagrangian fixed point (36). Its function is the
+    /// Alart-Curnier function (60) with `rho_N = rho_T`, so this is 550 (plain Newton) with
+    /// Dumont's rho rule by default [fc3d 572].
+    EnhancedAugmentedLagrangian,
 }
 
 impl LocalSolverKind {
@@ -32,6 +65,15 @@ impl LocalSolverKind {
             LocalSolverKind::ProjectionOnCone => 552,
             LocalSolverKind::ProjectionOnConeWithLocalIteration => 553,
             LocalSolverKind::ProjectionOnCylinder => 557,
+            LocalSolverKind::ProjectionOnConeWithRegularization => 554,
+            LocalSolverKind::ProjectionOnConeWithDiagonalization => 555,
+            LocalSolverKind::ProjectionOnConeVelocity => 558,
+            LocalSolverKind::FischerBurmeisterNewton => 561,
+            LocalSolverKind::Quartic => 562,
+            LocalSolverKind::ProjectionOnCylinderWithLocalIteration => 564,
+            LocalSolverKind::FpViUpk => FC3D_ONECONTACT_FP_VI_UPK,
+            LocalSolverKind::EnhancedBipotential => FC3D_ONECONTACT_EBP,
+            LocalSolverKind::EnhancedAugmentedLagrangian => FC3D_ONECONTACT_EAL,
         }
     }
 
@@ -44,18 +86,59 @@ impl LocalSolverKind {
             552 => LocalSolverKind::ProjectionOnCone,
             553 => LocalSolverKind::ProjectionOnConeWithLocalIteration,
             557 => LocalSolverKind::ProjectionOnCylinder,
+            554 => LocalSolverKind::ProjectionOnConeWithRegularization,
+            555 => LocalSolverKind::ProjectionOnConeWithDiagonalization,
+            558 => LocalSolverKind::ProjectionOnConeVelocity,
+            561 => LocalSolverKind::FischerBurmeisterNewton,
+            562 => LocalSolverKind::Quartic,
+            564 => LocalSolverKind::ProjectionOnCylinderWithLocalIteration,
+            FC3D_ONECONTACT_FP_VI_UPK => LocalSolverKind::FpViUpk,
+            FC3D_ONECONTACT_EBP => LocalSolverKind::EnhancedBipotential,
+            FC3D_ONECONTACT_EAL => LocalSolverKind::EnhancedAugmentedLagrangian,
             _ => return None,
         })
     }
 
-    pub const ALL: [LocalSolverKind; 6] = [
+    pub const ALL: [LocalSolverKind; 15] = [
         LocalSolverKind::NewtonAlartCurnier,
         LocalSolverKind::NewtonAlartCurnierGp,
         LocalSolverKind::NewtonHybrid,
         LocalSolverKind::ProjectionOnCone,
         LocalSolverKind::ProjectionOnConeWithLocalIteration,
         LocalSolverKind::ProjectionOnCylinder,
+        LocalSolverKind::ProjectionOnConeWithRegularization,
+        LocalSolverKind::ProjectionOnConeWithDiagonalization,
+        LocalSolverKind::ProjectionOnConeVelocity,
+        LocalSolverKind::FischerBurmeisterNewton,
+        LocalSolverKind::Quartic,
+        LocalSolverKind::ProjectionOnCylinderWithLocalIteration,
+        LocalSolverKind::FpViUpk,
+        LocalSolverKind::EnhancedBipotential,
+        LocalSolverKind::EnhancedAugmentedLagrangian,
     ];
+}
+
+/// fc3d's one-contact solver ids are in 568..=599, a range Siconos 4.4 leaves free (its
+/// one-contact solvers use 550..=567). FP-VI-UPK of Acary-Brémond-Huber's Table 3 on one contact:
+/// projection steps with the self-adaptive rho rule (98), started from rho strategy iparam[9]
+/// (default 1, spectral norm). Use it as NSGS's internal solver.
+pub const FC3D_ONECONTACT_FP_VI_UPK: i32 = 570;
+/// Dumont's EBP (2021): Newton on the bipotential fixed point `r = P_K(r - rho ũ)` with the
+/// condensed 3x3 system (32); rho by iparam[9] (default `FC3D_RHO_STRATEGY_DUMONT`, alpha =
+/// dparam[3] = 1). Use it as NSGS's internal solver.
+pub const FC3D_ONECONTACT_EBP: i32 = 571;
+/// Dumont's EAL (2021): Newton on the augmented-Lagrangian fixed point; the same function as
+/// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
+pub const FC3D_ONECONTACT_EAL: i32 = 572;
+
+/// The nonsmooth function a local Newton solver (550, 551, 565) zeroes (Siconos iparam[10]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NewtonFormulation {
+    /// Alart-Curnier (61): disk radius `mu (r_N - rho_N u_N)_+` (Siconos' default, 0).
+    #[default]
+    AlartCurnier,
+    /// Jean-Moreau (59), "NSN-JM" of Table 3: disk radius `mu (r_N)_+` (Siconos 1).
+    JeanMoreau,
 }
 
 /// How the penalty parameters rho (rho_N, rho_T) of a local solver are taken from the diagonal
@@ -71,6 +154,11 @@ pub enum RhoRule {
     /// (112), corrected: `rho_N = 1 / W_NN`, `rho_T = lambda_min(W_TT) / lambda_max(W_TT)^2`
     /// (the paper prints `lambda_min(W_NN)`, a scalar, which cannot measure the conditioning of W_TT).
     SplitSpectralNormCond,
+    /// Dumont's rule: `rho_N = rho_T = alpha * rho_bar` with `rho_bar = 1 / W_NN`, the reduced
+    /// mass `m_i m_j / (m_i + m_j)` of the two bodies at the contact when `W = H^T M^-1 H` (Dumont
+    /// writes `rho_bar = m_i m_j / (m_i + m_j) / dt` for forces; impulses drop the `dt`).
+    /// Dumont finds alpha in [1, 2] best for EBP.
+    Dumont(f64),
 }
 
 /// Options of a local solver. Defaults per kind are Siconos 4.4's (`solver_options_create(id)`).
@@ -89,6 +177,11 @@ pub struct LocalSolverOptions {
     pub hybrid_max_loop: usize,
     /// Hybrid solver: maximum projection iterations per round.
     pub hybrid_max_iter: usize,
+    /// Newton solvers 550/551/565: which function Newton zeroes (default Alart-Curnier).
+    pub formulation: NewtonFormulation,
+    /// 554: the proximal regularization `eps` added to W_NN in the step (default 0, Siconos'
+    /// dparam[3]).
+    pub regularization: f64,
 }
 
 impl LocalSolverOptions {
@@ -98,9 +191,18 @@ impl LocalSolverOptions {
         let (tolerance, max_iter, rho_rule) = match kind {
             NewtonAlartCurnier => (1e-14, 10, RhoRule::SplitSpectralNormCond),
             NewtonAlartCurnierGp | NewtonHybrid => (1e-14, 10, RhoRule::SplitSpectralNorm),
-            ProjectionOnCone | ProjectionOnConeWithLocalIteration | ProjectionOnCylinder => {
-                (1e-14, 1000, RhoRule::SplitSpectralNorm)
-            }
+            ProjectionOnCone
+            | ProjectionOnConeWithLocalIteration
+            | ProjectionOnCylinder
+            | ProjectionOnConeWithRegularization
+            | ProjectionOnConeWithDiagonalization
+            | ProjectionOnConeVelocity
+            | ProjectionOnCylinderWithLocalIteration => (1e-14, 1000, RhoRule::SplitSpectralNorm),
+            FischerBurmeisterNewton | Quartic => (1e-12, 1000, RhoRule::SplitSpectralNorm),
+            FpViUpk => (1e-14, 1000, RhoRule::SpectralNorm),
+            // Dumont uses up to 100 Newton iterations with a loose 1e-5; a tight local tolerance
+            // lets NSGS reach 1e-8 and Newton rarely needs more than a few iterations.
+            EnhancedBipotential | EnhancedAugmentedLagrangian => (1e-14, 20, RhoRule::Dumont(1.0)),
         };
         LocalSolverOptions {
             kind,
@@ -110,6 +212,8 @@ impl LocalSolverOptions {
             line_search_max_iter: 10,
             hybrid_max_loop: 1,
             hybrid_max_iter: 100,
+            formulation: NewtonFormulation::AlartCurnier,
+            regularization: 0.0,
         }
     }
 }

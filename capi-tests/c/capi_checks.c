@@ -226,6 +226,9 @@ int capi_solve_file(const char* path, int storage, int local_solver, double tole
 
 /* ---- single contacts with analytic answers -------------------------------------------------- */
 
+/* When >= 0, the Newton formulation (iparam[10]) set on the local solver: 1 = Jean-Moreau. */
+static int g_formulation = -1;
+
 static int solve_one(const char* name, int local, double W[9], double q[3], double mu, const double r_exp[3],
                      const double u_exp[3]) {
   NumericsMatrix M = {0};
@@ -235,6 +238,7 @@ static int solve_one(const char* name, int local, double W[9], double q[3], doub
   FrictionContactProblem p = {3, 1, &M, q, &mu};
   SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
   solver_options_update_internal(o, 0, local);
+  if (g_formulation >= 0) o->internalSolvers[0]->iparam[SICONOS_FRICTION_3D_NSN_FORMULATION] = g_formulation;
   o->dparam[SICONOS_DPARAM_TOL] = 1e-14;
   o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
   double r[3] = {0, 0, 0}, u[3] = {0, 0, 0};
@@ -250,13 +254,38 @@ static int solve_one(const char* name, int local, double W[9], double q[3], doub
   return 0;
 }
 
+static int check_single_contacts_with(void);
+
 int capi_check_single_contacts(void) {
+  if (check_single_contacts_with()) return 1;
+  /* Jean-Moreau formulation (59) of the Newton solvers, with and without line search. */
+  g_formulation = SICONOS_FRICTION_3D_NSN_FORMULATION_JEANMOREAU_STD;
+  int jm = check_single_contacts_with();
+  g_formulation = -1;
+  return jm;
+}
+
+static int g_jm_ids[] = {SICONOS_FRICTION_3D_ONECONTACT_NSN, SICONOS_FRICTION_3D_ONECONTACT_NSN_GP,
+                         SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID};
+
+static int check_single_contacts_with(void) {
   int locals[] = {SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID, SICONOS_FRICTION_3D_ONECONTACT_NSN,
                   SICONOS_FRICTION_3D_ONECONTACT_NSN_GP, SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCone,
                   SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnConeWithLocalIteration,
-                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinder};
-  for (size_t k = 0; k < sizeof locals / sizeof locals[0]; k++) {
-    int l = locals[k];
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinder,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnConeWithRegularization,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnConeWithDiagonalization,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCone_velocity,
+                  SICONOS_FRICTION_3D_NCPGlockerFBNewton,
+                  SICONOS_FRICTION_3D_ONECONTACT_QUARTIC,
+                  SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinderWithLocalIteration,
+                  SICONOS_FRICTION_3D_ONECONTACT_FP_VI_UPK,
+                  SICONOS_FRICTION_3D_ONECONTACT_EBP,
+                  SICONOS_FRICTION_3D_ONECONTACT_EAL};
+  size_t n = sizeof locals / sizeof locals[0];
+  if (g_formulation >= 0) n = sizeof g_jm_ids / sizeof g_jm_ids[0];
+  for (size_t k = 0; k < n; k++) {
+    int l = g_formulation >= 0 ? g_jm_ids[k] : locals[k];
     double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
     { /* take-off: q_N > 0 gives r = 0, u = q */
       double q[3] = {1, 0.5, 0}, re[3] = {0, 0, 0}, ue[3] = {1, 0.5, 0};

@@ -230,3 +230,51 @@ fn shared_problems_through_the_c_api_in_all_storages() {
     }
     println!("{}", table.join("\n"));
 }
+
+/// NSGS with each local solver added beside 550-553/557/565, selected with
+/// `solver_options_update_internal`, gives through `fc3d_driver` exactly the Rust API's result, on
+/// small problems in each storage.
+#[test]
+fn new_local_solvers_through_the_c_api_match_rust() {
+    let tol = 1e-8;
+    let max_iter: c_int = 2_000;
+    for name in ["FC3D_Example1_SBM.dat", "Confeti-ex03-Fc3D-SBM.dat"] {
+        let path = data_dir().join(name);
+        let problem = read_dat_file(&path).unwrap();
+        let n = problem.size();
+        for id in [554, 555, 558, 561, 562, 564, 570, 571, 572] {
+            let kind = LocalSolverKind::from_siconos_id(id).unwrap();
+            for storage in [STORAGE_AS_FILE, STORAGE_DENSE, STORAGE_CSR] {
+                let mut r = vec![0.0; n];
+                let mut u = vec![0.0; n];
+                let mut res = CSolveResult::default();
+                let rc = unsafe {
+                    capi_solve_file(
+                        cstr(&path).as_ptr(),
+                        storage,
+                        id,
+                        tol,
+                        max_iter,
+                        r.as_mut_ptr(),
+                        u.as_mut_ptr(),
+                        n as c_int,
+                        &mut res,
+                    )
+                };
+                assert_eq!(rc, 0, "{name}/{id}: C solve failed");
+                let rp = rust_problem(&problem, storage);
+                let (mut rr, mut ru) = (vec![0.0; n], vec![0.0; n]);
+                let config = SolverConfig::Nsgs(NsgsOptions {
+                    tolerance: tol,
+                    max_iter: max_iter as usize,
+                    ..NsgsOptions::with_local(kind)
+                });
+                let report = solve(&rp, &config, &mut rr, &mut ru).unwrap();
+                assert_eq!(r, rr, "{name}/{id} storage {storage}: reactions differ");
+                assert_eq!(u, ru, "{name}/{id} storage {storage}: velocities differ");
+                assert_eq!(res.iterations as usize, report.iterations, "{name}/{id}");
+                assert_eq!(res.reported_error, report.error, "{name}/{id}");
+            }
+        }
+    }
+}

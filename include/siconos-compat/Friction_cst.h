@@ -49,7 +49,16 @@ enum FRICTION_SOLVER
   SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinderWithLocalIteration = 564,
   SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID = 565,
   SICONOS_FRICTION_3D_VI_FPP_Cylinder = 566,
-  SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER = 567
+  SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER = 567,
+  /* fc3d's one-contact solvers (not in Siconos 4.4, which leaves 568..599 free); the same values
+     as FC3D_ONECONTACT_* in fc3d.h. */
+  /** FP-VI-UPK (Acary-Bremond-Huber, Table 3) on one contact: projections with the
+      self-adaptive rho rule (98). */
+  SICONOS_FRICTION_3D_ONECONTACT_FP_VI_UPK = 570,
+  /** Dumont's EBP: Newton on the bipotential fixed point, condensed 3x3 system. */
+  SICONOS_FRICTION_3D_ONECONTACT_EBP = 571,
+  /** Dumont's EAL: Newton on the augmented-Lagrangian fixed point (= 550 with Dumont's rho). */
+  SICONOS_FRICTION_3D_ONECONTACT_EAL = 572
 };
 
 /* fc3d-specific option indices. */

@@ -52,7 +52,9 @@ pub struct BenchArgs {
     pub paths: Vec<PathBuf>,
     /// Solvers, comma-separated: `all` (NSGS with every local solver), `500` or `NSGS` (NSGS with
     /// its default local solver 565), `500/552`, `NSGS/SBP`, ... Local solvers by Siconos id or
-    /// name: 550 NSN, 551 NSN-GP, 552 PROJ|SBP|FP-DS-ONE, 553 PROJ-ITER, 557 CYL|SAL, 565 HYBRID.
+    /// name: 550 NSN, 551 NSN-GP, 552 PROJ|SBP|FP-DS-ONE, 553 PROJ-ITER, 557 CYL|SAL, 565 HYBRID,
+    /// 554 PROJ-REG, 555 PROJ-DIAG, 558 PROJ-VEL, 561 FB, 562 QUARTIC, 564 CYL-ITER,
+    /// 570 FP-VI-UPK, 571 EBP, 572 EAL.
     #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list)]
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;

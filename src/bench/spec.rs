@@ -16,6 +16,15 @@
 //! | 553 | `PROJ-ITER` |
 //! | 557 | `CYL`, `SAL` |
 //! | 565 | `HYBRID`, `NSN-GP-HYBRID` |
+//! | 554 | `PROJ-REG` |
+//! | 555 | `PROJ-DIAG` |
+//! | 558 | `PROJ-VEL` |
+//! | 561 | `FB`, `NSN-FB` |
+//! | 562 | `QUARTIC` |
+//! | 564 | `CYL-ITER` |
+//! | 570 | `FP-VI-UPK` |
+//! | 571 | `EBP` |
+//! | 572 | `EAL` |
 //!
 //! A new solver family plugs in as a variant of [`SolverFamily`], a row of [`FAMILIES`] and an arm
 //! of [`solver_config`].
@@ -35,7 +44,7 @@ pub enum SolverFamily {
 const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
-const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
+const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 15] = [
     (LocalSolverKind::NewtonAlartCurnier, &["NSN", "NSN-AC"]),
     (
         LocalSolverKind::NewtonAlartCurnierGp,
@@ -51,6 +60,24 @@ const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
     ),
     (LocalSolverKind::ProjectionOnCylinder, &["CYL", "SAL"]),
     (LocalSolverKind::NewtonHybrid, &["HYBRID", "NSN-GP-HYBRID"]),
+    (
+        LocalSolverKind::ProjectionOnConeWithRegularization,
+        &["PROJ-REG"],
+    ),
+    (
+        LocalSolverKind::ProjectionOnConeWithDiagonalization,
+        &["PROJ-DIAG"],
+    ),
+    (LocalSolverKind::ProjectionOnConeVelocity, &["PROJ-VEL"]),
+    (LocalSolverKind::FischerBurmeisterNewton, &["FB", "NSN-FB"]),
+    (LocalSolverKind::Quartic, &["QUARTIC"]),
+    (
+        LocalSolverKind::ProjectionOnCylinderWithLocalIteration,
+        &["CYL-ITER"],
+    ),
+    (LocalSolverKind::FpViUpk, &["FP-VI-UPK"]),
+    (LocalSolverKind::EnhancedBipotential, &["EBP"]),
+    (LocalSolverKind::EnhancedAugmentedLagrangian, &["EAL"]),
 ];
 
 /// One solver to benchmark: a family and, for NSGS, its local solver.

@@ -13,7 +13,8 @@ use super::types::SolverOptions;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
 use crate::options::{
     ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
-    NsgsOptions, RhoRule,
+    NewtonFormulation, NsgsOptions, RhoRule, FC3D_ONECONTACT_EAL, FC3D_ONECONTACT_EBP,
+    FC3D_ONECONTACT_FP_VI_UPK,
 };
 use crate::scaling::Rescaling;
 use crate::solver::SolverConfig;
@@ -43,6 +44,10 @@ pub(crate) const DPARAM_RESIDU: usize = 1;
 pub(crate) const DPARAM_INTERNAL_ERROR_RATIO: usize = 2;
 pub(crate) const DPARAM_NSN_RHO: usize = 3;
 pub(crate) const DPARAM_NSGS_RELAXATION_VALUE: usize = 8;
+/// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule
+/// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
+/// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
+pub const FC3D_RHO_STRATEGY_DUMONT: c_int = 10;
 
 /// Siconos 4.4 names of solver ids (`solver_options_id_to_name`).
 const NAMES: &[(c_int, &CStr)] = &[
@@ -88,6 +93,9 @@ const NAMES: &[(c_int, &CStr)] = &[
     (564, c"FC3D_projectionOnCylinderWithLocalIteration"),
     (565, c"FC3D_ONECONTACT_NSN_GP_HYBRID"),
     (567, c"FC3D ConvexQP PG solver"),
+    (FC3D_ONECONTACT_FP_VI_UPK, c"FC3D_ONECONTACT_FP_VI_UPK"),
+    (FC3D_ONECONTACT_EBP, c"FC3D_ONECONTACT_EBP"),
+    (FC3D_ONECONTACT_EAL, c"FC3D_ONECONTACT_EAL"),
 ];
 
 /// Name of a solver id ("NONAME" if unknown, as Siconos).
@@ -325,6 +333,25 @@ const DEFAULTS: &[Defaults] = &[
         dparam: &[(0, 1e-14)],
         internal: &[],
     },
+    // fc3d's own one-contact solvers (ids Siconos does not use).
+    Defaults {
+        id: FC3D_ONECONTACT_FP_VI_UPK,
+        iparam: &[(0, 1000), (9, 1)],
+        dparam: &[(0, 1e-14)],
+        internal: &[],
+    },
+    Defaults {
+        id: FC3D_ONECONTACT_EBP,
+        iparam: &[(0, 20), (9, FC3D_RHO_STRATEGY_DUMONT)],
+        dparam: &[(0, 1e-14), (3, 1.0)],
+        internal: &[],
+    },
+    Defaults {
+        id: FC3D_ONECONTACT_EAL,
+        iparam: &[(0, 20), (9, FC3D_RHO_STRATEGY_DUMONT), (11, -1), (12, 10)],
+        dparam: &[(0, 1e-14), (3, 1.0)],
+        internal: &[],
+    },
     Defaults {
         id: 508,
         iparam: &[(0, 20000)],
@@ -497,6 +524,19 @@ impl<'a> Params<'a> {
         })
     }
 
+    /// `dparam[k]`, which must be finite and > 0.
+    fn positive(&self, k: usize, what: &str) -> CResult<f64> {
+        let x = self.dparam[k];
+        if x > 0.0 && x.is_finite() {
+            Ok(x)
+        } else {
+            Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("{what} = {x} must be finite and > 0"),
+            ))
+        }
+    }
+
     fn tolerance(&self, what: &str) -> CResult<f64> {
         let t = self.dparam[DPARAM_TOL];
         if t.is_finite() && t >= 0.0 {
@@ -561,33 +601,66 @@ unsafe fn local_from_c(o: &SolverOptions) -> CResult<LocalSolverOptions> {
         LocalSolverKind::NewtonAlartCurnier
             | LocalSolverKind::NewtonAlartCurnierGp
             | LocalSolverKind::NewtonHybrid
+            | LocalSolverKind::EnhancedAugmentedLagrangian
+            | LocalSolverKind::EnhancedBipotential
+            | LocalSolverKind::FpViUpk
     ) {
         l.rho_rule = match p.iparam[IPARAM_NSN_RHO_STRATEGY] {
-            0 => {
-                let rho = p.dparam[DPARAM_NSN_RHO];
-                if !(rho > 0.0 && rho.is_finite()) {
-                    return Err(CError::new(
-                        FC3D_ERR_INVALID_OPTION,
-                        format!("constant rho (dparam[3]) = {rho} must be finite and > 0"),
-                    ));
-                }
-                RhoRule::Constant(rho)
-            }
+            0 => RhoRule::Constant(p.positive(DPARAM_NSN_RHO, "constant rho (dparam[3])")?),
             1 => RhoRule::SpectralNorm,
             2 => RhoRule::SplitSpectralNormCond,
             3 => RhoRule::SplitSpectralNorm,
+            FC3D_RHO_STRATEGY_DUMONT => {
+                RhoRule::Dumont(p.positive(DPARAM_NSN_RHO, "Dumont's alpha (dparam[3])")?)
+            }
             other => {
                 return Err(CError::new(
                     FC3D_ERR_INVALID_OPTION,
-                    format!("rho strategy (iparam[9]) = {other} is not implemented in fc3d (0-3)"),
+                    format!("rho strategy (iparam[9]) = {other} is not implemented in fc3d (0-3, {FC3D_RHO_STRATEGY_DUMONT} = Dumont)"),
                 ))
             }
         };
+    }
+    if kind == LocalSolverKind::ProjectionOnConeWithRegularization {
+        let eps = p.dparam[DPARAM_NSN_RHO];
+        if !(eps >= 0.0 && eps.is_finite()) {
+            return Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("regularization (dparam[3]) = {eps} must be finite and >= 0"),
+            ));
+        }
+        l.regularization = eps;
+    }
+    if kind == LocalSolverKind::EnhancedAugmentedLagrangian {
         p.require(
             IPARAM_NSN_FORMULATION,
             0,
-            "Newton formulation (only Alart-Curnier STD)",
+            "EAL formulation (Alart-Curnier, 0)",
         )?;
+        l.line_search_max_iter =
+            p.count(IPARAM_NSN_LINESEARCH_MAX_ITER, "line-search max iterations")?;
+        l.kind = match p.iparam[IPARAM_NSN_LINESEARCH] {
+            -1 => LocalSolverKind::EnhancedAugmentedLagrangian,
+            // EAL with the Goldstein-Price search is 551 with Dumont's rho.
+            0 => LocalSolverKind::NewtonAlartCurnierGp,
+            other => {
+                return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("line search (iparam[11]) = {other} is not implemented in fc3d (-1 none, 0 Goldstein-Price)")))
+            }
+        };
+    }
+    if matches!(
+        kind,
+        LocalSolverKind::NewtonAlartCurnier
+            | LocalSolverKind::NewtonAlartCurnierGp
+            | LocalSolverKind::NewtonHybrid
+    ) {
+        l.formulation = match p.iparam[IPARAM_NSN_FORMULATION] {
+            0 | 2 => NewtonFormulation::AlartCurnier,
+            1 | 3 => NewtonFormulation::JeanMoreau,
+            other => {
+                return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("Newton formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)")))
+            }
+        };
         l.line_search_max_iter =
             p.count(IPARAM_NSN_LINESEARCH_MAX_ITER, "line-search max iterations")?;
         l.kind = match (kind, p.iparam[IPARAM_NSN_LINESEARCH]) {

@@ -1,11 +1,24 @@
 //! One-contact solvers: FC(w, q, mu) with a 3x3 `w`, behind one trait so that the Gauss-Seidel
 //! sweep does not know which one it drives.
 
+pub(crate) mod dumont;
+mod fischer_burmeister;
 mod newton;
 mod projection;
+mod quartic;
+mod regularized;
+mod vi_upk;
 
-pub use newton::{alart_curnier_function, AlartCurnierNewton};
+pub use dumont::EnhancedBipotential;
+pub use fischer_burmeister::{fischer_burmeister_function, FischerBurmeisterNewton};
+pub use newton::{alart_curnier_function, jean_moreau_function, AlartCurnierNewton};
 pub use projection::{ProjectionOnCone, ProjectionOnConeWithLocalIteration, ProjectionOnCylinder};
+pub use quartic::Quartic;
+pub use regularized::{
+    ProjectionOnConeVelocity, ProjectionOnConeWithDiagonalization,
+    ProjectionOnConeWithRegularization, ProjectionOnCylinderWithLocalIteration,
+};
+pub use vi_upk::FpViUpk;
 
 use crate::linalg::{lambda_max_sym2, lambda_min_sym2, Mat3, Vec3};
 use crate::measure::contact_residual_sq;
@@ -87,6 +100,7 @@ pub fn local_rho(w: &Mat3, rule: RhoRule) -> (f64, f64) {
             let lt_min = lambda_min_sym2(w[1][1], w[1][2], w[2][1], w[2][2]);
             (1.0 / wnn, lt_min / (lt_max * lt_max))
         }
+        RhoRule::Dumont(alpha) => (alpha / wnn, alpha / wnn),
     };
     let fallback = {
         let d = w[0][0].abs().max(w[1][1].abs()).max(w[2][2].abs());
@@ -131,13 +145,24 @@ pub enum AnyLocalSolver {
     Cone(ProjectionOnCone),
     ConeIterated(ProjectionOnConeWithLocalIteration),
     Cylinder(ProjectionOnCylinder),
+    Regularized(ProjectionOnConeWithRegularization),
+    Diagonalized(ProjectionOnConeWithDiagonalization),
+    Velocity(ProjectionOnConeVelocity),
+    FischerBurmeister(FischerBurmeisterNewton),
+    Quartic(Quartic),
+    CylinderIterated(ProjectionOnCylinderWithLocalIteration),
+    FpViUpk(FpViUpk),
+    Bipotential(EnhancedBipotential),
 }
 
 impl AnyLocalSolver {
     pub fn new(options: &LocalSolverOptions) -> Self {
         use LocalSolverKind::*;
         match options.kind {
-            NewtonAlartCurnier | NewtonAlartCurnierGp | NewtonHybrid => {
+            NewtonAlartCurnier
+            | NewtonAlartCurnierGp
+            | NewtonHybrid
+            | EnhancedAugmentedLagrangian => {
                 AnyLocalSolver::Newton(AlartCurnierNewton::new(options))
             }
             ProjectionOnCone => AnyLocalSolver::Cone(projection::ProjectionOnCone),
@@ -145,6 +170,26 @@ impl AnyLocalSolver {
                 projection::ProjectionOnConeWithLocalIteration::new(options),
             ),
             ProjectionOnCylinder => AnyLocalSolver::Cylinder(projection::ProjectionOnCylinder),
+            ProjectionOnConeWithRegularization => AnyLocalSolver::Regularized(
+                regularized::ProjectionOnConeWithRegularization::new(options),
+            ),
+            ProjectionOnConeWithDiagonalization => {
+                AnyLocalSolver::Diagonalized(regularized::ProjectionOnConeWithDiagonalization)
+            }
+            ProjectionOnConeVelocity => {
+                AnyLocalSolver::Velocity(regularized::ProjectionOnConeVelocity)
+            }
+            FischerBurmeisterNewton => AnyLocalSolver::FischerBurmeister(
+                fischer_burmeister::FischerBurmeisterNewton::new(options),
+            ),
+            Quartic => AnyLocalSolver::Quartic(quartic::Quartic::new(options)),
+            ProjectionOnCylinderWithLocalIteration => AnyLocalSolver::CylinderIterated(
+                regularized::ProjectionOnCylinderWithLocalIteration::new(options),
+            ),
+            FpViUpk => AnyLocalSolver::FpViUpk(vi_upk::FpViUpk::new(options)),
+            EnhancedBipotential => {
+                AnyLocalSolver::Bipotential(dumont::EnhancedBipotential::new(options))
+            }
         }
     }
 }
@@ -156,6 +201,14 @@ impl LocalSolver for AnyLocalSolver {
             AnyLocalSolver::Cone(s) => s.rho(w),
             AnyLocalSolver::ConeIterated(s) => s.rho(w),
             AnyLocalSolver::Cylinder(s) => s.rho(w),
+            AnyLocalSolver::Regularized(s) => s.rho(w),
+            AnyLocalSolver::Diagonalized(s) => s.rho(w),
+            AnyLocalSolver::Velocity(s) => s.rho(w),
+            AnyLocalSolver::FischerBurmeister(s) => s.rho(w),
+            AnyLocalSolver::Quartic(s) => s.rho(w),
+            AnyLocalSolver::CylinderIterated(s) => s.rho(w),
+            AnyLocalSolver::FpViUpk(s) => s.rho(w),
+            AnyLocalSolver::Bipotential(s) => s.rho(w),
         }
     }
 
@@ -171,6 +224,14 @@ impl LocalSolver for AnyLocalSolver {
             AnyLocalSolver::Cone(s) => s.solve_with_rho(p, rho, r),
             AnyLocalSolver::ConeIterated(s) => s.solve_with_rho(p, rho, r),
             AnyLocalSolver::Cylinder(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Regularized(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Diagonalized(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Velocity(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::FischerBurmeister(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Quartic(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::CylinderIterated(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::FpViUpk(s) => s.solve_with_rho(p, rho, r),
+            AnyLocalSolver::Bipotential(s) => s.solve_with_rho(p, rho, r),
         }
     }
 }

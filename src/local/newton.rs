@@ -12,12 +12,15 @@
 //! * stick `||s_T|| <= R`: `F_T = rho_T u_T` (A_T = 0, B_T = rho_T [0 I]);
 //! * slide: `F_T = r_T - R e`, `e = s_T/||s_T||`, `G = (I - e e^T)/||s_T||`:
 //!   `A_T = [-mu [s_N>0] e, I - R G]`, `B_T = [mu rho_N [s_N>0] e, R rho_T G]`.
+//!
+//! Jean-Moreau (59) ("NSN-JM" of Table 3, Siconos formulation 1) only changes the radius to
+//! `R = mu (r_N)_+`: in the slide branch `A_T[., 0] = -mu [r_N > 0] e` and `B_T[., 0] = 0`.
 
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
 use crate::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
-use crate::options::{LocalSolverKind, LocalSolverOptions};
+use crate::options::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
 
 /// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
 pub fn alart_curnier_function(
@@ -26,19 +29,29 @@ pub fn alart_curnier_function(
     rho_t: f64,
     r: &Vec3,
 ) -> (Vec3, Mat3) {
-    ac_eval::<true>(p, rho_n, rho_t, r)
+    ac_eval::<true, false>(p, rho_n, rho_t, r)
+}
+
+/// The Jean-Moreau function (59) and one element of its generalized Jacobian at `r`.
+pub fn jean_moreau_function(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
+    ac_eval::<true, true>(p, rho_n, rho_t, r)
 }
 
 /// The Alart-Curnier function alone (the Jacobian is not formed): convergence tests and
 /// line-search trials need only F.
 #[inline]
 fn alart_curnier_residual(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
-    ac_eval::<false>(p, rho_n, rho_t, r).0
+    ac_eval::<false, false>(p, rho_n, rho_t, r).0
 }
 
 /// F and, when `JAC`, the Jacobian `A + B w` (otherwise a zero matrix); one branch logic for both.
 #[inline(always)]
-fn ac_eval<const JAC: bool>(
+fn ac_eval<const JAC: bool, const JEAN_MOREAU: bool>(
     p: &LocalProblem<'_>,
     rho_n: f64,
     rho_t: f64,
@@ -60,7 +73,13 @@ fn ac_eval<const JAC: bool>(
         a[0][0] = 1.0;
     }
 
-    let radius = if active { mu * s_n } else { 0.0 };
+    // Jean-Moreau's disk follows r_N itself; Alart-Curnier's follows s_N.
+    let radius_active = if JEAN_MOREAU { r[0] > 0.0 } else { active };
+    let radius = match (JEAN_MOREAU, radius_active) {
+        (_, false) => 0.0,
+        (true, true) => mu * r[0],
+        (false, true) => mu * s_n,
+    };
     let s_t = [r[1] - rho_t * u[1], r[2] - rho_t * u[2]];
     let ns = norm2(s_t[0], s_t[1]);
     if ns <= radius {
@@ -79,10 +98,10 @@ fn ac_eval<const JAC: bool>(
                 [k * (1.0 - e[0] * e[0]), -k * e[0] * e[1]],
                 [-k * e[1] * e[0], k * (1.0 - e[1] * e[1])],
             ];
-            let dn = if active { mu } else { 0.0 };
+            let dn = if radius_active { mu } else { 0.0 };
             for i in 0..2 {
                 a[1 + i][0] = -dn * e[i];
-                b[1 + i][0] = dn * rho_n * e[i];
+                b[1 + i][0] = if JEAN_MOREAU { 0.0 } else { dn * rho_n * e[i] };
                 for j in 0..2 {
                     a[1 + i][1 + j] = if i == j { 1.0 } else { 0.0 } - g[i][j];
                     b[1 + i][1 + j] = rho_t * g[i][j];
@@ -108,6 +127,7 @@ pub struct AlartCurnierNewton {
     options: LocalSolverOptions,
     line_search: bool,
     hybrid: bool,
+    jean_moreau: bool,
     projection: ProjectionOnConeWithLocalIteration,
 }
 
@@ -117,7 +137,10 @@ const GP_M2: f64 = 0.9;
 
 impl AlartCurnierNewton {
     pub fn new(options: &LocalSolverOptions) -> Self {
-        let line_search = options.kind != LocalSolverKind::NewtonAlartCurnier;
+        let line_search = matches!(
+            options.kind,
+            LocalSolverKind::NewtonAlartCurnierGp | LocalSolverKind::NewtonHybrid
+        );
         let hybrid = options.kind == LocalSolverKind::NewtonHybrid;
         let mut proj = *options;
         proj.max_iter = options.hybrid_max_iter;
@@ -125,7 +148,26 @@ impl AlartCurnierNewton {
             options: *options,
             line_search,
             hybrid,
+            jean_moreau: options.formulation == NewtonFormulation::JeanMoreau,
             projection: ProjectionOnConeWithLocalIteration::new(&proj),
+        }
+    }
+
+    #[inline]
+    fn residual(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+        if self.jean_moreau {
+            ac_eval::<false, true>(p, rho_n, rho_t, r).0
+        } else {
+            alart_curnier_residual(p, rho_n, rho_t, r)
+        }
+    }
+
+    #[inline]
+    fn jacobian(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Mat3 {
+        if self.jean_moreau {
+            jean_moreau_function(p, rho_n, rho_t, r).1
+        } else {
+            alart_curnier_function(p, rho_n, rho_t, r).1
         }
     }
 
@@ -137,13 +179,13 @@ impl AlartCurnierNewton {
         let scale = norm3(r).max(rho_n * norm3(&p.q)).max(f64::MIN_POSITIVE);
         // The Jacobian is formed only where a step is taken: the last F of a converging run
         // (most local solves late in NSGS) needs none.
-        let mut f = alart_curnier_residual(p, rho_n, rho_t, r);
+        let mut f = self.residual(p, rho_n, rho_t, r);
         for it in 0..self.options.max_iter {
             let nf = norm3(&f);
             if nf <= tol * scale {
                 return (true, it);
             }
-            let (_, jac) = alart_curnier_function(p, rho_n, rho_t, r);
+            let jac = self.jacobian(p, rho_n, rho_t, r);
             let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
                 return (false, it);
             };
@@ -154,7 +196,7 @@ impl AlartCurnierNewton {
                 }
             } else {
                 let rn = [r[0] + d[0], r[1] + d[1], r[2] + d[2]];
-                (rn, alart_curnier_residual(p, rho_n, rho_t, &rn))
+                (rn, self.residual(p, rho_n, rho_t, &rn))
             };
             if !r_new.iter().all(|v| v.is_finite()) {
                 return (false, it);
@@ -187,7 +229,7 @@ impl AlartCurnierNewton {
                 r[1] + alpha * d[1],
                 r[2] + alpha * d[2],
             ];
-            let ft = alart_curnier_residual(p, rho.0, rho.1, &rt);
+            let ft = self.residual(p, rho.0, rho.1, &rt);
             let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
             if psi < best.as_ref().map_or(psi0, |b| b.0) {
                 best = Some((psi, rt, ft));
