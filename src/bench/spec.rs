@@ -17,6 +17,9 @@
 //! | 557 | `CYL`, `SAL` |
 //! | 565 | `HYBRID`, `NSN-GP-HYBRID` |
 //!
+//! * `DSFP` (505), `VI-FPP` (506), `VI-EG` (507), `FPP` (511), `EG` (512), `ADMM` (523): families
+//!   without a local solver, with Siconos' defaults (not part of `all`).
+//!
 //! A new solver family plugs in as a variant of [`SolverFamily`], a row of [`FAMILIES`] and an arm
 //! of [`solver_config`].
 
