@@ -302,3 +302,22 @@ fn defaults_are_siconos() {
     );
     assert_eq!(SolverConfig::Admm(o).siconos_id(), 523);
 }
+
+#[test]
+fn time_budget_stops_the_run() {
+    let p = siconos("OneObject-i1028-138.hdf5.dat");
+    let o = AdmmOptions {
+        tolerance: 0.0,
+        max_iter: usize::MAX,
+        time_budget: Some(std::time::Duration::from_millis(20)),
+        ..AdmmOptions::default()
+    };
+    let (rep, r, u, calls) = run(&p, &o);
+    assert_eq!(
+        rep.status,
+        fc3d::SolveStatus::TimeBudgetExhausted,
+        "{rep:?}"
+    );
+    assert_eq!(calls, rep.iterations);
+    check_report("ADMM", &p, 0.0, &rep, &r, &u);
+}

@@ -453,3 +453,24 @@ fn defaults_are_siconos() {
     );
     assert_eq!(ViSolver::from_siconos_id(500), None);
 }
+
+#[test]
+fn time_budget_stops_the_run() {
+    let p = siconos("OneObject-i1028-138.hdf5.dat");
+    for s in [ViSolver::ViFixedPointProjection, ViSolver::ExtraGradient] {
+        let o = ViOptions {
+            tolerance: 0.0,
+            max_iter: usize::MAX,
+            time_budget: Some(std::time::Duration::from_millis(20)),
+            ..ViOptions::new(s)
+        };
+        let (rep, r, u, calls) = run(&p, &o);
+        assert_eq!(
+            rep.status,
+            fc3d::SolveStatus::TimeBudgetExhausted,
+            "{rep:?}"
+        );
+        assert_eq!(calls, rep.iterations);
+        check_report(s.short_name(), &p, 0.0, &rep, &r, &u);
+    }
+}
