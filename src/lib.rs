@@ -11,6 +11,7 @@
 //! [`SolverConfig`], call [`solve`]. Every [`SolveReport`] carries the error measured on the returned
 //! `(r, u)` with [`natural_map_error`], never the tolerance that was asked for.
 
+pub mod admm;
 pub mod capi;
 pub mod cone;
 pub mod error;
@@ -26,7 +27,9 @@ pub mod report;
 pub mod scaling;
 pub mod scenes;
 pub mod solver;
+pub mod vi;
 
+pub use admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use error::Fc3dError;
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
@@ -39,6 +42,7 @@ pub use problem::FrictionProblem;
 pub use report::{SolveReport, SolveStatus};
 pub use scaling::{solve_rescaled, Rescaling};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};
+pub use vi::{SelfAdaptiveStep, StepRatio, StepSize, ViOptions, ViSolver};
 
 /// The README's Rust examples are compiled and run as doctests.
 #[cfg(doctest)]

@@ -19,18 +19,26 @@ use crate::report::{SolveReport, SolveStatus};
 pub enum SolverConfig {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs(NsgsOptions),
+    /// Projection / extragradient methods on the VI form (Siconos ids 505, 506, 507, 511, 512).
+    Vi(crate::vi::ViOptions),
+    /// ADMM on the local formulation (Siconos id 523).
+    Admm(crate::admm::AdmmOptions),
 }
 
 impl SolverConfig {
     pub fn tolerance(&self) -> f64 {
         match self {
             SolverConfig::Nsgs(o) => o.tolerance,
+            SolverConfig::Vi(o) => o.tolerance,
+            SolverConfig::Admm(o) => o.tolerance,
         }
     }
 
     pub fn max_iter(&self) -> usize {
         match self {
             SolverConfig::Nsgs(o) => o.max_iter,
+            SolverConfig::Vi(o) => o.max_iter,
+            SolverConfig::Admm(o) => o.max_iter,
         }
     }
 
@@ -38,6 +46,8 @@ impl SolverConfig {
     pub fn time_budget(&self) -> Option<std::time::Duration> {
         match self {
             SolverConfig::Nsgs(o) => o.time_budget,
+            SolverConfig::Vi(o) => o.time_budget,
+            SolverConfig::Admm(o) => o.time_budget,
         }
     }
 
@@ -45,6 +55,8 @@ impl SolverConfig {
     pub fn siconos_id(&self) -> i32 {
         match self {
             SolverConfig::Nsgs(_) => 500,
+            SolverConfig::Vi(o) => o.solver.siconos_id(),
+            SolverConfig::Admm(_) => 523,
         }
     }
 
@@ -52,6 +64,8 @@ impl SolverConfig {
     pub fn label(&self) -> String {
         match self {
             SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
+            SolverConfig::Vi(o) => o.solver.short_name().to_string(),
+            SolverConfig::Admm(_) => "ADMM".to_string(),
         }
     }
 
@@ -78,6 +92,8 @@ impl SolverConfig {
                     }
                 }
             }
+            SolverConfig::Vi(o) => o.validate()?,
+            SolverConfig::Admm(o) => o.validate()?,
         }
         Ok(())
     }
@@ -165,6 +181,8 @@ pub fn solve_with_observer(
             let run = nsgs::nsgs(problem, o, r, u, observer)?;
             (run.outcome, run.dumont_criterion)
         }
+        SolverConfig::Vi(o) => (crate::vi::vi(problem, o, r, u, observer)?, None),
+        SolverConfig::Admm(o) => (crate::admm::admm(problem, o, r, u, observer)?, None),
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's

@@ -307,3 +307,59 @@ fn solve_allocations_do_not_grow_with_iterations() {
         assert_eq!(one, many, "{name}, all sweep options: {one} vs {many}");
     }
 }
+
+/// Allocations of a whole solve with `config` (tolerance 0, so every iteration runs).
+fn config_allocations(
+    p: &FrictionProblem<'_>,
+    config: fc3d::SolverConfig,
+    max_iter: usize,
+) -> usize {
+    let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+    let (n, report) = count_allocations(|| solve(p, &config, &mut r, &mut u).unwrap());
+    assert_eq!(report.iterations, max_iter, "{config:?}");
+    n
+}
+
+#[test]
+fn vi_and_admm_iterations_allocate_nothing() {
+    // Constant-rho ADMM refactors nothing inside the loop; the VI family allocates its work
+    // vectors before the first iteration.
+    let p = siconos("Confeti-ex03-Fc3D-SBM.dat");
+    let csr = p.with_w(Delassus::Sparse(p.w().to_csr())).unwrap();
+    let dense = p.with_w(Delassus::Dense(p.w().to_dense())).unwrap();
+    for q in [&p, &csr, &dense] {
+        for make in [
+            |k: usize| {
+                fc3d::SolverConfig::Vi(fc3d::ViOptions {
+                    max_iter: k,
+                    tolerance: 0.0,
+                    ..fc3d::ViOptions::new(fc3d::ViSolver::ViExtraGradient)
+                })
+            },
+            |k: usize| {
+                fc3d::SolverConfig::Vi(fc3d::ViOptions {
+                    max_iter: k,
+                    tolerance: 0.0,
+                    error_evaluation: ErrorEvaluation::Full,
+                    ..fc3d::ViOptions::new(fc3d::ViSolver::ViFixedPointProjection)
+                })
+            },
+            |k: usize| {
+                fc3d::SolverConfig::Admm(fc3d::AdmmOptions {
+                    max_iter: k,
+                    tolerance: 0.0,
+                    ..fc3d::AdmmOptions::default()
+                })
+            },
+        ] {
+            let one = config_allocations(q, make(1), 1);
+            let many = config_allocations(q, make(200), 200);
+            assert_eq!(
+                one,
+                many,
+                "{:?}: {one} allocations for 1 iteration, {many} for 200",
+                make(1)
+            );
+        }
+    }
+}

@@ -165,8 +165,26 @@ static void sbm_release(SbmBuild* b) {
 
 /* ---- solving a shared problem --------------------------------------------------------------- */
 
+static int solve_file(const char* path, int storage, int solver_id, int local_solver, double tolerance,
+                      int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                      CSolveResult* result);
+
 int capi_solve_file(const char* path, int storage, int local_solver, double tolerance, int max_iter,
                     double* reaction_out, double* velocity_out, int capacity, CSolveResult* result) {
+  return solve_file(path, storage, SICONOS_FRICTION_3D_NSGS, local_solver, tolerance, max_iter, reaction_out,
+                    velocity_out, capacity, result);
+}
+
+/* Any solver id with its Siconos defaults, tolerance and iteration limit overridden. */
+int capi_solve_file_with_solver(const char* path, int storage, int solver_id, double tolerance, int max_iter,
+                                double* reaction_out, double* velocity_out, int capacity, CSolveResult* result) {
+  return solve_file(path, storage, solver_id, 0, tolerance, max_iter, reaction_out, velocity_out, capacity,
+                    result);
+}
+
+static int solve_file(const char* path, int storage, int solver_id, int local_solver, double tolerance,
+                      int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                      CSolveResult* result) {
   FrictionContactProblem* file = frictionContact_new_from_filename(path);
   CHECK(file != NULL, "cannot read %s", path);
   int nc = file->numberOfContacts;
@@ -189,10 +207,12 @@ int capi_solve_file(const char* path, int storage, int local_solver, double tole
   /* Hosts fill the problem struct on the stack. */
   FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
 
-  SolverOptions* options = solver_options_create(SICONOS_FRICTION_3D_NSGS);
-  CHECK(options != NULL, "solver_options_create(NSGS)");
-  if (local_solver != 0) solver_options_update_internal(options, 0, local_solver);
-  CHECK(options->internalSolvers[0] != NULL, "update_internal(%d)", local_solver);
+  SolverOptions* options = solver_options_create(solver_id);
+  CHECK(options != NULL, "solver_options_create(%d)", solver_id);
+  if (solver_id == SICONOS_FRICTION_3D_NSGS) {
+    if (local_solver != 0) solver_options_update_internal(options, 0, local_solver);
+    CHECK(options->internalSolvers[0] != NULL, "update_internal(%d)", local_solver);
+  }
   options->dparam[SICONOS_DPARAM_TOL] = tolerance;
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
 
@@ -834,5 +854,101 @@ int capi_check_options(void) {
   CHECK(o->internalSolvers[0]->solverId == 557, "update_internal");
   solver_options_delete(o);
   free(o);
+  return 0;
+}
+
+/* ---- VI / fixed-point family (505, 506, 507, 511, 512) and ADMM (523) ------------------------ */
+
+static int solve_one_with(const char* name, int id, double W[9], double q[3], double mu, const double r_exp[3],
+                          const double u_exp[3]) {
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  SolverOptions* o = solver_options_create(id);
+  CHECK(o != NULL, "solver_options_create(%d)", id);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-13;
+  o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
+  double r[3] = {0, 0, 0}, u[3] = {0, 0, 0};
+  int info = fc3d_driver(&p, r, u, o);
+  double err = o->dparam[SICONOS_DPARAM_RESIDU];
+  int iter = o->iparam[SICONOS_IPARAM_ITER_DONE];
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == 0, "%s with solver %d: info %d, error %g after %d iterations", name, id, info, err, iter);
+  CHECK(err <= 1e-13, "%s/%d: dparam[1] = %g", name, id, err);
+  for (int k = 0; k < 3; k++) {
+    CHECK(fabs(r[k] - r_exp[k]) <= 1e-9, "%s/%d: r[%d] = %.17g, expected %.17g", name, id, k, r[k], r_exp[k]);
+    CHECK(fabs(u[k] - u_exp[k]) <= 1e-9, "%s/%d: u[%d] = %.17g, expected %.17g", name, id, k, u[k], u_exp[k]);
+  }
+  return 0;
+}
+
+int capi_check_vi_admm_single_contacts(void) {
+  int ids[] = {SICONOS_FRICTION_3D_DSFP, SICONOS_FRICTION_3D_VI_FPP, SICONOS_FRICTION_3D_VI_EG,
+               SICONOS_FRICTION_3D_FPP,  SICONOS_FRICTION_3D_EG,     SICONOS_FRICTION_3D_ADMM};
+  for (size_t k = 0; k < sizeof ids / sizeof ids[0]; k++) {
+    int id = ids[k];
+    /* W_NN = 1.25 keeps the fixed rho = 1 of 505/511 inside the stability range rho < 2 / W_NN. */
+    double Wd[9] = {1.25, 0, 0, 0, 1, 0, 0, 0, 1};
+    { /* take-off: q_N > 0 gives r = 0, u = q */
+      double q[3] = {1, 0.5, 0}, re[3] = {0, 0, 0}, ue[3] = {1, 0.5, 0};
+      if (solve_one_with("take-off", id, Wd, q, 0.3, re, ue)) return 1;
+    }
+    { /* stick: r_N = 2 / 1.25 = 1.6, ||r_T|| = 0.1 < mu r_N */
+      double q[3] = {-2, 0.1, 0}, re[3] = {1.6, -0.1, 0}, ue[3] = {0, 0, 0};
+      if (solve_one_with("stick", id, Wd, q, 0.5, re, ue)) return 1;
+    }
+    { /* slide: r_N = 1.6, r_T = -mu r_N (0.6, 0.8), u_T = q_T + r_T along q_T */
+      double q[3] = {-2, 3, 4}, re[3] = {1.6, -0.48, -0.64}, ue[3] = {0, 2.52, 3.36};
+      if (solve_one_with("slide", id, Wd, q, 0.5, re, ue)) return 1;
+    }
+  }
+  return 0;
+}
+
+/* Options fc3d does not implement are rejected with FC3D_ERR_INVALID_OPTION, r and u untouched. */
+int capi_check_vi_admm_options(void) {
+  double Wd[9] = {1.25, 0, 0, 0, 1, 0, 0, 0, 1};
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = Wd;
+  double q[3] = {-2, 3, 4}, mu = 0.5;
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  struct {
+    int id, is_real, index;
+    double value;
+  } bad[] = {
+      {SICONOS_FRICTION_3D_DSFP, 1, 3, -1.0},   /* DSFP needs a fixed rho > 0 */
+      {SICONOS_FRICTION_3D_FPP, 1, 3, 0.0},     /* rho = 0 */
+      {SICONOS_FRICTION_3D_VI_FPP, 0, 6, 2},    /* Han-Sun line search */
+      {SICONOS_FRICTION_3D_VI_EG, 0, 7, 3},     /* adaptive error evaluation */
+      {SICONOS_FRICTION_3D_VI_EG, 0, 10, 1},    /* update inside the line search */
+      {SICONOS_FRICTION_3D_VI_FPP, 1, 6, 1.5},  /* L outside (0, 1) */
+      {SICONOS_FRICTION_3D_ADMM, 0, 9, 1},      /* unknown rho strategy */
+      {SICONOS_FRICTION_3D_ADMM, 0, 12, 3},     /* symmetrizing W */
+      {SICONOS_FRICTION_3D_ADMM, 0, 15, 1},     /* frozen De Saxce term */
+      {SICONOS_FRICTION_3D_ADMM, 1, 5, 0.5},    /* balancing tau <= 1 with balancing on */
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    SolverOptions* o = solver_options_create(bad[k].id);
+    CHECK(o != NULL, "solver_options_create(%d)", bad[k].id);
+    if (bad[k].is_real)
+      o->dparam[bad[k].index] = bad[k].value;
+    else
+      o->iparam[bad[k].index] = (int)bad[k].value;
+    if (bad[k].id == SICONOS_FRICTION_3D_ADMM && bad[k].index == 5) o->iparam[9] = 2;
+    double r[3] = {7, 7, 7}, u[3] = {7, 7, 7};
+    fc3d_clear_last_error();
+    int got = fc3d_driver(&p, r, u, o);
+    solver_options_delete(o);
+    free(o);
+    CHECK(got == FC3D_ERR_INVALID_OPTION, "solver %d with %sparam[%d] = %g: returned %d", bad[k].id,
+          bad[k].is_real ? "d" : "i", bad[k].index, bad[k].value, got);
+    CHECK(strlen(fc3d_last_error_message()) > 0, "solver %d: no message", bad[k].id);
+    for (int i = 0; i < 3; i++) CHECK(r[i] == 7 && u[i] == 7, "solver %d: r or u touched", bad[k].id);
+  }
   return 0;
 }

@@ -46,6 +46,20 @@ extern "C" {
     pub fn capi_check_options() -> c_int;
     pub fn capi_check_callback() -> c_int;
     pub fn capi_check_nsgs_options(data_dir: *const c_char) -> c_int;
+    /// `capi_solve_file` for any solver id (its Siconos defaults, tolerance and max_iter set).
+    pub fn capi_solve_file_with_solver(
+        path: *const c_char,
+        storage: c_int,
+        solver_id: c_int,
+        tolerance: c_double,
+        max_iter: c_int,
+        reaction_out: *mut c_double,
+        velocity_out: *mut c_double,
+        capacity: c_int,
+        result: *mut CSolveResult,
+    ) -> c_int;
+    pub fn capi_check_vi_admm_single_contacts() -> c_int;
+    pub fn capi_check_vi_admm_options() -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.

@@ -55,6 +55,7 @@ pub struct BenchArgs {
     /// name: 550 NSN, 551 NSN-GP, 552 PROJ|SBP|FP-DS-ONE, 553 PROJ-ITER, 557 CYL|SAL, 565 HYBRID,
     /// 554 PROJ-REG, 555 PROJ-DIAG, 558 PROJ-VEL, 561 FB, 562 QUARTIC, 564 CYL-ITER,
     /// 570 FP-VI-UPK, 571 EBP, 572 EAL.
+    /// Other families by id or name: 505 DSFP, 506 VI-FPP, 507 VI-EG, 511 FPP, 512 EG, 523 ADMM.
     #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list)]
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;

@@ -26,22 +26,41 @@
 //! | 571 | `EBP` |
 //! | 572 | `EAL` |
 //!
+//! * `DSFP` (505), `VI-FPP` (506), `VI-EG` (507), `FPP` (511), `EG` (512), `ADMM` (523): families
+//!   without a local solver, with Siconos' defaults (not part of `all`).
+//!
 //! A new solver family plugs in as a variant of [`SolverFamily`], a row of [`FAMILIES`] and an arm
 //! of [`solver_config`].
 
 use std::time::Duration;
 
-use fc3d::{LocalSolverKind, NsgsOptions, SolverConfig};
+use fc3d::{AdmmOptions, LocalSolverKind, NsgsOptions, SolverConfig, ViOptions, ViSolver};
 
 /// Solver families `fc3d bench` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SolverFamily {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs,
+    /// The VI / fixed-point family (Siconos ids 505, 506, 507, 511, 512).
+    Vi(ViSolver),
+    /// ADMM (Siconos id 523).
+    Admm,
 }
 
 /// (family, Siconos id, name) for every family.
-const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
+const FAMILIES: [(SolverFamily, i32, &str); 7] = [
+    (SolverFamily::Nsgs, 500, "NSGS"),
+    (SolverFamily::Vi(ViSolver::DeSaxceFixedPoint), 505, "DSFP"),
+    (
+        SolverFamily::Vi(ViSolver::ViFixedPointProjection),
+        506,
+        "VI-FPP",
+    ),
+    (SolverFamily::Vi(ViSolver::ViExtraGradient), 507, "VI-EG"),
+    (SolverFamily::Vi(ViSolver::FixedPointProjection), 511, "FPP"),
+    (SolverFamily::Vi(ViSolver::ExtraGradient), 512, "EG"),
+    (SolverFamily::Admm, 523, "ADMM"),
+];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
 const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 15] = [
@@ -93,9 +112,13 @@ impl SolverSpec {
         solver_config(self, 1e-8, 1, None).label()
     }
 
-    /// The label with the local solver's short name, for legends: `NSGS/552 PROJ`.
+    /// The label with the local solver's short name, for legends: `NSGS/552 PROJ` (families
+    /// without a local solver: the label).
     pub fn legend(&self) -> String {
-        format!("{} {}", self.label(), local_short_name(self.local))
+        match self.family {
+            SolverFamily::Nsgs => format!("{} {}", self.label(), local_short_name(self.local)),
+            _ => self.label(),
+        }
     }
 }
 
@@ -115,6 +138,19 @@ pub fn solver_config(
             o.time_budget = time_budget;
             SolverConfig::Nsgs(o)
         }
+        SolverFamily::Vi(solver) => {
+            let mut o = ViOptions::new(solver);
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Vi(o)
+        }
+        SolverFamily::Admm => SolverConfig::Admm(AdmmOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
     }
 }
 
@@ -192,6 +228,13 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
     let local = match (family, local) {
         (SolverFamily::Nsgs, None) => LocalSolverKind::NewtonHybrid,
         (SolverFamily::Nsgs, Some(l)) => parse_local(l)?,
+        // Families without a local solver keep the default in the unused field.
+        (_, None) => LocalSolverKind::NewtonHybrid,
+        (_, Some(_)) => {
+            return Err(format!(
+                "solver '{solver}' takes no local solver (in '{s}')"
+            ))
+        }
     };
     Ok(SolverSpec { family, local })
 }
@@ -327,5 +370,27 @@ mod tests {
         assert_eq!(o.local.kind, LocalSolverKind::ProjectionOnCone);
         assert_eq!(spec.label(), "NSGS/552");
         assert_eq!(spec.legend(), "NSGS/552 PROJ");
+    }
+
+    #[test]
+    fn vi_and_admm_families() {
+        for (name, id, label) in [
+            ("DSFP", 505, "DSFP"),
+            ("vi-fpp", 506, "VI-FPP"),
+            ("507", 507, "VI-EG"),
+            ("FPP", 511, "FPP"),
+            ("eg", 512, "EG"),
+            ("ADMM", 523, "ADMM"),
+        ] {
+            let spec = parse_spec(name).unwrap();
+            let c = solver_config(&spec, 1e-8, 33, None);
+            assert_eq!(c.siconos_id(), id);
+            assert_eq!(c.tolerance(), 1e-8);
+            assert_eq!(c.max_iter(), 33);
+            assert_eq!(spec.label(), label);
+            assert_eq!(spec.legend(), label);
+        }
+        assert!(parse_spec("DSFP/552").is_err());
+        assert!(parse_spec("ADMM/HYBRID").is_err());
     }
 }

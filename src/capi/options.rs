@@ -48,6 +48,28 @@ pub(crate) const DPARAM_NSGS_RELAXATION_VALUE: usize = 8;
 /// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
 /// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
 pub const FC3D_RHO_STRATEGY_DUMONT: c_int = 10;
+// VI family (VI_cst.h: SICONOS_VI_IPARAM / SICONOS_VI_DPARAM; FPP/EG/DSFP use the same slots).
+pub(crate) const IPARAM_VI_DECREASE_RHO: usize = 3;
+pub(crate) const IPARAM_VI_LINESEARCH_METHOD: usize = 6;
+pub(crate) const IPARAM_VI_LS_MAX_ITER: usize = 9;
+pub(crate) const IPARAM_VI_ACTIVATE_UPDATE: usize = 10;
+pub(crate) const DPARAM_VI_RHO: usize = 3;
+pub(crate) const DPARAM_VI_LS_TAU: usize = 4;
+pub(crate) const DPARAM_VI_LS_TAUINV: usize = 5;
+pub(crate) const DPARAM_VI_LS_L: usize = 6;
+pub(crate) const DPARAM_VI_LS_LMIN: usize = 7;
+// ADMM (Friction_cst.h: SICONOS_FRICTION_3D_ADMM_*).
+pub(crate) const IPARAM_ADMM_RHO_STRATEGY: usize = 9;
+pub(crate) const IPARAM_ADMM_INITIAL_RHO: usize = 10;
+pub(crate) const IPARAM_ADMM_ACCELERATION: usize = 11;
+pub(crate) const IPARAM_ADMM_SYMMETRY: usize = 12;
+pub(crate) const IPARAM_ADMM_GET_PROBLEM_INFO: usize = 14;
+pub(crate) const IPARAM_ADMM_UPDATE_S: usize = 15;
+pub(crate) const IPARAM_ADMM_FULL_H: usize = 17;
+pub(crate) const DPARAM_ADMM_RHO: usize = 3;
+pub(crate) const DPARAM_ADMM_RESTART_ETA: usize = 4;
+pub(crate) const DPARAM_ADMM_BALANCING_TAU: usize = 5;
+pub(crate) const DPARAM_ADMM_BALANCING_PHI: usize = 6;
 
 /// Siconos 4.4 names of solver ids (`solver_options_id_to_name`).
 const NAMES: &[(c_int, &CStr)] = &[
@@ -708,6 +730,8 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
             }
             Ok(SolverConfig::Nsgs(n))
         }
+        505 | 506 | 507 | 511 | 512 => vi_from_c(o),
+        523 => admm_from_c(o),
         id => Err(unsupported_solver(id)),
     }
 }
@@ -805,6 +829,125 @@ pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, report: &crate::SolveR
     if let Some(d) = report.dumont_criterion {
         *o.dparam.add(super::FC3D_DPARAM_DUMONT_CRITERION as usize) = d;
     }
+}
+
+fn invalid(msg: String) -> CError {
+    CError::new(FC3D_ERR_INVALID_OPTION, msg)
+}
+
+/// A line-search constant: 0 (unset, as in the defaults of 511/512) means Siconos' built-in
+/// value; anything else is taken as given (and checked by `ViOptions::validate`).
+fn vi_constant(p: &Params<'_>, k: usize, default: f64) -> f64 {
+    if p.dparam[k] == 0.0 {
+        default
+    } else {
+        p.dparam[k]
+    }
+}
+
+/// DSFP 505, VI_FPP 506, VI_EG 507, FPP 511, EG 512.
+unsafe fn vi_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
+    use crate::vi::{SelfAdaptiveStep, StepRatio, StepSize, ViOptions, ViSolver};
+    let solver =
+        ViSolver::from_siconos_id(o.solverId).ok_or_else(|| unsupported_solver(o.solverId))?;
+    let what = solver.short_name();
+    let p = Params::of(o, &format!("{what} options"))?;
+    let mut v = ViOptions::new(solver);
+    v.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
+    v.tolerance = p.tolerance(what)?;
+    v.time_budget = p.time_budget()?;
+    // Siconos' VI ids use iparam[7] = 0 full, 1 light with full final, 2 light.
+    v.error_evaluation = match p.iparam[IPARAM_ERROR_EVALUATION] {
+        0 => ErrorEvaluation::Full,
+        1 => ErrorEvaluation::LightWithFullFinal,
+        2 => ErrorEvaluation::Light,
+        other => return Err(invalid(format!("{what}: error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light with full final, 2 light)"))),
+    };
+    // iparam[8] (error evaluation frequency) is set but unused by Siconos' VI solvers too.
+    let rho = p.dparam[DPARAM_VI_RHO];
+    if !rho.is_finite() || rho == 0.0 {
+        return Err(invalid(format!("{what}: rho (dparam[3]) = {rho} must be finite and non-zero (> 0 fixed, < 0 self-adaptive from -rho)")));
+    }
+    v.step = if rho > 0.0 {
+        StepSize::Fixed(rho)
+    } else if solver == ViSolver::DeSaxceFixedPoint {
+        return Err(invalid(format!(
+            "DSFP: rho (dparam[3]) = {rho} must be > 0 (DSFP has a fixed rho)"
+        )));
+    } else {
+        let d = SelfAdaptiveStep::default();
+        StepSize::SelfAdaptive(SelfAdaptiveStep {
+            initial_rho: -rho,
+            ratio: match p.iparam[IPARAM_VI_LINESEARCH_METHOD] {
+                0 => StepRatio::Khobotov,
+                1 => StepRatio::SolodovTseng,
+                other => return Err(invalid(format!("{what}: line search (iparam[6]) = {other} is not implemented in fc3d (0 Armijo with Khobotov's ratio, 1 Solodov-Tseng's)"))),
+            },
+            nu: vi_constant(&p, DPARAM_VI_LS_TAU, d.nu),
+            increase: vi_constant(&p, DPARAM_VI_LS_TAUINV, d.increase),
+            l: vi_constant(&p, DPARAM_VI_LS_L, d.l),
+            l_min: vi_constant(&p, DPARAM_VI_LS_LMIN, d.l_min),
+            max_trials: match p.count(IPARAM_VI_LS_MAX_ITER, "line-search max iterations")? {
+                0 => d.max_trials,
+                m => m,
+            },
+        })
+    };
+    p.require(IPARAM_VI_DECREASE_RHO, 0, "rho decrease rule")?;
+    p.require(
+        IPARAM_VI_ACTIVATE_UPDATE,
+        0,
+        "update inside the line search",
+    )?;
+    v.validate().map_err(|e| invalid(e.to_string()))?;
+    Ok(SolverConfig::Vi(v))
+}
+
+/// ADMM 523.
+unsafe fn admm_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
+    use crate::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+    let p = Params::of(o, "ADMM options")?;
+    let mut a = AdmmOptions {
+        max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+        tolerance: p.tolerance("ADMM")?,
+        time_budget: p.time_budget()?,
+        rho: p.dparam[DPARAM_ADMM_RHO],
+        restart_eta: p.dparam[DPARAM_ADMM_RESTART_ETA],
+        balancing_tau: p.dparam[DPARAM_ADMM_BALANCING_TAU],
+        balancing_phi: p.dparam[DPARAM_ADMM_BALANCING_PHI],
+        ..AdmmOptions::default()
+    };
+    a.rho_strategy = match p.iparam[IPARAM_ADMM_RHO_STRATEGY] {
+        0 => AdmmRhoStrategy::Constant,
+        2 => AdmmRhoStrategy::ResidualBalancing,
+        3 => AdmmRhoStrategy::ScaledResidualBalancing,
+        other => return Err(invalid(format!("ADMM: rho strategy (iparam[9]) = {other} is not implemented in fc3d (0 constant, 2 residual balancing, 3 scaled residual balancing)"))),
+    };
+    a.initial_rho = match p.iparam[IPARAM_ADMM_INITIAL_RHO] {
+        0 => AdmmInitialRho::Given,
+        1 => AdmmInitialRho::NormInf,
+        2 => AdmmInitialRho::Eigenvalues,
+        other => return Err(invalid(format!("ADMM: initial rho (iparam[10]) = {other} is not implemented in fc3d (0 given, 1 norm inf, 2 eigenvalues)"))),
+    };
+    a.acceleration = match p.iparam[IPARAM_ADMM_ACCELERATION] {
+        0 => AdmmAcceleration::None,
+        1 | 2 => AdmmAcceleration::Accelerated,
+        other => return Err(invalid(format!("ADMM: acceleration (iparam[11]) = {other} is not implemented in fc3d (0 none, 1 or 2 accelerated with restart)"))),
+    };
+    // fc3d factors W + rho I with a general sparse LU, exact for any W: the symmetry choices
+    // that keep W as it is (0 check, 1 forced symmetric, 2 forced asymmetric, 4 assume) all
+    // lead there; 3 would symmetrize W, i.e. solve another problem.
+    match p.iparam[IPARAM_ADMM_SYMMETRY] {
+        0 | 1 | 2 | 4 => {}
+        other => return Err(invalid(format!("ADMM: symmetry (iparam[12]) = {other} is not implemented in fc3d (W is never symmetrized; 0, 1, 2, 4 accepted)"))),
+    }
+    // iparam[13] (forced sparse storage) is what fc3d always does: any value is accepted.
+    p.require(IPARAM_RESCALING, 0, "rescaling")?;
+    p.require(IPARAM_ADMM_GET_PROBLEM_INFO, 0, "problem info printing")?;
+    p.require(IPARAM_ADMM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
+    p.require(IPARAM_ADMM_FULL_H, 0, "full H")?;
+    a.validate().map_err(|e| invalid(e.to_string()))?;
+    Ok(SolverConfig::Admm(a))
 }
 
 // ---------------------------------------------------------------------------------------------
