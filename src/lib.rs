@@ -21,10 +21,13 @@ pub mod matrix;
 pub mod measure;
 pub mod nsgs;
 pub mod options;
+pub mod pfp;
 pub mod problem;
 pub mod report;
 pub mod scenes;
+pub mod soclcp;
 pub mod solver;
+pub mod tresca;
 
 pub use error::Fc3dError;
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};

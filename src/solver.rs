@@ -19,18 +19,34 @@ use crate::report::{SolveReport, SolveStatus};
 pub enum SolverConfig {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs(NsgsOptions),
+    /// Tresca successive approximation (Siconos id 503).
+    Tresca(crate::tresca::TrescaOptions),
+    /// Panagiotopoulos alternating fixed point (Siconos id 522).
+    Pfp(crate::pfp::PfpOptions),
+    /// ACLM fixed point on the SOCLCP relaxation (Siconos id 516).
+    Aclm(crate::soclcp::AclmOptions),
+    /// The SOCLCP relaxation solved on its own (Siconos id 517).
+    Soclcp(crate::soclcp::SoclcpOptions),
 }
 
 impl SolverConfig {
     pub fn tolerance(&self) -> f64 {
         match self {
             SolverConfig::Nsgs(o) => o.tolerance,
+            SolverConfig::Tresca(o) => o.tolerance,
+            SolverConfig::Pfp(o) => o.tolerance,
+            SolverConfig::Aclm(o) => o.tolerance,
+            SolverConfig::Soclcp(o) => o.tolerance,
         }
     }
 
     pub fn max_iter(&self) -> usize {
         match self {
             SolverConfig::Nsgs(o) => o.max_iter,
+            SolverConfig::Tresca(o) => o.max_iter,
+            SolverConfig::Pfp(o) => o.max_iter,
+            SolverConfig::Aclm(o) => o.max_iter,
+            SolverConfig::Soclcp(o) => o.max_iter,
         }
     }
 
@@ -38,6 +54,10 @@ impl SolverConfig {
     pub fn time_budget(&self) -> Option<std::time::Duration> {
         match self {
             SolverConfig::Nsgs(o) => o.time_budget,
+            SolverConfig::Tresca(o) => o.time_budget,
+            SolverConfig::Pfp(o) => o.time_budget,
+            SolverConfig::Aclm(o) => o.time_budget,
+            SolverConfig::Soclcp(o) => o.time_budget,
         }
     }
 
@@ -45,6 +65,10 @@ impl SolverConfig {
     pub fn siconos_id(&self) -> i32 {
         match self {
             SolverConfig::Nsgs(_) => 500,
+            SolverConfig::Tresca(_) => 503,
+            SolverConfig::Pfp(_) => 522,
+            SolverConfig::Aclm(_) => 516,
+            SolverConfig::Soclcp(_) => 517,
         }
     }
 
@@ -52,6 +76,10 @@ impl SolverConfig {
     pub fn label(&self) -> String {
         match self {
             SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
+            SolverConfig::Tresca(o) => format!("TFP/{}", o.inner.siconos_id()),
+            SolverConfig::Pfp(o) => format!("PFP/{}", o.tangent.siconos_id()),
+            SolverConfig::Aclm(_) => "ACLMFP".to_string(),
+            SolverConfig::Soclcp(_) => "SOCLCP".to_string(),
         }
     }
 
@@ -78,6 +106,10 @@ impl SolverConfig {
                     }
                 }
             }
+            SolverConfig::Tresca(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Pfp(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Aclm(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Soclcp(o) => o.validate()?,
         }
         Ok(())
     }
@@ -159,8 +191,19 @@ pub fn solve_with_observer(
         });
     }
 
+    // SOCLCP solves a relaxation: whether the relaxed problem converged decides between
+    // "not converged" and "converged to a relaxed solution that is not a Coulomb solution".
+    let mut relaxation_converged = false;
     let outcome = match config {
         SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
+        SolverConfig::Tresca(o) => crate::tresca::tfp(problem, o, r, u, observer)?,
+        SolverConfig::Pfp(o) => crate::pfp::pfp(problem, o, r, u, observer)?,
+        SolverConfig::Aclm(o) => crate::soclcp::aclmfp(problem, o, r, u, observer)?,
+        SolverConfig::Soclcp(o) => {
+            let (outcome, relaxed) = crate::soclcp::soclcp(problem, o, r, u, observer)?;
+            relaxation_converged = relaxed;
+            outcome
+        }
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's
@@ -172,6 +215,8 @@ pub fn solve_with_observer(
     };
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
+    } else if relaxation_converged {
+        SolveStatus::RelaxationNotCoulomb
     } else if outcome.out_of_time {
         SolveStatus::TimeBudgetExhausted
     } else {

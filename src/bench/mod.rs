@@ -253,6 +253,7 @@ fn status_name(s: SolveStatus) -> &'static str {
         SolveStatus::Converged => "converged",
         SolveStatus::MaxIterationsReached => "max-iter",
         SolveStatus::TimeBudgetExhausted => "out-of-time",
+        SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
     }
 }
 

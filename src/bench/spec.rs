@@ -29,10 +29,24 @@ use fc3d::{LocalSolverKind, NsgsOptions, SolverConfig};
 pub enum SolverFamily {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs,
+    /// Tresca successive approximation (Siconos id 503).
+    Tfp,
+    /// Panagiotopoulos alternating fixed point (Siconos id 522).
+    Pfp,
+    /// ACLM fixed point (Siconos id 516).
+    Aclmfp,
+    /// The SOCLCP relaxation on its own (Siconos id 517).
+    Soclcp,
 }
 
 /// (family, Siconos id, name) for every family.
-const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
+const FAMILIES: [(SolverFamily, i32, &str); 5] = [
+    (SolverFamily::Nsgs, 500, "NSGS"),
+    (SolverFamily::Tfp, 503, "TFP"),
+    (SolverFamily::Pfp, 522, "PFP"),
+    (SolverFamily::Aclmfp, 516, "ACLMFP"),
+    (SolverFamily::Soclcp, 517, "SOCLCP"),
+];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
 const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
@@ -68,7 +82,10 @@ impl SolverSpec {
 
     /// The label with the local solver's short name, for legends: `NSGS/552 PROJ`.
     pub fn legend(&self) -> String {
-        format!("{} {}", self.label(), local_short_name(self.local))
+        match self.family {
+            SolverFamily::Nsgs => format!("{} {}", self.label(), local_short_name(self.local)),
+            _ => self.label(),
+        }
     }
 }
 
@@ -88,6 +105,30 @@ pub fn solver_config(
             o.time_budget = time_budget;
             SolverConfig::Nsgs(o)
         }
+        SolverFamily::Tfp => SolverConfig::Tresca(fc3d::tresca::TrescaOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Pfp => SolverConfig::Pfp(fc3d::pfp::PfpOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Aclmfp => SolverConfig::Aclm(fc3d::soclcp::AclmOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Soclcp => SolverConfig::Soclcp(fc3d::soclcp::SoclcpOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
     }
 }
 
@@ -165,6 +206,13 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
     let local = match (family, local) {
         (SolverFamily::Nsgs, None) => LocalSolverKind::NewtonHybrid,
         (SolverFamily::Nsgs, Some(l)) => parse_local(l)?,
+        // The other families have no local solver; the field keeps NSGS' default.
+        (_, None) => LocalSolverKind::NewtonHybrid,
+        (_, Some(_)) => {
+            return Err(format!(
+                "'{s}': only NSGS takes a local solver (SOLVER/LOCAL)"
+            ))
+        }
     };
     Ok(SolverSpec { family, local })
 }
