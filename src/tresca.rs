@@ -266,6 +266,8 @@ pub(crate) struct TrescaWorkspace {
     u_trial: Vec<f64>,
     /// Self-adaptive step of the projection solvers, kept across calls (warm start).
     rho: f64,
+    /// Initial step `1 / max_c max_i |W_cc,ii|`.
+    rho0: f64,
 }
 
 /// Self-adaptive rho rule of FP-VI-UPK (Siconos' defaults).
@@ -293,6 +295,7 @@ impl TrescaWorkspace {
             trial: vec![0.0; n],
             u_trial: vec![0.0; n],
             rho: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
+            rho0: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
         })
     }
 
@@ -368,8 +371,16 @@ impl TrescaWorkspace {
     ) -> usize {
         let n = r.len();
         let norm_q = norm(q);
+        // The radii may have shrunk since r was computed: start from a feasible point, where
+        // the projection step measures stationarity (and Armijo's slope is a descent slope).
+        self.trial.copy_from_slice(r);
+        project(&self.radius, mode, &mut self.trial, r);
+        r.copy_from_slice(&self.trial);
         self.rows.velocity(q, r, &mut self.u);
-        let mut theta = quadratic_value(r, &self.u, q);
+        if solver == TrescaInnerSolver::ProjectedGradient {
+            // Algorithm 9 starts every solve from rho0.
+            self.rho = self.rho0;
+        }
         for it in 1..=max_iter {
             let mut rho = self.rho;
             let mut accepted = false;
@@ -382,13 +393,16 @@ impl TrescaWorkspace {
                 self.rows.velocity(q, &self.trial, &mut self.u_trial);
                 let mut dr_sq = 0.0;
                 let mut du_sq = 0.0;
-                let mut decrease = 0.0;
+                // slope = F(r).dr; curvature = dr.W dr = dr.(F(trial) - F(r)).
+                let mut slope = 0.0;
+                let mut curvature = 0.0;
                 for i in 0..n {
                     let dr = self.trial[i] - r[i];
                     dr_sq += dr * dr;
                     let du = self.u_trial[i] - self.u[i];
                     du_sq += du * du;
-                    decrease += self.u[i] * dr;
+                    slope += self.u[i] * dr;
+                    curvature += du * dr;
                 }
                 if dr_sq == 0.0 {
                     accepted = true;
@@ -396,10 +410,10 @@ impl TrescaWorkspace {
                 }
                 match solver {
                     TrescaInnerSolver::ProjectedGradient => {
-                        let theta_trial = quadratic_value(&self.trial, &self.u_trial, q);
-                        if theta_trial - theta - ARMIJO_SIGMA * decrease <= 0.0 {
+                        // theta(trial) - theta(r) = slope + curvature / 2, from differences only:
+                        // the difference of the two values cancels to noise near the solution.
+                        if (1.0 - ARMIJO_SIGMA) * slope + 0.5 * curvature <= 0.0 {
                             accepted = true;
-                            theta = theta_trial;
                             break;
                         }
                     }
@@ -426,11 +440,9 @@ impl TrescaWorkspace {
             r.copy_from_slice(&self.trial);
             std::mem::swap(&mut self.u, &mut self.u_trial);
             if solver == TrescaInnerSolver::ProjectedGradient {
-                if !accepted {
-                    theta = quadratic_value(r, &self.u, q);
-                }
-                // Start the next backtracking from a larger step so rho can grow back.
-                self.rho = rho / NU;
+                // Start the next backtracking from a larger step so rho can grow back; after a
+                // failed backtracking keep the step it started from (rho must not collapse).
+                self.rho = if accepted { rho / NU } else { self.rho };
             } else {
                 self.rho = if accepted && ratio < L_MIN {
                     rho / NU
@@ -440,6 +452,11 @@ impl TrescaWorkspace {
             }
             let scale = norm_q.max(norm(r)).max(norm(&self.u));
             let scale = if scale > 0.0 { scale } else { 1.0 };
+            if dr_sq == 0.0 && rho < 1e-6 * self.rho0 {
+                // A step below the rounding of r proves nothing: restart from rho0.
+                self.rho = self.rho0;
+                continue;
+            }
             if dr_sq.sqrt() / rho / scale <= tol {
                 return it;
             }
@@ -465,15 +482,6 @@ fn project(radius: &[f64], mode: TrescaMode, x: &mut [f64], r: &[f64]) {
             }
         }
     }
-}
-
-/// `1/2 r.W r + r.q` from `u = W r + q`: `1/2 r.(u + q)`.
-fn quadratic_value(r: &[f64], u: &[f64], q: &[f64]) -> f64 {
-    0.5 * r
-        .iter()
-        .zip(u.iter().zip(q))
-        .map(|(ri, (ui, qi))| ri * (ui + qi))
-        .sum::<f64>()
 }
 
 // ---------------------------------------------------------------------------------------------
