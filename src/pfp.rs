@@ -62,7 +62,7 @@ pub(crate) fn normal_pgs(
         let mut increment_sq = 0.0;
         for c in 0..rows.n_contacts() {
             let w = rows.diagonal(c);
-            if !(w[0][0] > 0.0) {
+            if w[0][0].is_nan() || w[0][0] <= 0.0 {
                 continue;
             }
             let lq = rows.local_q(c, q, r);

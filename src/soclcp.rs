@@ -101,7 +101,11 @@ const ANGLE_SAMPLES: usize = 48;
 /// `q` lies in the span of `W (1, mu e)` and `(mu, -e)`, a trigonometric equation in `a`
 /// solved by sampling and bisection. Returns `None` when no case is consistent (W far from
 /// positive definite, or a double root that sampling missed).
-pub fn solve_local_soclcp(w: &Mat3, q: &Vec3, mu: f64) -> Option<Vec3> {
+///
+/// `angle_hint`, the boundary angle of a previous solution (Gauss-Seidel sweeps), is tried first
+/// by a few secant steps: for a positive definite W the solution is unique, so a consistent
+/// candidate found there is the solution and the sampling is skipped.
+pub fn solve_local_soclcp(w: &Mat3, q: &Vec3, mu: f64, angle_hint: Option<f64>) -> Option<Vec3> {
     let q_scale = norm3(q);
     if q[0] >= 0.0 && mu * norm2(q[1], q[2]) <= q[0] {
         return Some([0.0; 3]);
@@ -134,7 +138,7 @@ pub fn solve_local_soclcp(w: &Mat3, q: &Vec3, mu: f64) -> Option<Vec3> {
         // Least squares for t x - lambda b = -q.
         let (xx, xb, bb) = (dot3(&x, &x), dot3(&x, &b), dot3(&b, &b));
         let det = xx * bb - xb * xb;
-        if !(det > 0.0) {
+        if det.is_nan() || det <= 0.0 {
             return None;
         }
         let (rx, rb) = (-dot3(&x, q), dot3(&b, q));
@@ -152,6 +156,31 @@ pub fn solve_local_soclcp(w: &Mat3, q: &Vec3, mu: f64) -> Option<Vec3> {
         ]);
         Some((r, res))
     };
+    let consistent = |res: f64| res <= 1e-8 * q_scale.max(f64::MIN_POSITIVE);
+    if let Some(a_start) = angle_hint {
+        let (mut a0, mut a1) = (a_start, a_start + 1e-4);
+        let (mut f0, mut f1) = (f(a0), f(a1));
+        for _ in 0..12 {
+            if f1 == 0.0 || f1 == f0 {
+                break;
+            }
+            let a2 = a1 - f1 * (a1 - a0) / (f1 - f0);
+            if !a2.is_finite() {
+                break;
+            }
+            (a0, f0) = (a1, f1);
+            a1 = a2;
+            f1 = f(a1);
+            if (a1 - a0).abs() <= 1e-15 * (1.0 + a1.abs()) {
+                break;
+            }
+        }
+        if let Some((r, res)) = candidate(a1) {
+            if consistent(res) {
+                return Some(r);
+            }
+        }
+    }
     let step = std::f64::consts::TAU / ANGLE_SAMPLES as f64;
     let mut best: Option<(Vec3, f64)> = None;
     let mut a0 = 0.0;
@@ -187,7 +216,7 @@ pub fn solve_local_soclcp(w: &Mat3, q: &Vec3, mu: f64) -> Option<Vec3> {
         f0 = f1;
     }
     match best {
-        Some((r, res)) if res <= 1e-8 * q_scale.max(f64::MIN_POSITIVE) => Some(r),
+        Some((r, res)) if consistent(res) => Some(r),
         _ => None,
     }
 }
@@ -242,7 +271,8 @@ fn soclcp_sweep(
         }
         let w = rows.diagonal(c);
         let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-        let mut new = solve_local_soclcp(w, &lq, mu[c])
+        let hint = (old[1] != 0.0 || old[2] != 0.0).then(|| old[2].atan2(old[1]));
+        let mut new = solve_local_soclcp(w, &lq, mu[c], hint)
             .unwrap_or_else(|| local_soclcp_projection(w, &lq, mu[c], &old));
         if omega != 1.0 {
             new = project_on_cone(
@@ -419,8 +449,15 @@ mod tests {
             [-0.2, -5.0, 1.0], // slide, strong
         ] {
             for mu in [0.1, 0.5, 1.0] {
-                let r = solve_local_soclcp(&w, &q, mu).expect("solvable");
+                let r = solve_local_soclcp(&w, &q, mu, None).expect("solvable");
                 check(&w, &q, mu, &r);
+                // A warm start anywhere gives the same (unique) solution.
+                for hint in [0.0, 2.0, -3.0] {
+                    let h = solve_local_soclcp(&w, &q, mu, Some(hint)).expect("solvable");
+                    for i in 0..3 {
+                        assert!((h[i] - r[i]).abs() <= 1e-9 * (1.0 + norm3(&r)));
+                    }
+                }
                 let p = local_soclcp_projection(&w, &q, mu, &[0.0; 3]);
                 for i in 0..3 {
                     assert!((p[i] - r[i]).abs() <= 1e-9 * (1.0 + norm3(&r)));

@@ -129,7 +129,7 @@ impl Default for TrescaOptions {
 /// `1/||x(lambda)|| - 1/radius` (monotone when the symmetric part of A is positive definite).
 /// A is not symmetrized.
 pub fn solve_disk_problem(a: &[[f64; 2]; 2], b: [f64; 2], radius: f64) -> [f64; 2] {
-    if !(radius > 0.0) || norm2(b[0], b[1]) == 0.0 {
+    if radius.is_nan() || radius <= 0.0 || norm2(b[0], b[1]) == 0.0 {
         return [0.0, 0.0];
     }
     let solve = |lambda: f64| -> Option<[f64; 2]> {
@@ -369,7 +369,6 @@ impl TrescaWorkspace {
         max_iter: usize,
         r: &mut [f64],
     ) -> usize {
-        let n = r.len();
         let norm_q = norm(q);
         // The radii may have shrunk since r was computed: start from a feasible point, where
         // the projection step measures stationarity (and Armijo's slope is a descent slope).
@@ -386,8 +385,8 @@ impl TrescaWorkspace {
             let mut accepted = false;
             let mut ratio = 0.0;
             for _ in 0..MAX_LINE_SEARCH {
-                for i in 0..n {
-                    self.trial[i] = r[i] - rho * self.u[i];
+                for ((t, ri), ui) in self.trial.iter_mut().zip(r.iter()).zip(&self.u) {
+                    *t = ri - rho * ui;
                 }
                 project(&self.radius, mode, &mut self.trial, r);
                 self.rows.velocity(q, &self.trial, &mut self.u_trial);
@@ -396,12 +395,18 @@ impl TrescaWorkspace {
                 // slope = F(r).dr; curvature = dr.W dr = dr.(F(trial) - F(r)).
                 let mut slope = 0.0;
                 let mut curvature = 0.0;
-                for i in 0..n {
-                    let dr = self.trial[i] - r[i];
+                for (((t, ri), ut), ui) in self
+                    .trial
+                    .iter()
+                    .zip(r.iter())
+                    .zip(&self.u_trial)
+                    .zip(&self.u)
+                {
+                    let dr = t - ri;
                     dr_sq += dr * dr;
-                    let du = self.u_trial[i] - self.u[i];
+                    let du = ut - ui;
                     du_sq += du * du;
-                    slope += self.u[i] * dr;
+                    slope += ui * dr;
                     curvature += du * dr;
                 }
                 if dr_sq == 0.0 {
@@ -433,10 +438,12 @@ impl TrescaWorkspace {
             if !finite {
                 return it;
             }
-            let mut dr_sq = 0.0;
-            for i in 0..n {
-                dr_sq += (self.trial[i] - r[i]).powi(2);
-            }
+            let dr_sq: f64 = self
+                .trial
+                .iter()
+                .zip(r.iter())
+                .map(|(t, ri)| (t - ri).powi(2))
+                .sum();
             r.copy_from_slice(&self.trial);
             std::mem::swap(&mut self.u, &mut self.u_trial);
             if solver == TrescaInnerSolver::ProjectedGradient {
