@@ -53,6 +53,8 @@ pub struct BenchArgs {
     /// Solvers, comma-separated: `all` (NSGS with every local solver), `500` or `NSGS` (NSGS with
     /// its default local solver 565), `500/552`, `NSGS/SBP`, ... Local solvers by Siconos id or
     /// name: 550 NSN, 551 NSN-GP, 552 PROJ|SBP|FP-DS-ONE, 553 PROJ-ITER, 557 CYL|SAL, 565 HYBRID.
+    /// Other families with their Siconos defaults: `503`|`TFP`, `522`|`PFP`, `516`|`ACLMFP`,
+    /// `517`|`SOCLCP`.
     #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list)]
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;

@@ -6,6 +6,8 @@
 //! * `all` — every implemented combination: NSGS with each local solver of
 //!   [`LocalSolverKind::ALL`];
 //! * `SOLVER` — a solver with its default local solver: `500` or `NSGS` (= `500/565`);
+//! * `TFP` (503), `PFP` (522), `ACLMFP` (516), `SOCLCP` (517) — the optimization-based families
+//!   with their Siconos defaults (no local solver);
 //! * `SOLVER/LOCAL` — a solver with a local solver given by Siconos id or name:
 //!
 //! | id | names |
@@ -307,6 +309,7 @@ mod tests {
         }
         assert!(parse_spec_list("500,,552").is_err());
         assert!(parse_spec_list("500,foo").is_err());
+        assert!(parse_spec("TFP/552").is_err());
     }
 
     #[test]
@@ -330,6 +333,24 @@ mod tests {
         let l = parse_spec_list("500/557,ALL").unwrap();
         assert_eq!(l[0], nsgs(LocalSolverKind::ProjectionOnCylinder));
         assert_eq!(l.len(), LocalSolverKind::ALL.len());
+    }
+
+    #[test]
+    fn optimization_families() {
+        for (spec, id, label) in [
+            ("TFP", 503, "TFP/500"),
+            ("503", 503, "TFP/500"),
+            ("pfp", 522, "PFP/566"),
+            ("ACLMFP", 516, "ACLMFP"),
+            ("517", 517, "SOCLCP"),
+        ] {
+            let s = parse_spec(spec).unwrap();
+            let c = solver_config(&s, 1e-7, 12, None);
+            assert_eq!(c.siconos_id(), id);
+            assert_eq!((c.tolerance(), c.max_iter()), (1e-7, 12));
+            assert_eq!(s.label(), label);
+            assert_eq!(s.legend(), label);
+        }
     }
 
     #[test]
