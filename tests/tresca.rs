@@ -103,3 +103,42 @@ fn bad_options_are_rejected() {
         ));
     }
 }
+
+#[test]
+fn every_family_stops_when_its_time_budget_is_spent() {
+    // A 1 ns budget is spent after the first iteration: the run stops there, finite and honest.
+    let p = load("Confeti-ex03-Fc3D-SBM.dat");
+    let budget = Some(std::time::Duration::from_nanos(1));
+    let configs = [
+        SolverConfig::Tresca(TrescaOptions {
+            tolerance: 1e-14,
+            time_budget: budget,
+            ..Default::default()
+        }),
+        SolverConfig::Pfp(fc3d::pfp::PfpOptions {
+            tolerance: 1e-14,
+            time_budget: budget,
+            ..Default::default()
+        }),
+        SolverConfig::Aclm(fc3d::soclcp::AclmOptions {
+            tolerance: 1e-14,
+            time_budget: budget,
+            ..Default::default()
+        }),
+        SolverConfig::Soclcp(fc3d::soclcp::SoclcpOptions {
+            tolerance: 1e-14,
+            time_budget: budget,
+            ..Default::default()
+        }),
+    ];
+    for c in configs {
+        let (rep, _, _) = run(&p, &c);
+        assert_eq!(
+            rep.status,
+            SolveStatus::TimeBudgetExhausted,
+            "{}",
+            c.label()
+        );
+        assert_eq!(rep.iterations, 1, "{}", c.label());
+    }
+}
