@@ -18,6 +18,11 @@
 // reaction is the best iterate it measured, and its error is above the tolerance.
 #define FC3D_TIME_BUDGET_EXHAUSTED 2
 
+// A solver of a relaxed problem (SOCLCP, id 517) solved its relaxation to the tolerance, but
+// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
+// returned reaction, is above the tolerance (some contact slides).
+#define FC3D_RELAXED_NOT_COULOMB 3
+
 // Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 // Siconos' fc3d solvers leave unused.
 #define FC3D_DPARAM_TIME_BUDGET 19

@@ -22,11 +22,14 @@ pub mod matrix;
 pub mod measure;
 pub mod nsgs;
 pub mod options;
+pub mod pfp;
 pub mod problem;
 pub mod report;
 pub mod scaling;
 pub mod scenes;
+pub mod soclcp;
 pub mod solver;
+pub mod tresca;
 pub mod vi;
 
 pub use admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};

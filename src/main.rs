@@ -363,6 +363,7 @@ impl Table {
             SolveStatus::Converged => "converged",
             SolveStatus::MaxIterationsReached => "max-iter",
             SolveStatus::TimeBudgetExhausted => "out-of-time",
+            SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
         };
         lines.push(format_cells(&[
             row.problem,

@@ -10,15 +10,21 @@ pub enum SolveStatus {
     /// The wall-clock budget ran out first; the returned iterate is the best one seen (by its
     /// natural-map error) and its error is above the tolerance.
     TimeBudgetExhausted,
+    /// A solver of a relaxed problem (SOCLCP, Siconos id 517) solved its relaxation to the
+    /// tolerance, but the returned `(r, u)` is not a Coulomb solution: its natural-map error (the
+    /// one reported) is above the tolerance. Happens when some contact slides.
+    RelaxationNotCoulomb,
 }
 
 impl SolveStatus {
-    /// Siconos' `info`: 0 converged, 1 not; fc3d adds 2 for an exhausted time budget.
+    /// Siconos' `info`: 0 converged, 1 not; fc3d adds 2 for an exhausted time budget and 3
+    /// (`FC3D_RELAXED_NOT_COULOMB`) for a relaxed solution that is not a Coulomb solution.
     pub fn info_code(self) -> i32 {
         match self {
             SolveStatus::Converged => 0,
             SolveStatus::MaxIterationsReached => 1,
             SolveStatus::TimeBudgetExhausted => 2,
+            SolveStatus::RelaxationNotCoulomb => 3,
         }
     }
 }

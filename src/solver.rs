@@ -23,6 +23,14 @@ pub enum SolverConfig {
     Vi(crate::vi::ViOptions),
     /// ADMM on the local formulation (Siconos id 523).
     Admm(crate::admm::AdmmOptions),
+    /// Tresca successive approximation (Siconos id 503).
+    Tresca(crate::tresca::TrescaOptions),
+    /// Panagiotopoulos alternating fixed point (Siconos id 522).
+    Pfp(crate::pfp::PfpOptions),
+    /// ACLM fixed point on the SOCLCP relaxation (Siconos id 516).
+    Aclm(crate::soclcp::AclmOptions),
+    /// The SOCLCP relaxation solved on its own (Siconos id 517).
+    Soclcp(crate::soclcp::SoclcpOptions),
 }
 
 impl SolverConfig {
@@ -31,6 +39,10 @@ impl SolverConfig {
             SolverConfig::Nsgs(o) => o.tolerance,
             SolverConfig::Vi(o) => o.tolerance,
             SolverConfig::Admm(o) => o.tolerance,
+            SolverConfig::Tresca(o) => o.tolerance,
+            SolverConfig::Pfp(o) => o.tolerance,
+            SolverConfig::Aclm(o) => o.tolerance,
+            SolverConfig::Soclcp(o) => o.tolerance,
         }
     }
 
@@ -39,6 +51,10 @@ impl SolverConfig {
             SolverConfig::Nsgs(o) => o.max_iter,
             SolverConfig::Vi(o) => o.max_iter,
             SolverConfig::Admm(o) => o.max_iter,
+            SolverConfig::Tresca(o) => o.max_iter,
+            SolverConfig::Pfp(o) => o.max_iter,
+            SolverConfig::Aclm(o) => o.max_iter,
+            SolverConfig::Soclcp(o) => o.max_iter,
         }
     }
 
@@ -48,6 +64,10 @@ impl SolverConfig {
             SolverConfig::Nsgs(o) => o.time_budget,
             SolverConfig::Vi(o) => o.time_budget,
             SolverConfig::Admm(o) => o.time_budget,
+            SolverConfig::Tresca(o) => o.time_budget,
+            SolverConfig::Pfp(o) => o.time_budget,
+            SolverConfig::Aclm(o) => o.time_budget,
+            SolverConfig::Soclcp(o) => o.time_budget,
         }
     }
 
@@ -57,6 +77,10 @@ impl SolverConfig {
             SolverConfig::Nsgs(_) => 500,
             SolverConfig::Vi(o) => o.solver.siconos_id(),
             SolverConfig::Admm(_) => 523,
+            SolverConfig::Tresca(_) => 503,
+            SolverConfig::Pfp(_) => 522,
+            SolverConfig::Aclm(_) => 516,
+            SolverConfig::Soclcp(_) => 517,
         }
     }
 
@@ -66,6 +90,10 @@ impl SolverConfig {
             SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
             SolverConfig::Vi(o) => o.solver.short_name().to_string(),
             SolverConfig::Admm(_) => "ADMM".to_string(),
+            SolverConfig::Tresca(o) => format!("TFP/{}", o.inner.siconos_id()),
+            SolverConfig::Pfp(o) => format!("PFP/{}", o.tangent.siconos_id()),
+            SolverConfig::Aclm(_) => "ACLMFP".to_string(),
+            SolverConfig::Soclcp(_) => "SOCLCP".to_string(),
         }
     }
 
@@ -94,6 +122,10 @@ impl SolverConfig {
             }
             SolverConfig::Vi(o) => o.validate()?,
             SolverConfig::Admm(o) => o.validate()?,
+            SolverConfig::Tresca(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Pfp(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Aclm(o) => o.inner_tolerance.validate()?,
+            SolverConfig::Soclcp(o) => o.validate()?,
         }
         Ok(())
     }
@@ -176,6 +208,9 @@ pub fn solve_with_observer(
         });
     }
 
+    // SOCLCP solves a relaxation: whether the relaxed problem converged decides between
+    // "not converged" and "converged to a relaxed solution that is not a Coulomb solution".
+    let mut relaxation_converged = false;
     let (outcome, dumont_criterion) = match config {
         SolverConfig::Nsgs(o) => {
             let run = nsgs::nsgs(problem, o, r, u, observer)?;
@@ -183,6 +218,14 @@ pub fn solve_with_observer(
         }
         SolverConfig::Vi(o) => (crate::vi::vi(problem, o, r, u, observer)?, None),
         SolverConfig::Admm(o) => (crate::admm::admm(problem, o, r, u, observer)?, None),
+        SolverConfig::Tresca(o) => (crate::tresca::tfp(problem, o, r, u, observer)?, None),
+        SolverConfig::Pfp(o) => (crate::pfp::pfp(problem, o, r, u, observer)?, None),
+        SolverConfig::Aclm(o) => (crate::soclcp::aclmfp(problem, o, r, u, observer)?, None),
+        SolverConfig::Soclcp(o) => {
+            let (outcome, relaxed) = crate::soclcp::soclcp(problem, o, r, u, observer)?;
+            relaxation_converged = relaxed;
+            (outcome, None)
+        }
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's
@@ -194,6 +237,8 @@ pub fn solve_with_observer(
     };
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
+    } else if relaxation_converged {
+        SolveStatus::RelaxationNotCoulomb
     } else if outcome.out_of_time {
         SolveStatus::TimeBudgetExhausted
     } else {

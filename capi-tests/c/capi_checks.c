@@ -952,3 +952,153 @@ int capi_check_vi_admm_options(void) {
   }
   return 0;
 }
+
+/* ---- optimization-based solvers: TFP 503, PFP 522, ACLMFP 516, SOCLCP 517 ------------------ */
+
+/* As capi_solve_file, with solver `solver_id` and its Siconos defaults; `internal_id` != 0
+ * renames the first internal solver (TFP: 500, 566 or 567), as a host editing the options
+ * struct would. */
+int opt5_solve_file(const char* path, int storage, int solver_id, int internal_id, double tolerance,
+                    int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                    CSolveResult* result) {
+  FrictionContactProblem* file = frictionContact_new_from_filename(path);
+  CHECK(file != NULL, "cannot read %s", path);
+  int nc = file->numberOfContacts;
+  int n = 3 * nc;
+  CHECK(n <= capacity, "%s: %d unknowns do not fit %d", path, n, capacity);
+
+  double* W = malloc(sizeof(double) * ((size_t)n * n + 1));
+  for (int j = 0; j < n; j++)
+    for (int i = 0; i < n; i++) W[i + (size_t)j * n] = NM_get_value(file->M, i, j);
+
+  SbmBuild sbm = {0};
+  NumericsMatrix* M = NULL;
+  switch (storage) {
+    case -1: M = file->M; break;
+    case NM_DENSE: M = dense_matrix(W, n); break;
+    case NM_SPARSE_BLOCK: sbm = sbm_matrix(W, nc); M = sbm.M; break;
+    case NM_SPARSE: M = csr_matrix(W, n); break;
+    default: FAIL("unknown storage %d", storage);
+  }
+  FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
+
+  SolverOptions* options = solver_options_create(solver_id);
+  CHECK(options != NULL, "solver_options_create(%d)", solver_id);
+  if (internal_id != 0) {
+    CHECK(options->numberOfInternalSolvers >= 1, "solver %d has no internal solver", solver_id);
+    options->internalSolvers[0]->solverId = internal_id;
+  }
+  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+
+  double* r = calloc((size_t)n + 1, sizeof(double));
+  double* u = calloc((size_t)n + 1, sizeof(double));
+  double* w2 = calloc((size_t)n + 1, sizeof(double));
+  double* u3 = calloc((size_t)n + 1, sizeof(double));
+  int info = fc3d_driver(&problem, r, u, options);
+  CHECK(info >= 0 && info <= FC3D_RELAXED_NOT_COULOMB, "%s: fc3d_driver(%d) returned %d", path,
+        solver_id, info);
+
+  result->info = info;
+  result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  result->reported_error = options->dparam[SICONOS_DPARAM_RESIDU];
+  result->storage = M->storageType;
+  double api_error = -1.0;
+  int e = fc3d_compute_error(&problem, r, w2, tolerance, options, norm2(file->q, n), &api_error);
+  CHECK(e == 0 || e == 1, "fc3d_compute_error returned %d", e);
+  result->api_error = api_error;
+  result->independent_error = independent_error(W, file->q, file->mu, r, nc, u3);
+  memcpy(reaction_out, r, sizeof(double) * (size_t)n);
+  memcpy(velocity_out, u, sizeof(double) * (size_t)n);
+
+  solver_options_delete(options);
+  free(options);
+  if (storage == NM_SPARSE_BLOCK) sbm_release(&sbm);
+  else if (storage != -1) NM_free(M);
+  frictionContactProblem_free(file);
+  free(W); free(r); free(u); free(w2); free(u3);
+  return 0;
+}
+
+/* Solves one contact (W = I, mu = 0.5) with `id`; returns info, r and u through pointers. */
+static int opt5_one(int id, double q[3], double r[3], double u[3], int* info) {
+  double W[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double mu = 0.5;
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  SolverOptions* o = solver_options_create(id);
+  CHECK(o != NULL, "solver_options_create(%d)", id);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+  r[0] = r[1] = r[2] = 0.0;
+  *info = fc3d_driver(&p, r, u, o);
+  solver_options_delete(o);
+  free(o);
+  return 0;
+}
+
+/* Analytic single contacts through fc3d_driver, option rejections, and SOCLCP's info 3. */
+int opt5_check_single_contacts_and_options(void) {
+  int ids[] = {SICONOS_FRICTION_3D_TFP, SICONOS_FRICTION_3D_PFP, SICONOS_FRICTION_3D_ACLMFP};
+  for (size_t k = 0; k < sizeof ids / sizeof ids[0]; k++) {
+    double r[3], u[3];
+    int info = -100;
+    /* Stick: r = -q, u = 0. */
+    double q_stick[3] = {-1.0, 0.2, -0.1};
+    if (opt5_one(ids[k], q_stick, r, u, &info)) return 1;
+    CHECK(info == 0, "stick %d: info %d", ids[k], info);
+    CHECK(fabs(r[0] - 1.0) + fabs(r[1] + 0.2) + fabs(r[2] - 0.1) <= 1e-10, "stick %d: r", ids[k]);
+    /* Slide: r = (1, -0.5, 0), u = (0, 1.5, 0). */
+    double q_slide[3] = {-1.0, 2.0, 0.0};
+    if (opt5_one(ids[k], q_slide, r, u, &info)) return 1;
+    CHECK(info == 0, "slide %d: info %d", ids[k], info);
+    CHECK(fabs(r[0] - 1.0) + fabs(r[1] + 0.5) + fabs(r[2]) <= 1e-10, "slide %d: r = (%g %g %g)",
+          ids[k], r[0], r[1], r[2]);
+    CHECK(fabs(u[0]) + fabs(u[1] - 1.5) + fabs(u[2]) <= 1e-10, "slide %d: u", ids[k]);
+  }
+  /* SOCLCP: a sliding contact gives the relaxed (lifting) solution, reported with info 3. */
+  {
+    double r[3], u[3], q[3] = {-1.0, 2.0, 0.0};
+    int info = -100;
+    if (opt5_one(SICONOS_FRICTION_3D_SOCLCP, q, r, u, &info)) return 1;
+    CHECK(info == FC3D_RELAXED_NOT_COULOMB, "SOCLCP slide: info %d", info);
+    CHECK(fabs(r[0] - 1.6) + fabs(r[1] + 0.8) + fabs(r[2]) <= 1e-10, "SOCLCP slide: r");
+    double q_stick[3] = {-1.0, 0.2, -0.1};
+    if (opt5_one(SICONOS_FRICTION_3D_SOCLCP, q_stick, r, u, &info)) return 1;
+    CHECK(info == 0, "SOCLCP stick: info %d", info);
+  }
+  /* Options fc3d does not implement are rejected, naming the index; nothing is written. */
+  {
+    double W[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, q[3] = {-1, 0, 0}, mu = 0.5;
+    NumericsMatrix M = {0};
+    M.storageType = NM_DENSE;
+    M.size0 = M.size1 = 3;
+    M.matrix0 = W;
+    FrictionContactProblem p = {3, 1, &M, q, &mu};
+    double r[3] = {7, 7, 7}, u[3] = {7, 7, 7};
+    SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_TFP);
+    o->iparam[3] = 1;
+    CHECK(fc3d_driver(&p, r, u, o) == FC3D_ERR_INVALID_OPTION, "TFP rescaling accepted");
+    CHECK(strstr(fc3d_last_error_message(), "iparam[3]") != NULL, "message: %s", fc3d_last_error_message());
+    o->iparam[3] = 0;
+    o->internalSolvers[0]->solverId = SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCone;
+    CHECK(fc3d_driver(&p, r, u, o) == FC3D_ERR_INVALID_OPTION, "TFP internal 552 accepted");
+    o->internalSolvers[0]->solverId = SICONOS_FRICTION_3D_NSGS;
+    o->dparam[2] = 0.0;
+    CHECK(fc3d_driver(&p, r, u, o) == FC3D_ERR_INVALID_OPTION, "TFP ratio 0 accepted");
+    CHECK(strstr(fc3d_last_error_message(), "dparam[2]") != NULL, "message: %s", fc3d_last_error_message());
+    solver_options_delete(o);
+    free(o);
+    o = solver_options_create(SICONOS_FRICTION_3D_SOCLCP);
+    CHECK(o->dparam[8] == 1.0, "SOCLCP default relaxation");
+    o->dparam[8] = 2.0;
+    CHECK(fc3d_driver(&p, r, u, o) == FC3D_ERR_INVALID_OPTION, "SOCLCP relaxation 2 accepted");
+    CHECK(strstr(fc3d_last_error_message(), "dparam[8]") != NULL, "message: %s", fc3d_last_error_message());
+    solver_options_delete(o);
+    free(o);
+    CHECK(r[0] == 7 && u[0] == 7, "outputs written on rejection");
+  }
+  return 0;
+}

@@ -56,6 +56,7 @@ pub struct BenchArgs {
     /// 554 PROJ-REG, 555 PROJ-DIAG, 558 PROJ-VEL, 561 FB, 562 QUARTIC, 564 CYL-ITER,
     /// 570 FP-VI-UPK, 571 EBP, 572 EAL.
     /// Other families by id or name: 505 DSFP, 506 VI-FPP, 507 VI-EG, 511 FPP, 512 EG, 523 ADMM.
+    /// `503`|`TFP`, `522`|`PFP`, `516`|`ACLMFP`, `517`|`SOCLCP`.
     #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list)]
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;
@@ -256,6 +257,7 @@ fn status_name(s: SolveStatus) -> &'static str {
         SolveStatus::Converged => "converged",
         SolveStatus::MaxIterationsReached => "max-iter",
         SolveStatus::TimeBudgetExhausted => "out-of-time",
+        SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
     }
 }
 

@@ -6,6 +6,8 @@
 //! * `all` — every implemented combination: NSGS with each local solver of
 //!   [`LocalSolverKind::ALL`];
 //! * `SOLVER` — a solver with its default local solver: `500` or `NSGS` (= `500/565`);
+//! * `TFP` (503), `PFP` (522), `ACLMFP` (516), `SOCLCP` (517) — the optimization-based families
+//!   with their Siconos defaults (no local solver);
 //! * `SOLVER/LOCAL` — a solver with a local solver given by Siconos id or name:
 //!
 //! | id | names |
@@ -45,10 +47,18 @@ pub enum SolverFamily {
     Vi(ViSolver),
     /// ADMM (Siconos id 523).
     Admm,
+    /// Tresca successive approximation (Siconos id 503).
+    Tfp,
+    /// Panagiotopoulos alternating fixed point (Siconos id 522).
+    Pfp,
+    /// ACLM fixed point (Siconos id 516).
+    Aclmfp,
+    /// The SOCLCP relaxation on its own (Siconos id 517).
+    Soclcp,
 }
 
 /// (family, Siconos id, name) for every family.
-const FAMILIES: [(SolverFamily, i32, &str); 7] = [
+const FAMILIES: [(SolverFamily, i32, &str); 11] = [
     (SolverFamily::Nsgs, 500, "NSGS"),
     (SolverFamily::Vi(ViSolver::DeSaxceFixedPoint), 505, "DSFP"),
     (
@@ -60,6 +70,10 @@ const FAMILIES: [(SolverFamily, i32, &str); 7] = [
     (SolverFamily::Vi(ViSolver::FixedPointProjection), 511, "FPP"),
     (SolverFamily::Vi(ViSolver::ExtraGradient), 512, "EG"),
     (SolverFamily::Admm, 523, "ADMM"),
+    (SolverFamily::Tfp, 503, "TFP"),
+    (SolverFamily::Pfp, 522, "PFP"),
+    (SolverFamily::Aclmfp, 516, "ACLMFP"),
+    (SolverFamily::Soclcp, 517, "SOCLCP"),
 ];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
@@ -146,6 +160,30 @@ pub fn solver_config(
             SolverConfig::Vi(o)
         }
         SolverFamily::Admm => SolverConfig::Admm(AdmmOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Tfp => SolverConfig::Tresca(fc3d::tresca::TrescaOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Pfp => SolverConfig::Pfp(fc3d::pfp::PfpOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Aclmfp => SolverConfig::Aclm(fc3d::soclcp::AclmOptions {
+            tolerance,
+            max_iter,
+            time_budget,
+            ..Default::default()
+        }),
+        SolverFamily::Soclcp => SolverConfig::Soclcp(fc3d::soclcp::SoclcpOptions {
             tolerance,
             max_iter,
             time_budget,
@@ -329,6 +367,7 @@ mod tests {
         }
         assert!(parse_spec_list("500,,552").is_err());
         assert!(parse_spec_list("500,foo").is_err());
+        assert!(parse_spec("TFP/552").is_err());
     }
 
     #[test]
@@ -352,6 +391,24 @@ mod tests {
         let l = parse_spec_list("500/557,ALL").unwrap();
         assert_eq!(l[0], nsgs(LocalSolverKind::ProjectionOnCylinder));
         assert_eq!(l.len(), LocalSolverKind::ALL.len());
+    }
+
+    #[test]
+    fn optimization_families() {
+        for (spec, id, label) in [
+            ("TFP", 503, "TFP/500"),
+            ("503", 503, "TFP/500"),
+            ("pfp", 522, "PFP/566"),
+            ("ACLMFP", 516, "ACLMFP"),
+            ("517", 517, "SOCLCP"),
+        ] {
+            let s = parse_spec(spec).unwrap();
+            let c = solver_config(&s, 1e-7, 12, None);
+            assert_eq!(c.siconos_id(), id);
+            assert_eq!((c.tolerance(), c.max_iter()), (1e-7, 12));
+            assert_eq!(s.label(), label);
+            assert_eq!(s.legend(), label);
+        }
     }
 
     #[test]

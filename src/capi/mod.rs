@@ -37,6 +37,10 @@ pub const FC3D_NOT_CONVERGED: c_int = 1;
 /// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
 /// reaction is the best iterate it measured, and its error is above the tolerance.
 pub const FC3D_TIME_BUDGET_EXHAUSTED: c_int = 2;
+/// A solver of a relaxed problem (SOCLCP, id 517) solved its relaxation to the tolerance, but
+/// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
+/// returned reaction, is above the tolerance (some contact slides).
+pub const FC3D_RELAXED_NOT_COULOMB: c_int = 3;
 /// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 /// Siconos' fc3d solvers leave unused.
 pub const FC3D_DPARAM_TIME_BUDGET: c_int = 19;

@@ -48,6 +48,8 @@ pub(crate) const DPARAM_NSGS_RELAXATION_VALUE: usize = 8;
 /// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
 /// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
 pub const FC3D_RHO_STRATEGY_DUMONT: c_int = 10;
+/// Relaxation omega of the SOCLCP Gauss-Seidel (SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE).
+pub(crate) const DPARAM_SOCLCP_RELAXATION: usize = 8;
 // VI family (VI_cst.h: SICONOS_VI_IPARAM / SICONOS_VI_DPARAM; FPP/EG/DSFP use the same slots).
 pub(crate) const IPARAM_VI_DECREASE_RHO: usize = 3;
 pub(crate) const IPARAM_VI_LINESEARCH_METHOD: usize = 6;
@@ -732,6 +734,84 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
         }
         505 | 506 | 507 | 511 | 512 => vi_from_c(o),
         523 => admm_from_c(o),
+        503 => {
+            let p = Params::of(o, "TFP options")?;
+            let mut t = crate::tresca::TrescaOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("TFP")?,
+                time_budget: p.time_budget()?,
+                ..Default::default()
+            };
+            require_no_extras(&p)?;
+            let internal = first_internal(o);
+            if let Some(i) = internal {
+                t.inner = tresca_inner_from_c(i)?;
+                let ip = Params::of(i, "TFP internal solver options")?;
+                t.inner_max_iter = ip.count(IPARAM_MAX_ITER, "internal max iterations")?;
+            }
+            t.inner_tolerance = inner_tolerance_from_c(&p, internal)?;
+            Ok(SolverConfig::Tresca(t))
+        }
+        522 => {
+            let p = Params::of(o, "PFP options")?;
+            let mut t = crate::pfp::PfpOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("PFP")?,
+                time_budget: p.time_budget()?,
+                ..Default::default()
+            };
+            require_no_extras(&p)?;
+            let internal = first_internal(o);
+            if let Some(i) = internal {
+                t.tangent = tresca_inner_from_c(i)?;
+                let ip = Params::of(i, "PFP internal solver options")?;
+                t.inner_max_iter = ip.count(IPARAM_MAX_ITER, "internal max iterations")?;
+            }
+            t.inner_tolerance = inner_tolerance_from_c(&p, internal)?;
+            Ok(SolverConfig::Pfp(t))
+        }
+        516 => {
+            let p = Params::of(o, "ACLMFP options")?;
+            require_no_extras(&p)?;
+            if first_internal(o).is_some() {
+                return Err(CError::new(FC3D_ERR_INVALID_OPTION, "ACLMFP (516) takes no internal solver in fc3d (its SOCLCP is solved by its own Gauss-Seidel)"));
+            }
+            Ok(SolverConfig::Aclm(crate::soclcp::AclmOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("ACLMFP")?,
+                time_budget: p.time_budget()?,
+                inner_tolerance: inner_tolerance_from_c(&p, None)?,
+                ..Default::default()
+            }))
+        }
+        517 => {
+            let p = Params::of(o, "SOCLCP options")?;
+            require_no_extras(&p)?;
+            p.require(
+                IPARAM_INTERNAL_ERROR_STRATEGY,
+                0,
+                "internal error strategy (SOCLCP has no internal solver)",
+            )?;
+            if first_internal(o).is_some() {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    "SOCLCP (517) takes no internal solver in fc3d",
+                ));
+            }
+            let omega = p.dparam[DPARAM_SOCLCP_RELAXATION];
+            if !(omega > 0.0 && omega < 2.0) {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!("SOCLCP relaxation (dparam[{DPARAM_SOCLCP_RELAXATION}]) = {omega} must be in (0, 2)"),
+                ));
+            }
+            Ok(SolverConfig::Soclcp(crate::soclcp::SoclcpOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("SOCLCP")?,
+                relaxation: omega,
+                time_budget: p.time_budget()?,
+            }))
+        }
         id => Err(unsupported_solver(id)),
     }
 }
@@ -819,6 +899,70 @@ fn nsgs_sweep_options_from_c(p: &Params<'_>, n: &mut NsgsOptions) -> CResult<()>
         k => Some(k),
     };
     Ok(())
+}
+
+/// The first internal solver's options, if any.
+unsafe fn first_internal(o: &SolverOptions) -> Option<&SolverOptions> {
+    if o.numberOfInternalSolvers >= 1 && !o.internalSolvers.is_null() {
+        (*o.internalSolvers).as_ref()
+    } else {
+        None
+    }
+}
+
+/// The options TFP, PFP, ACLMFP and SOCLCP do not implement must keep their default (0).
+fn require_no_extras(p: &Params<'_>) -> CResult<()> {
+    p.require(IPARAM_RESCALING, 0, "rescaling")?;
+    p.require(IPARAM_ERROR_EVALUATION, 0, "error evaluation")?;
+    p.require(
+        IPARAM_ERROR_EVALUATION_FREQUENCY,
+        0,
+        "error evaluation frequency",
+    )
+}
+
+/// The Tresca sub-problem solver of TFP / the tangent solver of PFP, from the internal solver id:
+/// 500 (NSGS on the cylinder; its own local solver is replaced by the exact Tresca solve), 566
+/// (FP-VI-UPK on the cylinder), 567 (projected gradient, Algorithm 9).
+unsafe fn tresca_inner_from_c(i: &SolverOptions) -> CResult<crate::tresca::TrescaInnerSolver> {
+    crate::tresca::TrescaInnerSolver::from_siconos_id(i.solverId).ok_or_else(|| {
+        CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            format!(
+                "internal solver {} ({}) is not implemented for Tresca sub-problems in fc3d (500, 566 or 567)",
+                i.solverId,
+                solver_name(i.solverId).to_string_lossy()
+            ),
+        )
+    })
+}
+
+/// iparam[2] = 0: adaptive inner tolerance, outer error / dparam[2]; 1: the internal solver's
+/// dparam[0].
+unsafe fn inner_tolerance_from_c(
+    p: &Params<'_>,
+    internal: Option<&SolverOptions>,
+) -> CResult<crate::tresca::InnerTolerance> {
+    match (p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY], internal) {
+        (0, _) => {
+            let ratio = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
+            if ratio > 0.0 && ratio.is_finite() {
+                Ok(crate::tresca::InnerTolerance::Adaptive { ratio })
+            } else {
+                Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!("internal error ratio (dparam[{DPARAM_INTERNAL_ERROR_RATIO}]) = {ratio} must be finite and > 0"),
+                ))
+            }
+        }
+        (1, Some(i)) => Ok(crate::tresca::InnerTolerance::Given(
+            Params::of(i, "internal solver options")?.tolerance("internal")?,
+        )),
+        (other, _) => Err(CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            format!("internal error strategy (iparam[{IPARAM_INTERNAL_ERROR_STRATEGY}]) = {other} is not implemented here (0 adaptive, 1 the internal solver's tolerance when there is one)"),
+        )),
+    }
 }
 
 /// Writes the outputs Siconos hosts read: iterations done and final error (and Dumont's
