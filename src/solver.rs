@@ -4,6 +4,7 @@
 use crate::error::{check_finite, Fc3dError};
 use crate::measure::natural_map_error;
 use crate::nsgs;
+use crate::nsn::{self, NsnOptions};
 use crate::options::NsgsOptions;
 use crate::problem::FrictionProblem;
 use crate::report::{SolveReport, SolveStatus};
@@ -19,18 +20,23 @@ use crate::report::{SolveReport, SolveStatus};
 pub enum SolverConfig {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs(NsgsOptions),
+    /// Nonsmooth Newton: Alart-Curnier / Jean-Moreau (504), Fischer-Burmeister (513), natural
+    /// map (520).
+    Nsn(NsnOptions),
 }
 
 impl SolverConfig {
     pub fn tolerance(&self) -> f64 {
         match self {
             SolverConfig::Nsgs(o) => o.tolerance,
+            SolverConfig::Nsn(o) => o.tolerance,
         }
     }
 
     pub fn max_iter(&self) -> usize {
         match self {
             SolverConfig::Nsgs(o) => o.max_iter,
+            SolverConfig::Nsn(o) => o.max_iter,
         }
     }
 
@@ -38,6 +44,7 @@ impl SolverConfig {
     pub fn time_budget(&self) -> Option<std::time::Duration> {
         match self {
             SolverConfig::Nsgs(o) => o.time_budget,
+            SolverConfig::Nsn(o) => o.time_budget,
         }
     }
 
@@ -45,6 +52,7 @@ impl SolverConfig {
     pub fn siconos_id(&self) -> i32 {
         match self {
             SolverConfig::Nsgs(_) => 500,
+            SolverConfig::Nsn(o) => o.formulation.siconos_id(),
         }
     }
 
@@ -52,6 +60,7 @@ impl SolverConfig {
     pub fn label(&self) -> String {
         match self {
             SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
+            SolverConfig::Nsn(o) => o.label(),
         }
     }
 
@@ -78,6 +87,7 @@ impl SolverConfig {
                     }
                 }
             }
+            SolverConfig::Nsn(o) => nsn::validate(o)?,
         }
         Ok(())
     }
@@ -161,6 +171,7 @@ pub fn solve_with_observer(
 
     let outcome = match config {
         SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
+        SolverConfig::Nsn(o) => nsn::nsn(problem, o, r, u, observer)?,
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's
