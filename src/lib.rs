@@ -23,6 +23,7 @@ pub mod nsgs;
 pub mod nsn;
 pub mod options;
 pub mod problem;
+pub mod prox;
 pub mod report;
 pub mod scenes;
 pub mod solver;
@@ -34,6 +35,7 @@ pub use nsgs::Sweeper;
 pub use nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use options::{ErrorEvaluation, LocalSolverKind, LocalSolverOptions, NsgsOptions, RhoRule};
 pub use problem::FrictionProblem;
+pub use prox::{ProxInternal, ProxOptions};
 pub use report::{SolveReport, SolveStatus};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};
 

@@ -7,6 +7,7 @@ use crate::nsgs;
 use crate::nsn::{self, NsnOptions};
 use crate::options::NsgsOptions;
 use crate::problem::FrictionProblem;
+use crate::prox::{self, ProxOptions};
 use crate::report::{SolveReport, SolveStatus};
 
 /// Which solver to run, with its typed options.
@@ -23,6 +24,8 @@ pub enum SolverConfig {
     /// Nonsmooth Newton: Alart-Curnier / Jean-Moreau (504), Fischer-Burmeister (513), natural
     /// map (520).
     Nsn(NsnOptions),
+    /// Proximal point method with an NSN-AC or NSGS internal solver (502).
+    Prox(ProxOptions),
 }
 
 impl SolverConfig {
@@ -30,6 +33,7 @@ impl SolverConfig {
         match self {
             SolverConfig::Nsgs(o) => o.tolerance,
             SolverConfig::Nsn(o) => o.tolerance,
+            SolverConfig::Prox(o) => o.tolerance,
         }
     }
 
@@ -37,6 +41,7 @@ impl SolverConfig {
         match self {
             SolverConfig::Nsgs(o) => o.max_iter,
             SolverConfig::Nsn(o) => o.max_iter,
+            SolverConfig::Prox(o) => o.max_iter,
         }
     }
 
@@ -45,6 +50,7 @@ impl SolverConfig {
         match self {
             SolverConfig::Nsgs(o) => o.time_budget,
             SolverConfig::Nsn(o) => o.time_budget,
+            SolverConfig::Prox(o) => o.time_budget,
         }
     }
 
@@ -53,6 +59,7 @@ impl SolverConfig {
         match self {
             SolverConfig::Nsgs(_) => 500,
             SolverConfig::Nsn(o) => o.formulation.siconos_id(),
+            SolverConfig::Prox(_) => 502,
         }
     }
 
@@ -61,6 +68,7 @@ impl SolverConfig {
         match self {
             SolverConfig::Nsgs(o) => format!("NSGS/{}", o.local.kind.siconos_id()),
             SolverConfig::Nsn(o) => o.label(),
+            SolverConfig::Prox(o) => o.label(),
         }
     }
 
@@ -88,6 +96,7 @@ impl SolverConfig {
                 }
             }
             SolverConfig::Nsn(o) => nsn::validate(o)?,
+            SolverConfig::Prox(o) => prox::validate(o)?,
         }
         Ok(())
     }
@@ -172,6 +181,7 @@ pub fn solve_with_observer(
     let outcome = match config {
         SolverConfig::Nsgs(o) => nsgs::nsgs(problem, o, r, u, observer)?,
         SolverConfig::Nsn(o) => nsn::nsn(problem, o, r, u, observer)?,
+        SolverConfig::Prox(o) => prox::prox(problem, o, r, u, observer)?,
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's

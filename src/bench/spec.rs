@@ -22,17 +22,43 @@
 
 use std::time::Duration;
 
-use fc3d::{LocalSolverKind, NsgsOptions, SolverConfig};
+use fc3d::{
+    LocalSolverKind, NsgsOptions, NsnFormulation, NsnOptions, ProxInternal, ProxOptions,
+    SolverConfig,
+};
 
 /// Solver families `fc3d bench` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum SolverFamily {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs,
+    /// Nonsmooth Newton with the given formulation (504 AC and JM, 513 FB, 520 NM), Siconos'
+    /// default options.
+    Nsn(NsnFormulation),
+    /// Proximal point with internal NSN-AC (502, Siconos' default).
+    ProxNsn,
+    /// Proximal point with internal NSGS (PPA-NSGS-AC).
+    ProxNsgs,
 }
 
 /// (family, Siconos id, name) for every family.
-const FAMILIES: [(SolverFamily, i32, &str); 1] = [(SolverFamily::Nsgs, 500, "NSGS")];
+const FAMILIES: [(SolverFamily, i32, &str); 7] = [
+    (SolverFamily::Nsgs, 500, "NSGS"),
+    (
+        SolverFamily::Nsn(NsnFormulation::AlartCurnier),
+        504,
+        "NSN-AC",
+    ),
+    (SolverFamily::Nsn(NsnFormulation::JeanMoreau), 504, "NSN-JM"),
+    (
+        SolverFamily::Nsn(NsnFormulation::FischerBurmeister),
+        513,
+        "NSN-FB",
+    ),
+    (SolverFamily::Nsn(NsnFormulation::NaturalMap), 520, "NSN-NM"),
+    (SolverFamily::ProxNsn, 502, "PROX"),
+    (SolverFamily::ProxNsgs, 502, "PROX-NSGS"),
+];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
 const LOCAL_NAMES: [(LocalSolverKind, &[&str]); 6] = [
@@ -68,7 +94,10 @@ impl SolverSpec {
 
     /// The label with the local solver's short name, for legends: `NSGS/552 PROJ`.
     pub fn legend(&self) -> String {
-        format!("{} {}", self.label(), local_short_name(self.local))
+        match self.family {
+            SolverFamily::Nsgs => format!("{} {}", self.label(), local_short_name(self.local)),
+            _ => self.label(),
+        }
     }
 }
 
@@ -87,6 +116,23 @@ pub fn solver_config(
             o.max_iter = max_iter;
             o.time_budget = time_budget;
             SolverConfig::Nsgs(o)
+        }
+        SolverFamily::Nsn(formulation) => {
+            let mut o = NsnOptions::new(formulation);
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Nsn(o)
+        }
+        SolverFamily::ProxNsn | SolverFamily::ProxNsgs => {
+            let mut o = ProxOptions::default();
+            if spec.family == SolverFamily::ProxNsgs {
+                o.internal = ProxInternal::Nsgs(NsgsOptions::default());
+            }
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Prox(o)
         }
     }
 }
@@ -165,6 +211,13 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
     let local = match (family, local) {
         (SolverFamily::Nsgs, None) => LocalSolverKind::NewtonHybrid,
         (SolverFamily::Nsgs, Some(l)) => parse_local(l)?,
+        // The local solver is meaningless outside NSGS; the field keeps NSGS' default.
+        (_, None) => LocalSolverKind::NewtonHybrid,
+        (_, Some(l)) => {
+            return Err(format!(
+                "'{s}': only NSGS takes a local solver, not '{solver}' (got '/{l}')"
+            ))
+        }
     };
     Ok(SolverSpec { family, local })
 }
@@ -300,5 +353,27 @@ mod tests {
         assert_eq!(o.local.kind, LocalSolverKind::ProjectionOnCone);
         assert_eq!(spec.label(), "NSGS/552");
         assert_eq!(spec.legend(), "NSGS/552 PROJ");
+    }
+
+    #[test]
+    fn newton_and_proximal_families() {
+        for (text, id, label) in [
+            ("504", 504, "NSN-AC/GP"),
+            ("nsn-ac", 504, "NSN-AC/GP"),
+            ("NSN-JM", 504, "NSN-JM/GP"),
+            ("513", 513, "NSN-FB/GP"),
+            ("nsn-nm", 520, "NSN-NM/GP"),
+            ("502", 502, "PROX/NSN-AC"),
+            ("PROX-NSGS", 502, "PROX/NSGS"),
+        ] {
+            let spec = parse_spec(text).unwrap();
+            let c = solver_config(&spec, 1e-8, 50, None);
+            assert_eq!(c.siconos_id(), id, "{text}");
+            assert_eq!(c.tolerance(), 1e-8);
+            assert_eq!(c.max_iter(), 50);
+            assert_eq!(spec.label(), label);
+            assert_eq!(spec.legend(), label);
+        }
+        assert!(parse_spec("504/552").is_err());
     }
 }
