@@ -103,7 +103,10 @@ fn shared_problems_through_fc3d_driver_match_the_rust_api() {
                     storage
                 };
                 assert_eq!(res.storage, expected_storage);
-                assert_eq!(res.info, 0, "{name} {id}/{internal} storage {storage}: {res:?}");
+                assert_eq!(
+                    res.info, 0,
+                    "{name} {id}/{internal} storage {storage}: {res:?}"
+                );
                 assert!(res.reported_error <= tol);
                 assert!(
                     (res.reported_error - res.independent_error).abs()
@@ -118,7 +121,10 @@ fn shared_problems_through_fc3d_driver_match_the_rust_api() {
                 let config = rust_config(id, internal, tol, max_iter as usize);
                 let report = solve(&rp, &config, &mut rr, &mut ru).unwrap();
                 assert_eq!(r, rr, "{name} {id}/{internal} storage {storage}: reactions");
-                assert_eq!(u, ru, "{name} {id}/{internal} storage {storage}: velocities");
+                assert_eq!(
+                    u, ru,
+                    "{name} {id}/{internal} storage {storage}: velocities"
+                );
                 assert_eq!(res.iterations as usize, report.iterations);
                 assert_eq!(res.reported_error, report.error);
             }

@@ -190,8 +190,13 @@ impl NewtonSolver {
             // Newton direction J d = -F, regularised if needed, else the fixed-point direction.
             let mut found = false;
             for shift_try in std::iter::once(0.0).chain(REGULARIZATION_SHIFTS) {
-                self.matrix
-                    .fill(&self.w, &self.a, &self.b, shift_try * self.diagonal_scale);
+                self.matrix.fill(
+                    &self.w,
+                    &self.a,
+                    &self.b,
+                    shift,
+                    shift_try * self.diagonal_scale,
+                );
                 self.d
                     .iter_mut()
                     .zip(&self.f)

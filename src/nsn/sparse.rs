@@ -95,8 +95,16 @@ impl NewtonMatrix {
         })
     }
 
-    /// Fills `J = A + B W + shift I` (A, B: one 3x3 block per contact, row-major).
-    pub fn fill(&mut self, w: &BlockSparseMatrix, a: &[Mat3], b: &[Mat3], shift: f64) {
+    /// Fills `J = A + B (W + w_shift I) + regularization I` (A, B: one 3x3 block per contact,
+    /// row-major).
+    pub fn fill(
+        &mut self,
+        w: &BlockSparseMatrix,
+        a: &[Mat3],
+        b: &[Mat3],
+        w_shift: f64,
+        regularization: f64,
+    ) {
         let (row_ptr, col_idx, blocks) = (w.row_ptr(), w.col_idx(), w.blocks());
         for c in 0..self.diagonal_block.len() {
             let bc = &b[c];
@@ -113,9 +121,10 @@ impl NewtonMatrix {
                 if col_idx[k] == c {
                     for i in 0..3 {
                         for j in 0..3 {
-                            self.values[self.slots[9 * k + 3 * i + j]] += a[c][i][j];
+                            self.values[self.slots[9 * k + 3 * i + j]] +=
+                                a[c][i][j] + w_shift * bc[i][j];
                         }
-                        self.values[self.slots[9 * k + 4 * i]] += shift;
+                        self.values[self.slots[9 * k + 4 * i]] += regularization;
                     }
                 }
             }
@@ -168,7 +177,7 @@ mod tests {
         let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         let zero = [[0.0; 3]; 3];
         // J = 0 + I W + 0.5 I.
-        m.fill(&w, &[zero, zero], &[id, id], 0.5);
+        m.fill(&w, &[zero, zero], &[id, id], 0.25, 0.25);
         let x = [1.0, -2.0, 0.5, 3.0, 0.25, -1.0];
         let mut rhs = vec![0.0; 6];
         let dw = crate::matrix::Delassus::SparseBlock(w.clone());
@@ -181,7 +190,7 @@ mod tests {
             assert!((rhs[i] - x[i]).abs() < 1e-12, "{rhs:?}");
         }
         // Refill with other values on the same pattern and solve again.
-        m.fill(&w, &[id, id], &[zero, zero], 0.0);
+        m.fill(&w, &[id, id], &[zero, zero], 0.0, 0.0);
         let mut rhs2 = x.to_vec();
         assert!(m.solve(&mut rhs2));
         assert_eq!(rhs2, x.to_vec());
@@ -193,7 +202,7 @@ mod tests {
         let w = BlockSparseMatrix::new(1, 1, vec![0, 1], vec![0], vec![d0]).unwrap();
         let mut m = NewtonMatrix::new(&w).unwrap();
         let zero = [[0.0; 3]; 3];
-        m.fill(&w, &[zero], &[zero], 0.0);
+        m.fill(&w, &[zero], &[zero], 0.0, 0.0);
         let mut rhs = vec![1.0, 1.0, 1.0];
         assert!(!m.solve(&mut rhs));
     }
