@@ -108,14 +108,12 @@ fn shifted(w: &Delassus<'_>, shift: f64) -> Result<Delassus<'static>, Fc3dError>
         Delassus::SparseBlock(s) => {
             let mut blocks = s.blocks().to_vec();
             for bi in 0..s.n_block_rows() {
-                for k in s.row_ptr()[bi]..s.row_ptr()[bi + 1] {
-                    if s.col_idx()[k] == bi {
-                        // Column-major 3x3: the diagonal is entries 0, 4, 8. Add once per
-                        // contact even if a host stored the diagonal block twice.
-                        for e in [0, 4, 8] {
-                            blocks[k][e] += shift;
-                        }
-                        break;
+                let (start, end) = (s.row_ptr()[bi], s.row_ptr()[bi + 1]);
+                // Column-major 3x3: the diagonal is entries 0, 4, 8. Added to the first
+                // diagonal block only, should a host store it twice.
+                if let Some(k) = (start..end).find(|&k| s.col_idx()[k] == bi) {
+                    for e in [0, 4, 8] {
+                        blocks[k][e] += shift;
                     }
                 }
             }

@@ -219,16 +219,20 @@ fn failures_are_honest_and_finite() {
 #[test]
 fn bad_options_are_rejected() {
     let p = two_contacts([-1.0, 0.0, 0.0], 0.5);
-    let mut o = NsnOptions::default();
-    o.rho_rule = RhoRule::Constant(0.0);
+    let o = NsnOptions {
+        rho_rule: RhoRule::Constant(0.0),
+        ..NsnOptions::default()
+    };
     let mut r = vec![0.0; 6];
     let mut u = vec![0.0; 6];
     assert!(matches!(
         solve(&p, &SolverConfig::Nsn(o), &mut r, &mut u),
         Err(Fc3dError::InvalidOption(_))
     ));
-    let mut o = NsnOptions::default();
-    o.line_search_max_iter = 0;
+    let o = NsnOptions {
+        line_search_max_iter: 0,
+        ..NsnOptions::default()
+    };
     assert!(matches!(
         solve(&p, &SolverConfig::Nsn(o), &mut r, &mut u),
         Err(Fc3dError::InvalidOption(_))
@@ -245,9 +249,11 @@ fn every_rho_rule_solves_a_shared_problem() {
         RhoRule::SplitSpectralNorm,
         RhoRule::SplitSpectralNormCond,
     ] {
-        let mut o = NsnOptions::default();
-        o.rho_rule = rule;
-        o.tolerance = 1e-8;
+        let o = NsnOptions {
+            rho_rule: rule,
+            tolerance: 1e-8,
+            ..NsnOptions::default()
+        };
         let (rep, r, _) = run(&p, &SolverConfig::Nsn(o));
         assert_eq!(rep.status, SolveStatus::Converged, "{rule:?}");
         assert!(independent_error(&p, &r) <= 1e-8);

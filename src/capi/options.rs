@@ -653,13 +653,15 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
         504 | 513 | 520 => Ok(SolverConfig::Nsn(nsn_from_c(o)?)),
         502 => {
             let p = Params::of(o, "PROX options")?;
-            let mut x = ProxOptions::default();
-            x.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
-            x.tolerance = p.tolerance("PROX")?;
-            x.time_budget = p.time_budget()?;
-            x.alpha = p.dparam[DPARAM_PROX_ALPHA];
-            x.sigma = p.dparam[DPARAM_PROX_SIGMA];
-            x.nu = p.dparam[DPARAM_PROX_NU];
+            let mut x = ProxOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("PROX")?,
+                time_budget: p.time_budget()?,
+                alpha: p.dparam[DPARAM_PROX_ALPHA],
+                sigma: p.dparam[DPARAM_PROX_SIGMA],
+                nu: p.dparam[DPARAM_PROX_NU],
+                ..ProxOptions::default()
+            };
             for (k, name, v) in [
                 (DPARAM_PROX_ALPHA, "alpha", x.alpha),
                 (DPARAM_PROX_SIGMA, "sigma", x.sigma),

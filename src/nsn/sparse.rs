@@ -45,8 +45,12 @@ impl NewtonMatrix {
         let mut by_column = vec![(0usize, 0usize); n_blocks]; // (block row, block index)
         let mut diagonal_block = vec![usize::MAX; nc];
         for c in 0..nc {
-            for k in row_ptr[c]..row_ptr[c + 1] {
-                let b = col_idx[k];
+            for (k, &b) in col_idx
+                .iter()
+                .enumerate()
+                .take(row_ptr[c + 1])
+                .skip(row_ptr[c])
+            {
                 by_column[next[b]] = (c, k);
                 next[b] += 1;
                 if b == c {
@@ -95,6 +99,7 @@ impl NewtonMatrix {
         })
     }
 
+    #[allow(clippy::needless_range_loop)] // i, j index rows and columns of three arrays at once
     /// Fills `J = A + B (W + w_shift I) + regularization I` (A, B: one 3x3 block per contact,
     /// row-major).
     pub fn fill(
