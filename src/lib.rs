@@ -21,9 +21,11 @@ pub mod local;
 pub mod matrix;
 pub mod measure;
 pub mod nsgs;
+pub mod nsn;
 pub mod options;
 pub mod pfp;
 pub mod problem;
+pub mod prox;
 pub mod report;
 pub mod scaling;
 pub mod scenes;
@@ -37,11 +39,13 @@ pub use error::Fc3dError;
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
 pub use nsgs::Sweeper;
+pub use nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use options::{
     ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
     NsgsOptions, RhoRule,
 };
 pub use problem::FrictionProblem;
+pub use prox::{ProxInternal, ProxOptions};
 pub use report::{SolveReport, SolveStatus};
 pub use scaling::{solve_rescaled, Rescaling};
 pub use solver::{solve, solve_with_observer, IterationEvent, SolverConfig};

@@ -4,8 +4,10 @@
 use crate::error::{check_finite, Fc3dError};
 use crate::measure::natural_map_error;
 use crate::nsgs;
+use crate::nsn::{self, NsnOptions};
 use crate::options::NsgsOptions;
 use crate::problem::FrictionProblem;
+use crate::prox::{self, ProxOptions};
 use crate::report::{SolveReport, SolveStatus};
 
 /// Which solver to run, with its typed options.
@@ -31,6 +33,11 @@ pub enum SolverConfig {
     Aclm(crate::soclcp::AclmOptions),
     /// The SOCLCP relaxation solved on its own (Siconos id 517).
     Soclcp(crate::soclcp::SoclcpOptions),
+    /// Nonsmooth Newton: Alart-Curnier / Jean-Moreau (504), Fischer-Burmeister (513), natural
+    /// map (520).
+    Nsn(NsnOptions),
+    /// Proximal point method with an NSN-AC or NSGS internal solver (502).
+    Prox(ProxOptions),
 }
 
 impl SolverConfig {
@@ -43,6 +50,8 @@ impl SolverConfig {
             SolverConfig::Pfp(o) => o.tolerance,
             SolverConfig::Aclm(o) => o.tolerance,
             SolverConfig::Soclcp(o) => o.tolerance,
+            SolverConfig::Nsn(o) => o.tolerance,
+            SolverConfig::Prox(o) => o.tolerance,
         }
     }
 
@@ -55,6 +64,8 @@ impl SolverConfig {
             SolverConfig::Pfp(o) => o.max_iter,
             SolverConfig::Aclm(o) => o.max_iter,
             SolverConfig::Soclcp(o) => o.max_iter,
+            SolverConfig::Nsn(o) => o.max_iter,
+            SolverConfig::Prox(o) => o.max_iter,
         }
     }
 
@@ -68,6 +79,8 @@ impl SolverConfig {
             SolverConfig::Pfp(o) => o.time_budget,
             SolverConfig::Aclm(o) => o.time_budget,
             SolverConfig::Soclcp(o) => o.time_budget,
+            SolverConfig::Nsn(o) => o.time_budget,
+            SolverConfig::Prox(o) => o.time_budget,
         }
     }
 
@@ -81,6 +94,8 @@ impl SolverConfig {
             SolverConfig::Pfp(_) => 522,
             SolverConfig::Aclm(_) => 516,
             SolverConfig::Soclcp(_) => 517,
+            SolverConfig::Nsn(o) => o.formulation.siconos_id(),
+            SolverConfig::Prox(_) => 502,
         }
     }
 
@@ -94,6 +109,8 @@ impl SolverConfig {
             SolverConfig::Pfp(o) => format!("PFP/{}", o.tangent.siconos_id()),
             SolverConfig::Aclm(_) => "ACLMFP".to_string(),
             SolverConfig::Soclcp(_) => "SOCLCP".to_string(),
+            SolverConfig::Nsn(o) => o.label(),
+            SolverConfig::Prox(o) => o.label(),
         }
     }
 
@@ -126,6 +143,8 @@ impl SolverConfig {
             SolverConfig::Pfp(o) => o.inner_tolerance.validate()?,
             SolverConfig::Aclm(o) => o.inner_tolerance.validate()?,
             SolverConfig::Soclcp(o) => o.validate()?,
+            SolverConfig::Nsn(o) => nsn::validate(o)?,
+            SolverConfig::Prox(o) => prox::validate(o)?,
         }
         Ok(())
     }
@@ -226,6 +245,8 @@ pub fn solve_with_observer(
             relaxation_converged = relaxed;
             (outcome, None)
         }
+        SolverConfig::Nsn(o) => (nsn::nsn(problem, o, r, u, observer)?, None),
+        SolverConfig::Prox(o) => (prox::prox(problem, o, r, u, observer)?, None),
     };
 
     // The reported error is always the natural-map error of the returned (r, u) on the host's

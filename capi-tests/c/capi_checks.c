@@ -1102,3 +1102,168 @@ int opt5_check_single_contacts_and_options(void) {
   }
   return 0;
 }
+
+/* ---- nonsmooth Newton (504, 513, 520) and PROX (502) ------------------------------------------ */
+
+/* As capi_solve_file, with solver `solver_id` (Siconos' defaults) and, when internal_id != 0,
+ * internal solver 0 replaced by `internal_id` (PROX). */
+int capi_solve_file_with(const char* path, int storage, int solver_id, int internal_id, double tolerance,
+                         int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                         CSolveResult* result) {
+  FrictionContactProblem* file = frictionContact_new_from_filename(path);
+  CHECK(file != NULL, "cannot read %s", path);
+  int nc = file->numberOfContacts;
+  int n = 3 * nc;
+  CHECK(n <= capacity, "%s: %d unknowns do not fit %d", path, n, capacity);
+  double* W = malloc(sizeof(double) * ((size_t)n * n + 1));
+  for (int j = 0; j < n; j++)
+    for (int i = 0; i < n; i++) W[i + (size_t)j * n] = NM_get_value(file->M, i, j);
+  SbmBuild sbm = {0};
+  NumericsMatrix* M = NULL;
+  switch (storage) {
+    case -1: M = file->M; break;
+    case NM_DENSE: M = dense_matrix(W, n); break;
+    case NM_SPARSE_BLOCK: sbm = sbm_matrix(W, nc); M = sbm.M; break;
+    case NM_SPARSE: M = csr_matrix(W, n); break;
+    default: FAIL("unknown storage %d", storage);
+  }
+  FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
+  SolverOptions* options = solver_options_create(solver_id);
+  CHECK(options != NULL, "solver_options_create(%d)", solver_id);
+  if (internal_id != 0) solver_options_update_internal(options, 0, internal_id);
+  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+  double* r = calloc((size_t)n + 1, sizeof(double));
+  double* u = calloc((size_t)n + 1, sizeof(double));
+  double* w2 = calloc((size_t)n + 1, sizeof(double));
+  double* u3 = calloc((size_t)n + 1, sizeof(double));
+  int info = fc3d_driver(&problem, r, u, options);
+  CHECK(info == 0 || info == 1, "%s: fc3d_driver(%d) returned %d", path, solver_id, info);
+  result->info = info;
+  result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  result->reported_error = options->dparam[SICONOS_DPARAM_RESIDU];
+  result->storage = M->storageType;
+  double api_error = -1.0;
+  int e = fc3d_compute_error(&problem, r, w2, tolerance, options, norm2(file->q, n), &api_error);
+  CHECK(e == 0 || e == 1, "fc3d_compute_error returned %d", e);
+  result->api_error = api_error;
+  result->independent_error = independent_error(W, file->q, file->mu, r, nc, u3);
+  memcpy(reaction_out, r, sizeof(double) * (size_t)n);
+  memcpy(velocity_out, u, sizeof(double) * (size_t)n);
+  solver_options_delete(options);
+  free(options);
+  if (storage == NM_SPARSE_BLOCK) sbm_release(&sbm);
+  else if (storage != -1) NM_free(M);
+  frictionContactProblem_free(file);
+  free(W); free(r); free(u); free(w2); free(u3);
+  return 0;
+}
+
+/* One contact (W = I) pushed in, one given by q2; solved by `id` with its defaults at 1e-12. */
+static int newton_two_contacts(int id, int internal, const double q2[3], double mu2, const double r2_exp[3]) {
+  double W[36] = {0};
+  for (int i = 0; i < 6; i++) W[i + 6 * i] = 1.0;
+  double q[6] = {-1, 0, 0, q2[0], q2[1], q2[2]};
+  double mu[2] = {0.5, mu2};
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 6;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 2, &M, q, mu};
+  SolverOptions* o = solver_options_create(id);
+  CHECK(o != NULL, "solver_options_create(%d)", id);
+  if (internal) solver_options_update_internal(o, 0, internal);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+  o->iparam[SICONOS_IPARAM_MAX_ITER] = 200;
+  double r[6] = {0}, u[6] = {0};
+  int info = fc3d_driver(&p, r, u, o);
+  double err = o->dparam[SICONOS_DPARAM_RESIDU];
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == 0, "solver %d/%d: info %d, error %g", id, internal, info, err);
+  CHECK(fabs(r[0] - 1.0) <= 1e-10, "solver %d: r[0] = %.17g", id, r[0]);
+  for (int k = 0; k < 3; k++)
+    CHECK(fabs(r[3 + k] - r2_exp[k]) <= 1e-9, "solver %d/%d: r[%d] = %.17g, expected %.17g", id, internal,
+          3 + k, r[3 + k], r2_exp[k]);
+  return 0;
+}
+
+int capi_check_newton_and_prox(void) {
+  int ids[][2] = {{SICONOS_FRICTION_3D_NSN_AC, 0}, {SICONOS_FRICTION_3D_NSN_FB, 0},
+                  {SICONOS_FRICTION_3D_NSN_NM, 0}, {SICONOS_FRICTION_3D_PROX, 0},
+                  {SICONOS_FRICTION_3D_PROX, SICONOS_FRICTION_3D_NSGS}};
+  for (size_t k = 0; k < sizeof ids / sizeof ids[0]; k++) {
+    int id = ids[k][0], in = ids[k][1];
+    { /* take-off */
+      double q2[3] = {0.5, 0.3, -0.2}, re[3] = {0, 0, 0};
+      if (newton_two_contacts(id, in, q2, 0.5, re)) return 1;
+    }
+    { /* stick */
+      double q2[3] = {-1, 0.1, 0}, re[3] = {1, -0.1, 0};
+      if (newton_two_contacts(id, in, q2, 0.5, re)) return 1;
+    }
+    { /* slide: r_T = -mu r_N u_T / |u_T| */
+      double q2[3] = {-1, 2, 0}, re[3] = {1, -0.5, 0};
+      if (newton_two_contacts(id, in, q2, 0.5, re)) return 1;
+    }
+  }
+
+  /* Defaults read off Siconos 4.4 and options that are rejected with the index named. */
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSN_AC);
+  CHECK(o->iparam[SICONOS_IPARAM_MAX_ITER] == 200 && o->dparam[SICONOS_DPARAM_TOL] == 1e-3, "504 defaults");
+  CHECK(o->iparam[SICONOS_FRICTION_3D_NSN_RHO_STRATEGY] == 1, "504 rho strategy default");
+  CHECK(o->iparam[SICONOS_FRICTION_3D_NSN_LINESEARCH] == 0, "504 line search default");
+  solver_options_delete(o);
+  free(o);
+  o = solver_options_create(SICONOS_FRICTION_3D_PROX);
+  CHECK(o->dparam[3] == 1e4 && o->dparam[4] == 5.0 && o->dparam[5] == 1.0, "502 alpha, sigma, nu");
+  CHECK(o->numberOfInternalSolvers == 1 && o->internalSolvers[0]->solverId == SICONOS_FRICTION_3D_NSN_AC,
+        "502 internal solver");
+  solver_options_delete(o);
+  free(o);
+
+  double W[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double q[3] = {-1, 0.2, 0}, mu = 0.5;
+  NumericsMatrix M = {0};
+  M.storageType = NM_DENSE;
+  M.size0 = M.size1 = 3;
+  M.matrix0 = W;
+  FrictionContactProblem p = {3, 1, &M, q, &mu};
+  struct { int id; int index; int value; int code; const char* needle; } bad[] = {
+      {SICONOS_FRICTION_3D_NSN_AC, SICONOS_FRICTION_3D_NSN_RHO_STRATEGY, 4, FC3D_ERR_INVALID_OPTION, "iparam[9]"},
+      {SICONOS_FRICTION_3D_NSN_AC, SICONOS_FRICTION_3D_NSN_FORMULATION, 4, FC3D_ERR_INVALID_OPTION, "iparam[10]"},
+      {SICONOS_FRICTION_3D_NSN_AC, SICONOS_FRICTION_3D_NSN_LINESEARCH, 7, FC3D_ERR_INVALID_OPTION, "iparam[11]"},
+      {SICONOS_FRICTION_3D_NSN_FB, SICONOS_FRICTION_3D_NSN_HYBRID_STRATEGY, 1, FC3D_ERR_INVALID_OPTION, "iparam[14]"},
+      {SICONOS_FRICTION_3D_NSN_NM, SICONOS_FRICTION_3D_NSN_FORMULATION, 1, FC3D_ERR_INVALID_OPTION, "iparam[10]"},
+      {SICONOS_FRICTION_3D_PROX, 9 /* proximal strategy */, 1, FC3D_ERR_INVALID_OPTION, "iparam[9]"},
+      {SICONOS_FRICTION_3D_PROX, 8 /* proximal relaxation */, 1, FC3D_ERR_INVALID_OPTION, "iparam[8]"},
+  };
+  for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+    o = solver_options_create(bad[k].id);
+    o->iparam[bad[k].index] = bad[k].value;
+    double r[3] = {7, 7, 7}, u[3] = {7, 7, 7};
+    int info = fc3d_driver(&p, r, u, o);
+    solver_options_delete(o);
+    free(o);
+    CHECK(info == bad[k].code, "solver %d with iparam[%d] = %d: info %d", bad[k].id, bad[k].index, bad[k].value, info);
+    CHECK(strstr(fc3d_last_error_message(), bad[k].needle) != NULL, "message '%s' does not name %s",
+          fc3d_last_error_message(), bad[k].needle);
+    CHECK(r[0] == 7 && u[2] == 7, "rejected options touched r or u");
+  }
+  /* PROX with an internal solver fc3d cannot use there. */
+  o = solver_options_create(SICONOS_FRICTION_3D_PROX);
+  solver_options_update_internal(o, 0, SICONOS_FRICTION_3D_NSN_FB);
+  double r[3] = {0}, u[3] = {0};
+  int info = fc3d_driver(&p, r, u, o);
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == FC3D_ERR_UNSUPPORTED_SOLVER, "PROX with internal NSN_FB: info %d", info);
+  /* A negative sigma. */
+  o = solver_options_create(SICONOS_FRICTION_3D_PROX);
+  o->dparam[4] = -1.0;
+  info = fc3d_driver(&p, r, u, o);
+  solver_options_delete(o);
+  free(o);
+  CHECK(info == FC3D_ERR_INVALID_OPTION, "PROX with sigma = -1: info %d", info);
+  return 0;
+}

@@ -73,6 +73,19 @@ extern "C" {
         result: *mut CSolveResult,
     ) -> c_int;
     pub fn opt5_check_single_contacts_and_options() -> c_int;
+    pub fn capi_solve_file_with(
+        path: *const c_char,
+        storage: c_int,
+        solver_id: c_int,
+        internal_id: c_int,
+        tolerance: c_double,
+        max_iter: c_int,
+        reaction_out: *mut c_double,
+        velocity_out: *mut c_double,
+        capacity: c_int,
+        result: *mut CSolveResult,
+    ) -> c_int;
+    pub fn capi_check_newton_and_prox() -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.

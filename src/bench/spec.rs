@@ -36,7 +36,10 @@
 
 use std::time::Duration;
 
-use fc3d::{AdmmOptions, LocalSolverKind, NsgsOptions, SolverConfig, ViOptions, ViSolver};
+use fc3d::{
+    AdmmOptions, LocalSolverKind, NsgsOptions, NsnFormulation, NsnOptions, ProxInternal,
+    ProxOptions, SolverConfig, ViOptions, ViSolver,
+};
 
 /// Solver families `fc3d bench` knows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -55,10 +58,17 @@ pub enum SolverFamily {
     Aclmfp,
     /// The SOCLCP relaxation on its own (Siconos id 517).
     Soclcp,
+    /// Nonsmooth Newton with the given formulation (504 AC and JM, 513 FB, 520 NM), Siconos'
+    /// default options.
+    Nsn(NsnFormulation),
+    /// Proximal point with internal NSN-AC (502, Siconos' default).
+    ProxNsn,
+    /// Proximal point with internal NSGS (PPA-NSGS-AC).
+    ProxNsgs,
 }
 
 /// (family, Siconos id, name) for every family.
-const FAMILIES: [(SolverFamily, i32, &str); 11] = [
+const FAMILIES: [(SolverFamily, i32, &str); 17] = [
     (SolverFamily::Nsgs, 500, "NSGS"),
     (SolverFamily::Vi(ViSolver::DeSaxceFixedPoint), 505, "DSFP"),
     (
@@ -74,6 +84,20 @@ const FAMILIES: [(SolverFamily, i32, &str); 11] = [
     (SolverFamily::Pfp, 522, "PFP"),
     (SolverFamily::Aclmfp, 516, "ACLMFP"),
     (SolverFamily::Soclcp, 517, "SOCLCP"),
+    (
+        SolverFamily::Nsn(NsnFormulation::AlartCurnier),
+        504,
+        "NSN-AC",
+    ),
+    (SolverFamily::Nsn(NsnFormulation::JeanMoreau), 504, "NSN-JM"),
+    (
+        SolverFamily::Nsn(NsnFormulation::FischerBurmeister),
+        513,
+        "NSN-FB",
+    ),
+    (SolverFamily::Nsn(NsnFormulation::NaturalMap), 520, "NSN-NM"),
+    (SolverFamily::ProxNsn, 502, "PROX"),
+    (SolverFamily::ProxNsgs, 502, "PROX-NSGS"),
 ];
 
 /// Local solvers: (kind, names accepted in a spec; the first is the short name used in legends).
@@ -189,6 +213,23 @@ pub fn solver_config(
             time_budget,
             ..Default::default()
         }),
+        SolverFamily::Nsn(formulation) => {
+            let mut o = NsnOptions::new(formulation);
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Nsn(o)
+        }
+        SolverFamily::ProxNsn | SolverFamily::ProxNsgs => {
+            let mut o = ProxOptions::default();
+            if spec.family == SolverFamily::ProxNsgs {
+                o.internal = ProxInternal::Nsgs(NsgsOptions::default());
+            }
+            o.tolerance = tolerance;
+            o.max_iter = max_iter;
+            o.time_budget = time_budget;
+            SolverConfig::Prox(o)
+        }
     }
 }
 
@@ -449,5 +490,27 @@ mod tests {
         }
         assert!(parse_spec("DSFP/552").is_err());
         assert!(parse_spec("ADMM/HYBRID").is_err());
+    }
+
+    #[test]
+    fn newton_and_proximal_families() {
+        for (text, id, label) in [
+            ("504", 504, "NSN-AC/GP"),
+            ("nsn-ac", 504, "NSN-AC/GP"),
+            ("NSN-JM", 504, "NSN-JM/GP"),
+            ("513", 513, "NSN-FB/GP"),
+            ("nsn-nm", 520, "NSN-NM/GP"),
+            ("502", 502, "PROX/NSN-AC"),
+            ("PROX-NSGS", 502, "PROX/NSGS"),
+        ] {
+            let spec = parse_spec(text).unwrap();
+            let c = solver_config(&spec, 1e-8, 50, None);
+            assert_eq!(c.siconos_id(), id, "{text}");
+            assert_eq!(c.tolerance(), 1e-8);
+            assert_eq!(c.max_iter(), 50);
+            assert_eq!(spec.label(), label);
+            assert_eq!(spec.legend(), label);
+        }
+        assert!(parse_spec("504/552").is_err());
     }
 }

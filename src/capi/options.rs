@@ -11,11 +11,13 @@ use std::ptr::null_mut;
 use super::alloc::{c_box, c_calloc, c_copy, c_free};
 use super::types::SolverOptions;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
+use crate::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 use crate::options::{
     ContactOrder, ErrorEvaluation, LocalSolverKind, LocalSolverOptions, LocalTolerance,
     NewtonFormulation, NsgsOptions, RhoRule, FC3D_ONECONTACT_EAL, FC3D_ONECONTACT_EBP,
     FC3D_ONECONTACT_FP_VI_UPK,
 };
+use crate::prox::{ProxInternal, ProxOptions};
 use crate::scaling::Rescaling;
 use crate::solver::SolverConfig;
 
@@ -36,6 +38,8 @@ pub(crate) const IPARAM_NSN_RHO_STRATEGY: usize = 9;
 pub(crate) const IPARAM_NSN_FORMULATION: usize = 10;
 pub(crate) const IPARAM_NSN_LINESEARCH: usize = 11;
 pub(crate) const IPARAM_NSN_LINESEARCH_MAX_ITER: usize = 12;
+pub(crate) const IPARAM_NSN_LINEAR_SOLVER: usize = 13;
+pub(crate) const IPARAM_NSN_HYBRID_STRATEGY: usize = 14;
 pub(crate) const IPARAM_NSN_HYBRID_MAX_LOOP: usize = 15;
 pub(crate) const IPARAM_NSN_HYBRID_MAX_ITER: usize = 16;
 pub(crate) const IPARAM_NSGS_FREEZING_CONTACT: usize = 19;
@@ -44,6 +48,12 @@ pub(crate) const DPARAM_RESIDU: usize = 1;
 pub(crate) const DPARAM_INTERNAL_ERROR_RATIO: usize = 2;
 pub(crate) const DPARAM_NSN_RHO: usize = 3;
 pub(crate) const DPARAM_NSGS_RELAXATION_VALUE: usize = 8;
+pub(crate) const IPARAM_PROX_ERROR_STRATEGY: usize = 2;
+pub(crate) const IPARAM_PROX_RELAXATION: usize = 8;
+pub(crate) const IPARAM_PROX_STRATEGY: usize = 9;
+pub(crate) const DPARAM_PROX_ALPHA: usize = 3;
+pub(crate) const DPARAM_PROX_SIGMA: usize = 4;
+pub(crate) const DPARAM_PROX_NU: usize = 5;
 /// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule
 /// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
 /// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
@@ -812,6 +822,68 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
                 time_budget: p.time_budget()?,
             }))
         }
+        504 | 513 | 520 => Ok(SolverConfig::Nsn(nsn_from_c(o)?)),
+        502 => {
+            let p = Params::of(o, "PROX options")?;
+            let mut x = ProxOptions {
+                max_iter: p.count(IPARAM_MAX_ITER, "max iterations")?,
+                tolerance: p.tolerance("PROX")?,
+                time_budget: p.time_budget()?,
+                alpha: p.dparam[DPARAM_PROX_ALPHA],
+                sigma: p.dparam[DPARAM_PROX_SIGMA],
+                nu: p.dparam[DPARAM_PROX_NU],
+                ..ProxOptions::default()
+            };
+            for (k, name, v) in [
+                (DPARAM_PROX_ALPHA, "alpha", x.alpha),
+                (DPARAM_PROX_SIGMA, "sigma", x.sigma),
+                (DPARAM_PROX_NU, "nu", x.nu),
+            ] {
+                if !(v > 0.0 && v.is_finite()) {
+                    return Err(CError::new(
+                        FC3D_ERR_INVALID_OPTION,
+                        format!("proximal {name} (dparam[{k}]) = {v} must be finite and > 0"),
+                    ));
+                }
+            }
+            p.require(
+                IPARAM_PROX_ERROR_STRATEGY,
+                0,
+                "proximal internal error strategy (0 = error / 10)",
+            )?;
+            p.require(IPARAM_PROX_RELAXATION, 0, "proximal relaxation")?;
+            p.require(
+                IPARAM_PROX_STRATEGY,
+                0,
+                "proximal strategy (0 = proximal point)",
+            )?;
+            if o.numberOfInternalSolvers >= 1
+                && !o.internalSolvers.is_null()
+                && !(*o.internalSolvers).is_null()
+            {
+                x.internal = match config_from_c(&**o.internalSolvers)? {
+                    SolverConfig::Nsn(n)
+                        if matches!(
+                            n.formulation,
+                            NsnFormulation::AlartCurnier | NsnFormulation::JeanMoreau
+                        ) =>
+                    {
+                        ProxInternal::NsnAc(n)
+                    }
+                    SolverConfig::Nsgs(g) => ProxInternal::Nsgs(g),
+                    other => {
+                        return Err(CError::new(
+                            FC3D_ERR_UNSUPPORTED_SOLVER,
+                            format!(
+                                "PROX's internal solver {} is not supported in fc3d (504 NSN_AC or 500 NSGS)",
+                                other.siconos_id()
+                            ),
+                        ))
+                    }
+                };
+            }
+            Ok(SolverConfig::Prox(x))
+        }
         id => Err(unsupported_solver(id)),
     }
 }
@@ -963,6 +1035,85 @@ unsafe fn inner_tolerance_from_c(
             format!("internal error strategy (iparam[{IPARAM_INTERNAL_ERROR_STRATEGY}]) = {other} is not implemented here (0 adaptive, 1 the internal solver's tolerance when there is one)"),
         )),
     }
+}
+
+/// Nonsmooth Newton options (504, 513, 520). Honoured: iparam[0] max iterations, dparam[0]
+/// tolerance, iparam[9] rho strategy (0 constant dparam[3], 1 spectral norm, 2 split with
+/// conditioning, 3 split), iparam[10] formulation (504 only: 0/2 Alart-Curnier, 1/3 Jean-Moreau;
+/// Siconos' "generated" variants compute the same function), iparam[11] line search (-1 none,
+/// 0 Goldstein-Price, 1 Armijo), iparam[12] line-search trials, iparam[13] linear solver (0 or
+/// 1: both mean a sparse LU, faer's here). Rejected: the adaptive rho (iparam[9] = 4), hybrid
+/// strategies (iparam[14] != 0). iparam[3], [5], [8], [17], [18] are Siconos' internal
+/// bookkeeping (work-space sizes, MPI) and carry no behaviour.
+unsafe fn nsn_from_c(o: &SolverOptions) -> CResult<NsnOptions> {
+    let p = Params::of(o, "NSN options")?;
+    let formulation = match o.solverId {
+        504 => match p.iparam[IPARAM_NSN_FORMULATION] {
+            0 | 2 => NsnFormulation::AlartCurnier,
+            1 | 3 => NsnFormulation::JeanMoreau,
+            other => {
+                return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("NSN formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)")))
+            }
+        },
+        513 => NsnFormulation::FischerBurmeister,
+        _ => NsnFormulation::NaturalMap,
+    };
+    if o.solverId != 504 {
+        p.require(
+            IPARAM_NSN_FORMULATION,
+            0,
+            "NSN formulation (fixed by the solver id)",
+        )?;
+    }
+    let mut n = NsnOptions::new(formulation);
+    n.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
+    n.tolerance = p.tolerance("NSN")?;
+    n.time_budget = p.time_budget()?;
+    n.rho_rule = match p.iparam[IPARAM_NSN_RHO_STRATEGY] {
+        0 => {
+            let rho = p.dparam[DPARAM_NSN_RHO];
+            if !(rho > 0.0 && rho.is_finite()) {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!("constant rho (dparam[3]) = {rho} must be finite and > 0"),
+                ));
+            }
+            RhoRule::Constant(rho)
+        }
+        1 => RhoRule::SpectralNorm,
+        2 => RhoRule::SplitSpectralNormCond,
+        3 => RhoRule::SplitSpectralNorm,
+        other => {
+            return Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("rho strategy (iparam[9]) = {other} is not implemented in fc3d (0-3; the adaptive rule 4 is not)"),
+            ))
+        }
+    };
+    n.line_search = match p.iparam[IPARAM_NSN_LINESEARCH] {
+        -1 => NsnLineSearch::None,
+        0 => NsnLineSearch::GoldsteinPrice,
+        1 => NsnLineSearch::Armijo,
+        other => {
+            return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("line search (iparam[11]) = {other} is not implemented in fc3d (-1 none, 0 Goldstein-Price, 1 Armijo)")))
+        }
+    };
+    n.line_search_max_iter =
+        p.count(IPARAM_NSN_LINESEARCH_MAX_ITER, "line-search max iterations")?;
+    if n.line_search != NsnLineSearch::None && n.line_search_max_iter == 0 {
+        return Err(CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            "line-search max iterations (iparam[12]) must be >= 1",
+        ));
+    }
+    match p.iparam[IPARAM_NSN_LINEAR_SOLVER] {
+        0 | 1 => {}
+        other => {
+            return Err(CError::new(FC3D_ERR_INVALID_OPTION, format!("linear solver (iparam[13]) = {other} is not implemented in fc3d (0 or 1: a sparse LU)")))
+        }
+    }
+    p.require(IPARAM_NSN_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+    Ok(n)
 }
 
 /// Writes the outputs Siconos hosts read: iterations done and final error (and Dumont's
