@@ -27,7 +27,8 @@ pub enum LocalSolverKind {
     ProjectionOnConeWithRegularization,
     /// One separated step with the diagonal of `w` as metric:
     /// `r_N <- (r_N - u_N / W_NN)_+`, `r_T <- P_{B(0, mu r_N)}(r_T - u_T ./ diag(W_TT))`
-    /// [555 ProjectionOnConeWithDiagonalization]; checked against Siconos on one step.
+    /// [555 ProjectionOnConeWithDiagonalization]; checked against Siconos on one step. Its
+    /// tangential fixed point is the Coulomb law only when `W_T1T1 = W_T2T2`.
     ProjectionOnConeWithDiagonalization,
     /// The step of 552 computed in velocity space through Moreau's decomposition,
     /// `r <- r - rho ũ + P_{K*}(rho ũ - r)` [558 ProjectionOnCone_velocity].

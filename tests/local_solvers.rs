@@ -20,11 +20,12 @@ fn shared(name: &str) -> PathBuf {
 }
 
 fn config(local: LocalSolverOptions, tol: f64, max_iter: usize) -> SolverConfig {
-    let mut o = NsgsOptions::default();
-    o.local = local;
-    o.tolerance = tol;
-    o.max_iter = max_iter;
-    SolverConfig::Nsgs(o)
+    SolverConfig::Nsgs(NsgsOptions {
+        local,
+        tolerance: tol,
+        max_iter,
+        ..NsgsOptions::default()
+    })
 }
 
 fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (SolveReport, Vec<f64>, Vec<f64>) {

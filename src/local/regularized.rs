@@ -71,8 +71,10 @@ impl LocalSolver for ProjectionOnConeWithRegularization {
 /// [555] One separated step with the diagonal of `w` as metric:
 /// `r_N <- (r_N - u_N / W_NN)_+` (the exact normal solve with `r_T` frozen), then
 /// `r_T <- P_{B(0, mu r_N)}(r_T - u_T ./ (W_T1T1, W_T2T2))`. The normal and tangential
-/// projections are separate, so per-component steps keep the Coulomb law as fixed point (a
-/// single projection on the cone would not). This is what Siconos 4.4 computes on one step.
+/// projection is separate from the normal one, so the normal fixed point is exact; the
+/// tangential one is `D u_T ∥ -r_T` with `D = diag(1/W_T1T1, 1/W_T2T2)`, the Coulomb law only
+/// when `W_T1T1 = W_T2T2`: otherwise NSGS stalls at a non-zero error (Siconos 4.4 stalls at the
+/// same error, e.g. 1.955e-2 on FrictionContact3D_RR_1c). This is Siconos' step, kept as such.
 pub struct ProjectionOnConeWithDiagonalization;
 
 impl LocalSolver for ProjectionOnConeWithDiagonalization {
