@@ -8,6 +8,10 @@ int capi_check_options(void);
 int capi_check_single_contacts(void);
 int capi_check_callback(void);
 int capi_check_nsgs_options(const char* data_dir);
+int capi_check_vi_admm_single_contacts(void);
+int capi_check_vi_admm_options(void);
+int opt5_check_single_contacts_and_options(void);
+int capi_check_newton_and_prox(void);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -19,6 +23,10 @@ int main(int argc, char** argv) {
   failed += capi_check_ownership(data, scratch) != 0;
   failed += capi_check_callback() != 0;
   failed += capi_check_nsgs_options(data) != 0;
-  printf("%d passed, %d failed\n", 6 - failed, failed);
+  failed += capi_check_vi_admm_single_contacts() != 0;
+  failed += capi_check_vi_admm_options() != 0;
+  failed += opt5_check_single_contacts_and_options() != 0;
+  failed += capi_check_newton_and_prox() != 0;
+  printf("%d passed, %d failed\n", 10 - failed, failed);
   return failed != 0;
 }
