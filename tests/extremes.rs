@@ -1,6 +1,6 @@
 //! The extremes matrix (issue 6): every implemented solver id, through `fc3d_driver` as a C host
 //! calls it, on every problem of the seeded extreme generator (`common/extremes.rs`). For each run:
-//! a return code of 0, 1 or 2 (never a crash or a rejection of valid input); r and u finite;
+//! a return code of 0, 1, 2 or 3 (never a crash or a rejection of valid input); r and u finite;
 //! `dparam[1]` equal to `fc3d_compute_error` on the returned reaction and to an independent
 //! recomputation; `info == 0` exactly when that error is within the tolerance; the iteration limit
 //! respected; the time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) respected within a margin; and
@@ -267,7 +267,9 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
                     ));
                 }
             }
-            if !(0..=2).contains(&rc) {
+            // 0 converged, 1 iteration limit, 2 time budget, 3 (SOCLCP) relaxed solution that is
+            // not a Coulomb solution.
+            if !(0..=3).contains(&rc) {
                 failures.push(format!("{what}: returned {rc}"));
                 row.push(format!("ERR {rc}"));
                 continue;
@@ -315,6 +317,7 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
             row.push(match rc {
                 0 => format!("ok {iters}"),
                 2 => format!("budget {reported:.0e}"),
+                3 => format!("relaxed {reported:.0e}"),
                 _ => format!("fail {reported:.0e}"),
             });
         }

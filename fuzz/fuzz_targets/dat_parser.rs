@@ -4,13 +4,6 @@
 
 use libfuzzer_sys::fuzz_target;
 
-fuzz_target!(|data: &[u8]| {
-    let text = String::from_utf8_lossy(data);
-    if let Ok(p) = fc3d::io::dat::parse_dat(&text, "fuzz") {
-        let mut out = Vec::new();
-        fc3d::io::dat::write_dat(&p, &mut out).expect("writing to memory");
-        let again = fc3d::io::dat::parse_dat(std::str::from_utf8(&out).expect("utf-8"), "again")
-            .expect("what we write, we read");
-        assert_eq!(p.size(), again.size());
-    }
-});
+include!("dat_case.rs");
+
+fuzz_target!(|data: &[u8]| run_dat_case(data));
