@@ -74,9 +74,6 @@
 // of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
 #define FC3D_RHO_STRATEGY_DUMONT 10
 
-// How many past merits the non-monotone line search compares against.
-#define NONMONOTONE_MEMORY 10
-
 // fc3d's one-contact solver ids are in 568..=599, a range Siconos 4.4 leaves free (its
 // one-contact solvers use 550..=567). FP-VI-UPK of Acary-Brémond-Huber's Table 3 on one contact:
 // projection steps with the self-adaptive rho rule (98), started from rho strategy iparam[9]

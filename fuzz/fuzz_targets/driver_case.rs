@@ -157,7 +157,12 @@ pub fn run_driver_case(data: &[u8]) {
             let ec = fc3d_compute_error(&mut problem, r.as_mut_ptr(), w2.as_mut_ptr(), 1e-4, o, qn, &mut e);
             assert!(ec >= 0, "compute_error rejected what the driver accepted");
             let reported = *(*o).dparam.add(1);
-            assert!(reported == e, "dparam[1] {reported} vs recomputed {e}");
+            // Equal up to the rounding of ||q||: the host computes the norm it passes to
+            // fc3d_compute_error its own way (the second saved crash: 1 ulp apart).
+            assert!(
+                reported == e || (reported - e).abs() <= 1e-14 * reported.abs().max(e.abs()),
+                "dparam[1] {reported} vs recomputed {e}"
+            );
         } else {
             assert!(r.iter().chain(&u).all(|&x| x == sentinel), "outputs written on failure");
             assert_eq!(*(*o).iparam.add(1), -12345);
