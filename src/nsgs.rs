@@ -182,17 +182,23 @@ impl Sweeper {
         let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
         let wnn = w[0][0];
         let frictionless = mu[c] == 0.0 && wnn > 0.0 && wnn.is_finite();
-        let mut local_q = None;
-        let mut rc = if frictionless && self.plan.u_solved.is_empty() {
-            // The cone is the half-line R+ e_N: only the normal row of the coupling matters.
-            let qn = self.rows.local_q_normal(c, q, r);
-            [(-qn / wnn).max(0.0), 0.0, 0.0]
+        let need_local_q = !frictionless || !self.plan.u_solved.is_empty();
+        let local_q = need_local_q.then(|| self.rows.local_q(c, q, r));
+        // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
+        // quotient that overflows (a subnormal W_NN) is left to the 3D local solver.
+        let scalar = if frictionless {
+            let qn = match local_q {
+                Some(lq) => lq[0],
+                None => self.rows.local_q_normal(c, q, r),
+            };
+            Some((-qn / wnn).max(0.0)).filter(|rn| rn.is_finite())
         } else {
-            let lq = self.rows.local_q(c, q, r);
-            local_q = Some(lq);
-            if frictionless {
-                [(-lq[0] / wnn).max(0.0), 0.0, 0.0]
-            } else {
+            None
+        };
+        let mut rc = match scalar {
+            Some(rn) => [rn, 0.0, 0.0],
+            None => {
+                let lq = local_q.unwrap_or_else(|| self.rows.local_q(c, q, r));
                 let p = LocalProblem {
                     w,
                     q: lq,

@@ -93,7 +93,12 @@ pub fn solve_rescaled(
     for (h, v) in r.iter_mut().zip(&r_s) {
         *h = to_host * v;
     }
-    let error = natural_map_error(problem, r, u);
+    let mut error = natural_map_error(problem, r, u);
+    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        // Mapping back overflowed: r = 0, u = q is the finite answer (see solve_with_observer).
+        r.iter_mut().for_each(|v| *v = 0.0);
+        error = natural_map_error(problem, r, u);
+    }
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
     } else if inner.status == SolveStatus::TimeBudgetExhausted {

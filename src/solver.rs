@@ -255,10 +255,17 @@ pub fn solve_with_observer(
     // NSGS's last test is that very computation (natural_map_error on the returned r, host
     // storage); for the other families one more W r product buys the guarantee without auditing
     // each family's bookkeeping.
-    let error = match (config, outcome.final_error) {
+    let mut error = match (config, outcome.final_error) {
         (SolverConfig::Nsgs(_), Some(e)) => e,
         _ => natural_map_error(problem, r, u),
     };
+    // Last line of defence of the contract "r and u are finite": a finite r can still give an
+    // infinite W r + q (entries near the overflow threshold). Then the host gets r = 0, u = q,
+    // with the error of that pair, rather than infinities.
+    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        error = natural_map_error(problem, r, u);
+    }
     let status = if error <= config.tolerance() {
         SolveStatus::Converged
     } else if relaxation_converged {
