@@ -135,10 +135,10 @@ pub fn run_driver_case(data: &[u8]) {
             let k = (b.byte() % 20) as usize;
             *(*o).dparam.add(k) = b.value();
         }
-        // Bounded work per input: at most 200 iterations and 20 ms.
+        // Bounded work per input: at most 50 iterations and 5 ms (millions of inputs must run).
         let it = (*o).iparam;
-        *it = (*it).clamp(0, 200);
-        *(*o).dparam.add(fc3d::capi::FC3D_DPARAM_TIME_BUDGET as usize) = 0.02;
+        *it = (*it).clamp(0, 50);
+        *(*o).dparam.add(fc3d::capi::FC3D_DPARAM_TIME_BUDGET as usize) = 0.005;
         *(*o).iparam.add(1) = -12345;
         *(*o).dparam.add(1) = -12345.0;
         let sentinel = 7.25;
