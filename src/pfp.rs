@@ -109,31 +109,11 @@ pub(crate) fn pfp(
             options.inner_max_iter,
             r,
         );
-        let finite = outer.accept(r);
-        error = coulomb_error(problem, &work.rows, r, u);
-        observer(&IterationEvent {
-            iteration,
-            reaction: r,
-            error,
-        });
-        if error <= tol || !finite {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: false,
-                final_error: None,
-            });
-        }
-        if outer.out_of_time() {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: true,
-                final_error: None,
-            });
+        let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, tol, observer);
+        error = e;
+        if let Some(outcome) = stop {
+            return Ok(outcome);
         }
     }
-    Ok(SolverOutcome {
-        iterations: options.max_iter,
-        out_of_time: false,
-        final_error: None,
-    })
+    Ok(OuterLoop::iterations_exhausted(options.max_iter))
 }

@@ -524,6 +524,51 @@ impl OuterLoop {
     pub fn out_of_time(&self) -> bool {
         self.deadline.is_some_and(|d| Instant::now() >= d)
     }
+
+    /// Ends outer iteration `iteration`: guards `r` ([`OuterLoop::accept`]), measures the Coulomb
+    /// error (returned), tells the observer, and gives the outcome when the loop must stop:
+    /// converged, a non-finite step (r is back to the last finite iterate), or time spent.
+    #[allow(clippy::too_many_arguments)]
+    pub fn end_iteration(
+        &mut self,
+        iteration: usize,
+        problem: &FrictionProblem<'_>,
+        rows: &BlockRows,
+        r: &mut [f64],
+        u: &mut [f64],
+        tol: f64,
+        observer: &mut dyn FnMut(&IterationEvent<'_>),
+    ) -> (f64, Option<SolverOutcome>) {
+        let finite = self.accept(r);
+        let error = coulomb_error(problem, rows, r, u);
+        observer(&IterationEvent {
+            iteration,
+            reaction: r,
+            error,
+        });
+        let stop = if error <= tol || !finite {
+            Some(false)
+        } else if self.out_of_time() {
+            Some(true)
+        } else {
+            None
+        };
+        let outcome = stop.map(|out_of_time| SolverOutcome {
+            iterations: iteration,
+            out_of_time,
+            final_error: None,
+        });
+        (error, outcome)
+    }
+
+    /// The outcome of a loop that used all its iterations.
+    pub fn iterations_exhausted(max_iter: usize) -> SolverOutcome {
+        SolverOutcome {
+            iterations: max_iter,
+            out_of_time: false,
+            final_error: None,
+        }
+    }
 }
 
 /// The Coulomb natural-map error of `r` with `u = W r + q` computed through the block rows.
@@ -564,33 +609,13 @@ pub(crate) fn tfp(
             options.inner_max_iter,
             r,
         );
-        let finite = outer.accept(r);
-        error = coulomb_error(problem, &work.rows, r, u);
-        observer(&IterationEvent {
-            iteration,
-            reaction: r,
-            error,
-        });
-        if error <= tol || !finite {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: false,
-                final_error: None,
-            });
-        }
-        if outer.out_of_time() {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: true,
-                final_error: None,
-            });
+        let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, tol, observer);
+        error = e;
+        if let Some(outcome) = stop {
+            return Ok(outcome);
         }
     }
-    Ok(SolverOutcome {
-        iterations: options.max_iter,
-        out_of_time: false,
-        final_error: None,
-    })
+    Ok(OuterLoop::iterations_exhausted(options.max_iter))
 }
 
 #[cfg(test)]
