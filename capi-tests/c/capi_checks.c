@@ -165,26 +165,30 @@ static void sbm_release(SbmBuild* b) {
 
 /* ---- solving a shared problem --------------------------------------------------------------- */
 
-static int solve_file(const char* path, int storage, int solver_id, int local_solver, double tolerance,
-                      int max_iter, double* reaction_out, double* velocity_out, int capacity,
-                      CSolveResult* result);
+int capi_solve_file_with(const char* path, int storage, int solver_id, int internal_id, double tolerance,
+                         int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                         CSolveResult* result);
 
 int capi_solve_file(const char* path, int storage, int local_solver, double tolerance, int max_iter,
                     double* reaction_out, double* velocity_out, int capacity, CSolveResult* result) {
-  return solve_file(path, storage, SICONOS_FRICTION_3D_NSGS, local_solver, tolerance, max_iter, reaction_out,
-                    velocity_out, capacity, result);
+  return capi_solve_file_with(path, storage, SICONOS_FRICTION_3D_NSGS, local_solver, tolerance, max_iter,
+                              reaction_out, velocity_out, capacity, result);
 }
 
 /* Any solver id with its Siconos defaults, tolerance and iteration limit overridden. */
 int capi_solve_file_with_solver(const char* path, int storage, int solver_id, double tolerance, int max_iter,
                                 double* reaction_out, double* velocity_out, int capacity, CSolveResult* result) {
-  return solve_file(path, storage, solver_id, 0, tolerance, max_iter, reaction_out, velocity_out, capacity,
-                    result);
+  return capi_solve_file_with(path, storage, solver_id, 0, tolerance, max_iter, reaction_out, velocity_out,
+                              capacity, result);
 }
 
-static int solve_file(const char* path, int storage, int solver_id, int local_solver, double tolerance,
-                      int max_iter, double* reaction_out, double* velocity_out, int capacity,
-                      CSolveResult* result) {
+/* Solves the file's problem, W rebuilt in `storage` (-1: as stored), with solver `solver_id` and its
+ * Siconos defaults; `internal_id` != 0 replaces the first internal solver (by
+ * solver_options_update_internal, or, for ids without defaults of their own such as TFP's 566/567,
+ * by renaming it as a host editing the options struct would). */
+int capi_solve_file_with(const char* path, int storage, int solver_id, int internal_id, double tolerance,
+                         int max_iter, double* reaction_out, double* velocity_out, int capacity,
+                         CSolveResult* result) {
   FrictionContactProblem* file = frictionContact_new_from_filename(path);
   CHECK(file != NULL, "cannot read %s", path);
   int nc = file->numberOfContacts;
@@ -209,9 +213,11 @@ static int solve_file(const char* path, int storage, int solver_id, int local_so
 
   SolverOptions* options = solver_options_create(solver_id);
   CHECK(options != NULL, "solver_options_create(%d)", solver_id);
-  if (solver_id == SICONOS_FRICTION_3D_NSGS) {
-    if (local_solver != 0) solver_options_update_internal(options, 0, local_solver);
-    CHECK(options->internalSolvers[0] != NULL, "update_internal(%d)", local_solver);
+  if (internal_id != 0) {
+    CHECK(options->numberOfInternalSolvers >= 1, "solver %d has no internal solver", solver_id);
+    solver_options_update_internal(options, 0, internal_id);
+    CHECK(options->internalSolvers[0] != NULL, "update_internal(%d)", internal_id);
+    if (options->internalSolvers[0]->solverId != internal_id) options->internalSolvers[0]->solverId = internal_id;
   }
   options->dparam[SICONOS_DPARAM_TOL] = tolerance;
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
@@ -221,7 +227,8 @@ static int solve_file(const char* path, int storage, int solver_id, int local_so
   double* w2 = calloc((size_t)n + 1, sizeof(double));
   double* u3 = calloc((size_t)n + 1, sizeof(double));
   int info = fc3d_driver(&problem, r, u, options);
-  CHECK(info == 0 || info == 1, "%s: fc3d_driver returned %d", path, info);
+  CHECK(info == 0 || info == 1 || (solver_id == SICONOS_FRICTION_3D_SOCLCP && info == FC3D_RELAXED_NOT_COULOMB),
+        "%s: fc3d_driver(%d) returned %d", path, solver_id, info);
 
   result->info = info;
   result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
@@ -955,70 +962,6 @@ int capi_check_vi_admm_options(void) {
 
 /* ---- optimization-based solvers: TFP 503, PFP 522, ACLMFP 516, SOCLCP 517 ------------------ */
 
-/* As capi_solve_file, with solver `solver_id` and its Siconos defaults; `internal_id` != 0
- * renames the first internal solver (TFP: 500, 566 or 567), as a host editing the options
- * struct would. */
-int opt5_solve_file(const char* path, int storage, int solver_id, int internal_id, double tolerance,
-                    int max_iter, double* reaction_out, double* velocity_out, int capacity,
-                    CSolveResult* result) {
-  FrictionContactProblem* file = frictionContact_new_from_filename(path);
-  CHECK(file != NULL, "cannot read %s", path);
-  int nc = file->numberOfContacts;
-  int n = 3 * nc;
-  CHECK(n <= capacity, "%s: %d unknowns do not fit %d", path, n, capacity);
-
-  double* W = malloc(sizeof(double) * ((size_t)n * n + 1));
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++) W[i + (size_t)j * n] = NM_get_value(file->M, i, j);
-
-  SbmBuild sbm = {0};
-  NumericsMatrix* M = NULL;
-  switch (storage) {
-    case -1: M = file->M; break;
-    case NM_DENSE: M = dense_matrix(W, n); break;
-    case NM_SPARSE_BLOCK: sbm = sbm_matrix(W, nc); M = sbm.M; break;
-    case NM_SPARSE: M = csr_matrix(W, n); break;
-    default: FAIL("unknown storage %d", storage);
-  }
-  FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
-
-  SolverOptions* options = solver_options_create(solver_id);
-  CHECK(options != NULL, "solver_options_create(%d)", solver_id);
-  if (internal_id != 0) {
-    CHECK(options->numberOfInternalSolvers >= 1, "solver %d has no internal solver", solver_id);
-    options->internalSolvers[0]->solverId = internal_id;
-  }
-  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
-  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
-
-  double* r = calloc((size_t)n + 1, sizeof(double));
-  double* u = calloc((size_t)n + 1, sizeof(double));
-  double* w2 = calloc((size_t)n + 1, sizeof(double));
-  double* u3 = calloc((size_t)n + 1, sizeof(double));
-  int info = fc3d_driver(&problem, r, u, options);
-  CHECK(info >= 0 && info <= FC3D_RELAXED_NOT_COULOMB, "%s: fc3d_driver(%d) returned %d", path,
-        solver_id, info);
-
-  result->info = info;
-  result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
-  result->reported_error = options->dparam[SICONOS_DPARAM_RESIDU];
-  result->storage = M->storageType;
-  double api_error = -1.0;
-  int e = fc3d_compute_error(&problem, r, w2, tolerance, options, norm2(file->q, n), &api_error);
-  CHECK(e == 0 || e == 1, "fc3d_compute_error returned %d", e);
-  result->api_error = api_error;
-  result->independent_error = independent_error(W, file->q, file->mu, r, nc, u3);
-  memcpy(reaction_out, r, sizeof(double) * (size_t)n);
-  memcpy(velocity_out, u, sizeof(double) * (size_t)n);
-
-  solver_options_delete(options);
-  free(options);
-  if (storage == NM_SPARSE_BLOCK) sbm_release(&sbm);
-  else if (storage != -1) NM_free(M);
-  frictionContactProblem_free(file);
-  free(W); free(r); free(u); free(w2); free(u3);
-  return 0;
-}
 
 /* Solves one contact (W = I, mu = 0.5) with `id`; returns info, r and u through pointers. */
 static int opt5_one(int id, double q[3], double r[3], double u[3], int* info) {
@@ -1105,59 +1048,6 @@ int opt5_check_single_contacts_and_options(void) {
 
 /* ---- nonsmooth Newton (504, 513, 520) and PROX (502) ------------------------------------------ */
 
-/* As capi_solve_file, with solver `solver_id` (Siconos' defaults) and, when internal_id != 0,
- * internal solver 0 replaced by `internal_id` (PROX). */
-int capi_solve_file_with(const char* path, int storage, int solver_id, int internal_id, double tolerance,
-                         int max_iter, double* reaction_out, double* velocity_out, int capacity,
-                         CSolveResult* result) {
-  FrictionContactProblem* file = frictionContact_new_from_filename(path);
-  CHECK(file != NULL, "cannot read %s", path);
-  int nc = file->numberOfContacts;
-  int n = 3 * nc;
-  CHECK(n <= capacity, "%s: %d unknowns do not fit %d", path, n, capacity);
-  double* W = malloc(sizeof(double) * ((size_t)n * n + 1));
-  for (int j = 0; j < n; j++)
-    for (int i = 0; i < n; i++) W[i + (size_t)j * n] = NM_get_value(file->M, i, j);
-  SbmBuild sbm = {0};
-  NumericsMatrix* M = NULL;
-  switch (storage) {
-    case -1: M = file->M; break;
-    case NM_DENSE: M = dense_matrix(W, n); break;
-    case NM_SPARSE_BLOCK: sbm = sbm_matrix(W, nc); M = sbm.M; break;
-    case NM_SPARSE: M = csr_matrix(W, n); break;
-    default: FAIL("unknown storage %d", storage);
-  }
-  FrictionContactProblem problem = {3, nc, M, file->q, file->mu};
-  SolverOptions* options = solver_options_create(solver_id);
-  CHECK(options != NULL, "solver_options_create(%d)", solver_id);
-  if (internal_id != 0) solver_options_update_internal(options, 0, internal_id);
-  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
-  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
-  double* r = calloc((size_t)n + 1, sizeof(double));
-  double* u = calloc((size_t)n + 1, sizeof(double));
-  double* w2 = calloc((size_t)n + 1, sizeof(double));
-  double* u3 = calloc((size_t)n + 1, sizeof(double));
-  int info = fc3d_driver(&problem, r, u, options);
-  CHECK(info == 0 || info == 1, "%s: fc3d_driver(%d) returned %d", path, solver_id, info);
-  result->info = info;
-  result->iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
-  result->reported_error = options->dparam[SICONOS_DPARAM_RESIDU];
-  result->storage = M->storageType;
-  double api_error = -1.0;
-  int e = fc3d_compute_error(&problem, r, w2, tolerance, options, norm2(file->q, n), &api_error);
-  CHECK(e == 0 || e == 1, "fc3d_compute_error returned %d", e);
-  result->api_error = api_error;
-  result->independent_error = independent_error(W, file->q, file->mu, r, nc, u3);
-  memcpy(reaction_out, r, sizeof(double) * (size_t)n);
-  memcpy(velocity_out, u, sizeof(double) * (size_t)n);
-  solver_options_delete(options);
-  free(options);
-  if (storage == NM_SPARSE_BLOCK) sbm_release(&sbm);
-  else if (storage != -1) NM_free(M);
-  frictionContactProblem_free(file);
-  free(W); free(r); free(u); free(w2); free(u3);
-  return 0;
-}
 
 /* One contact (W = I) pushed in, one given by q2; solved by `id` with its defaults at 1e-12. */
 static int newton_two_contacts(int id, int internal, const double q2[3], double mu2, const double r2_exp[3]) {

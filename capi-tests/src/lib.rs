@@ -60,18 +60,6 @@ extern "C" {
     ) -> c_int;
     pub fn capi_check_vi_admm_single_contacts() -> c_int;
     pub fn capi_check_vi_admm_options() -> c_int;
-    pub fn opt5_solve_file(
-        path: *const c_char,
-        storage: c_int,
-        solver_id: c_int,
-        internal_id: c_int,
-        tolerance: c_double,
-        max_iter: c_int,
-        reaction_out: *mut c_double,
-        velocity_out: *mut c_double,
-        capacity: c_int,
-        result: *mut CSolveResult,
-    ) -> c_int;
     pub fn opt5_check_single_contacts_and_options() -> c_int;
     pub fn capi_solve_file_with(
         path: *const c_char,

@@ -92,7 +92,7 @@ fn shared_problems_c_equals_rust_in_all_storages() {
                 let mut u = vec![0.0; n];
                 let mut res = CSolveResult::default();
                 let rc = unsafe {
-                    opt5_solve_file(
+                    capi_solve_file_with(
                         cpath.as_ptr(),
                         storage,
                         id,
