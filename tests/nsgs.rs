@@ -4,6 +4,9 @@
 //! Every reported error is checked against an independent recomputation (entry-wise `u = W r + q`
 //! and a projection on the cone written here from its dot-product form), not `natural_map_error`.
 
+mod common;
+use common::honesty::{check_report, norm};
+
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -31,76 +34,6 @@ fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (SolveReport, Vec<f64>, Vec
     let t = Instant::now();
     let report = solve(p, c, &mut r, &mut u).expect("valid problem");
     (report, r, u, t.elapsed())
-}
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
-
-/// `W r + q`, entry by entry.
-fn velocity_by_entries(p: &FrictionProblem<'_>, r: &[f64]) -> Vec<f64> {
-    let mut u = p.q().to_vec();
-    p.w().for_each_entry(|i, j, v| u[i] += v * r[j]);
-    u
-}
-
-/// Projection on `{||x_T|| <= mu x_N}` written from scratch: inside, keep; in the polar cone
-/// `{mu ||x_T|| <= -x_N}`, 0; otherwise the orthogonal projection `(x . d) d` on the boundary ray
-/// of unit direction `d = (1, mu e) / sqrt(1 + mu^2)`, `e = x_T / ||x_T||`.
-fn cone_projection(x: [f64; 3], mu: f64) -> [f64; 3] {
-    let nt = (x[1] * x[1] + x[2] * x[2]).sqrt();
-    if x[0] >= 0.0 && nt <= mu * x[0] {
-        return x;
-    }
-    if mu * nt <= -x[0] {
-        return [0.0; 3];
-    }
-    let s = 1.0 / (1.0 + mu * mu).sqrt();
-    let d = [s, s * mu * x[1] / nt, s * mu * x[2] / nt];
-    let t = x[0] * d[0] + x[1] * d[1] + x[2] * d[2];
-    [t * d[0], t * d[1], t * d[2]]
-}
-
-/// The relative natural-map error of `r`, recomputed independently: `u = W r + q`,
-/// `sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2) / max(||q||, ||r||, ||u||)` (1 when that is 0).
-fn independent_error(p: &FrictionProblem<'_>, r: &[f64]) -> (f64, Vec<f64>) {
-    let u = velocity_by_entries(p, r);
-    let mut sum = 0.0;
-    for (c, &mu) in p.mu().iter().enumerate() {
-        let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
-        let ut_norm = (uc[1] * uc[1] + uc[2] * uc[2]).sqrt();
-        let x = [rc[0] - (uc[0] + mu * ut_norm), rc[1] - uc[1], rc[2] - uc[2]];
-        let pr = cone_projection(x, mu);
-        sum += (0..3).map(|i| (rc[i] - pr[i]).powi(2)).sum::<f64>();
-    }
-    let scale = norm(p.q()).max(norm(r)).max(norm(&u));
-    let scale = if scale > 0.0 { scale } else { 1.0 };
-    (sum.sqrt() / scale, u)
-}
-
-/// The report's error and u agree with the independent recomputation, and the status with
-/// the tolerance `tol`.
-fn check_report(
-    name: &str,
-    p: &FrictionProblem<'_>,
-    tol: f64,
-    report: &SolveReport,
-    r: &[f64],
-    u: &[f64],
-) {
-    let (e, u_ref) = independent_error(p, r);
-    let su = norm(&u_ref).max(norm(p.q())).max(1e-300);
-    for (a, b) in u.iter().zip(&u_ref) {
-        assert!((a - b).abs() <= 1e-12 * su, "{name}: u {a} vs {b}");
-    }
-    // Same quantity up to summation order: relative 1e-9, or absolute at the level where
-    // rounding in u dominates.
-    assert!(
-        (report.error - e).abs() <= 1e-9 * e + 1e-14,
-        "{name}: reported error {:e}, recomputed {e:e}",
-        report.error
-    );
-    assert_eq!(report.converged(), report.error <= tol, "{name}");
 }
 
 fn scene(name: &str) -> Scene {
