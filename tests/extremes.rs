@@ -258,9 +258,12 @@ fn every_solver_on_every_extreme_problem_is_finite_and_honest() {
                     out
                 };
                 let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-                if again != (rc, iters, reported.to_bits())
-                    || bits(&r) != bits(&r2)
-                    || bits(&u) != bits(&u2)
+                // A second call cut by the wall clock (loaded machine) is not a repeat.
+                let cut_by_clock = again.0 == 2;
+                if !cut_by_clock
+                    && (again != (rc, iters, reported.to_bits())
+                        || bits(&r) != bits(&r2)
+                        || bits(&u) != bits(&u2))
                 {
                     failures.push(format!(
                         "{what}: a second identical call gave different bits"
