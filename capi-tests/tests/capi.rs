@@ -6,8 +6,8 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::{Path, PathBuf};
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{solve, Delassus, FrictionProblem, LocalSolverKind, NsgsOptions, SolverConfig};
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{solve, Delassus, FrictionProblem, LocalSolverKind, NsgsOptions, SolverConfig};
 use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {
@@ -205,7 +205,7 @@ fn shared_problems_through_the_c_api_in_all_storages() {
             match &first_r {
                 None => first_r = Some(r.clone()),
                 Some(r0) => {
-                    let scale = fc3d::linalg::norm(r0).max(1e-300);
+                    let scale = fc3d_core::linalg::norm(r0).max(1e-300);
                     let diff = r
                         .iter()
                         .zip(r0)

@@ -6,8 +6,8 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{
     solve, Delassus, FrictionProblem, NsgsOptions, NsnFormulation, NsnOptions, ProxInternal,
     ProxOptions, SolverConfig,
 };

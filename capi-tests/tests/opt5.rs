@@ -5,11 +5,11 @@
 use std::ffi::CString;
 use std::os::raw::c_int;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::pfp::PfpOptions;
-use fc3d::soclcp::{AclmOptions, SoclcpOptions};
-use fc3d::tresca::{TrescaInnerSolver, TrescaOptions};
-use fc3d::{solve, Delassus, FrictionProblem, SolveStatus, SolverConfig};
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::pfp::PfpOptions;
+use fc3d_core::soclcp::{AclmOptions, SoclcpOptions};
+use fc3d_core::tresca::{TrescaInnerSolver, TrescaOptions};
+use fc3d_core::{solve, Delassus, FrictionProblem, SolveStatus, SolverConfig};
 use fc3d_capi_tests::*;
 
 #[test]

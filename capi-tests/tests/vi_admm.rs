@@ -6,8 +6,8 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{solve, AdmmOptions, Delassus, FrictionProblem, SolverConfig, ViOptions, ViSolver};
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{solve, AdmmOptions, Delassus, FrictionProblem, SolverConfig, ViOptions, ViSolver};
 use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {

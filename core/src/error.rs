@@ -1,0 +1,68 @@
+//! Typed errors of the core. The C layer maps each variant to a return code and a message.
+
+use thiserror::Error;
+
+/// Everything that can be wrong with the input of a solve or a file, as a typed value.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Fc3dError {
+    /// Two sizes that must agree do not.
+    #[error("dimension mismatch: {what}: expected {expected}, got {got}")]
+    DimensionMismatch {
+        what: String,
+        expected: usize,
+        got: usize,
+    },
+    /// A NaN or an infinity in the data.
+    #[error("non-finite value in {what} at index {index}")]
+    NonFinite { what: String, index: usize },
+    /// Friction coefficients must be >= 0.
+    #[error("negative friction coefficient mu[{contact}] = {value}")]
+    NegativeFriction { contact: usize, value: f64 },
+    /// A sparse-block W lacks the 3x3 diagonal block of a contact.
+    #[error("the diagonal 3x3 block of contact {contact} is missing from W")]
+    MissingDiagonalBlock { contact: usize },
+    /// Index arrays that do not describe a valid matrix.
+    #[error("invalid matrix structure: {0}")]
+    InvalidStructure(String),
+    /// A storage or problem shape the library does not handle.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+    /// A solver id that is not implemented.
+    #[error("solver id {id} ({name}) is not implemented in fc3d")]
+    UnsupportedSolver { id: i32, name: String },
+    /// An option value out of its documented range.
+    #[error("invalid option: {0}")]
+    InvalidOption(String),
+    /// A malformed problem file.
+    #[error("{file}: {message} (token {token_index}: '{token}')")]
+    Parse {
+        file: String,
+        token_index: usize,
+        token: String,
+        message: String,
+    },
+    /// An operating-system level I/O failure.
+    #[error("{file}: {message}")]
+    Io { file: String, message: String },
+}
+
+impl Fc3dError {
+    pub(crate) fn dims(what: impl Into<String>, expected: usize, got: usize) -> Self {
+        Fc3dError::DimensionMismatch {
+            what: what.into(),
+            expected,
+            got,
+        }
+    }
+}
+
+/// Checks that every value is finite, naming the first offender.
+pub fn check_finite(what: &str, values: &[f64]) -> Result<(), Fc3dError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Fc3dError::NonFinite {
+            what: what.to_string(),
+            index,
+        }),
+        None => Ok(()),
+    }
+}
