@@ -33,6 +33,15 @@ pub enum Fc3dError {
     /// An option value out of its documented range.
     #[error("invalid option: {0}")]
     InvalidOption(String),
+    /// A setting outside its documented range. `setting` names it as a path into the
+    /// configuration (`tolerance`, `nsgs.relaxation`, `local.tolerance`, ...), so that the C
+    /// layer can name the iparam/dparam index it came from.
+    #[error("invalid option: {setting} = {value} must be {requirement}")]
+    InvalidSetting {
+        setting: &'static str,
+        value: String,
+        requirement: &'static str,
+    },
     /// A malformed problem file.
     #[error("{file}: {message} (token {token_index}: '{token}')")]
     Parse {
@@ -47,12 +56,40 @@ pub enum Fc3dError {
 }
 
 impl Fc3dError {
+    /// An option or setting out of range ([`Fc3dError::InvalidOption`] or
+    /// [`Fc3dError::InvalidSetting`]).
+    pub fn is_invalid_option(&self) -> bool {
+        matches!(
+            self,
+            Fc3dError::InvalidOption(_) | Fc3dError::InvalidSetting { .. }
+        )
+    }
+
     pub(crate) fn dims(what: impl Into<String>, expected: usize, got: usize) -> Self {
         Fc3dError::DimensionMismatch {
             what: what.into(),
             expected,
             got,
         }
+    }
+}
+
+/// `Ok` when `holds`, else the [`Fc3dError::InvalidSetting`] naming `setting`, its `value` and
+/// the `requirement` it breaks.
+pub(crate) fn require_setting(
+    holds: bool,
+    setting: &'static str,
+    value: impl std::fmt::Display,
+    requirement: &'static str,
+) -> Result<(), Fc3dError> {
+    if holds {
+        Ok(())
+    } else {
+        Err(Fc3dError::InvalidSetting {
+            setting,
+            value: value.to_string(),
+            requirement,
+        })
     }
 }
 

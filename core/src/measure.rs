@@ -5,8 +5,9 @@
 //!
 //! (the normalisation falls back to 1 when all three norms are zero).
 
-use crate::cone::{modified_velocity, project_on_cone};
-use crate::linalg::{norm, Vec3};
+use crate::math::cone::{modified_velocity, project_on_cone};
+use crate::math::linalg::{norm, Vec3};
+use crate::matrix::BlockRows;
 use crate::problem::FrictionProblem;
 
 /// Squared natural-map residual of one contact, `|| r - P_K(r - ũ) ||^2`.
@@ -43,6 +44,18 @@ pub fn relative_scale(norm_q: f64, r: &[f64], u: &[f64]) -> f64 {
 /// Siconos' `fc3d_compute_error` does) and returns the error.
 pub fn natural_map_error(problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
     problem.velocity(r, u);
+    natural_map_error_of(problem, r, u)
+}
+
+/// [`natural_map_error`] with `u = W r + q` computed through the block rows of W (cheaper than
+/// the host's storage when W is dense but sparsely coupled).
+pub fn natural_map_error_by_rows(
+    problem: &FrictionProblem<'_>,
+    rows: &BlockRows,
+    r: &[f64],
+    u: &mut [f64],
+) -> f64 {
+    rows.velocity(problem.q(), r, u);
     natural_map_error_of(problem, r, u)
 }
 
@@ -116,11 +129,11 @@ pub fn dumont_criterion(r: &[f64], u: &[f64], u_solved: &[f64], mu: &[f64]) -> f
         let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
         let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
         let us = [u_solved[3 * c], u_solved[3 * c + 1], u_solved[3 * c + 2]];
-        let motion = crate::linalg::norm3(&crate::linalg::sub3(&us, &uc));
+        let motion = crate::math::linalg::norm3(&crate::math::linalg::sub3(&us, &uc));
         let p = project_on_cone(&rc, m);
-        let proj = crate::linalg::norm3(&crate::linalg::sub3(&rc, &p));
-        let ut_norm = crate::linalg::norm2(uc[1], uc[2]);
-        let bipotential = (crate::linalg::dot3(&uc, &rc) + m * rc[0] * ut_norm).abs();
+        let proj = crate::math::linalg::norm3(&crate::math::linalg::sub3(&rc, &p));
+        let ut_norm = crate::math::linalg::norm2(uc[1], uc[2]);
+        let bipotential = (crate::math::linalg::dot3(&uc, &rc) + m * rc[0] * ut_norm).abs();
         let penetration = (-uc[0]).max(0.0);
         sum += motion + proj + bipotential + penetration;
     }

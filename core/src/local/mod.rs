@@ -1,12 +1,15 @@
 //! One-contact solvers: FC(w, q, mu) with a 3x3 `w`, behind one trait so that the Gauss-Seidel
 //! sweep does not know which one it drives.
 
+mod adaptive;
 pub(crate) mod dumont;
 mod fischer_burmeister;
 mod newton;
 mod projection;
 mod quartic;
+mod registry;
 mod regularized;
+mod settings;
 mod vi_upk;
 
 pub use dumont::EnhancedBipotential;
@@ -18,11 +21,12 @@ pub use regularized::{
     ProjectionOnConeVelocity, ProjectionOnConeWithDiagonalization,
     ProjectionOnConeWithRegularization, ProjectionOnCylinderWithLocalIteration,
 };
+pub use registry::{AnyLocalSolver, LocalSolverKind};
+pub use settings::{LocalSolverOptions, NewtonFormulation, RhoRule};
 pub use vi_upk::FpViUpk;
 
-use crate::linalg::{lambda_max_sym2, lambda_min_sym2, Mat3, Vec3};
+use crate::math::linalg::{lambda_max_sym2, lambda_min_sym2, Mat3, Vec3};
 use crate::measure::contact_residual_sq;
-use crate::options::{LocalSolverKind, LocalSolverOptions, RhoRule};
 
 /// One contact's problem: `u = w r + q`, `K* ∋ ũ ⟂ r ∈ K(mu)`.
 #[derive(Debug, Clone, Copy)]
@@ -35,7 +39,7 @@ pub struct LocalProblem<'a> {
 impl LocalProblem<'_> {
     #[inline]
     pub fn velocity(&self, r: &Vec3) -> Vec3 {
-        crate::linalg::mat3_vec_add(self.w, r, &self.q)
+        crate::math::linalg::mat3_vec_add(self.w, r, &self.q)
     }
 
     /// Natural-map residual `||r - P_K(r - ũ)||` of this contact at `r`.
@@ -47,8 +51,8 @@ impl LocalProblem<'_> {
     /// Scale against which local residuals are compared: `max(||r||, ||q||, tiny)`.
     #[inline]
     pub fn scale(&self, r: &Vec3) -> f64 {
-        crate::linalg::norm3(r)
-            .max(crate::linalg::norm3(&self.q))
+        crate::math::linalg::norm3(r)
+            .max(crate::math::linalg::norm3(&self.q))
             .max(f64::MIN_POSITIVE)
     }
 }
@@ -139,100 +143,21 @@ pub fn lambda_max_sym3(w: &Mat3) -> f64 {
     qm + 2.0 * p * phi.cos()
 }
 
-/// Any of the implemented local solvers, chosen at run time (static dispatch in the sweep).
-pub enum AnyLocalSolver {
-    Newton(AlartCurnierNewton),
-    Cone(ProjectionOnCone),
-    ConeIterated(ProjectionOnConeWithLocalIteration),
-    Cylinder(ProjectionOnCylinder),
-    Regularized(ProjectionOnConeWithRegularization),
-    Diagonalized(ProjectionOnConeWithDiagonalization),
-    Velocity(ProjectionOnConeVelocity),
-    FischerBurmeister(FischerBurmeisterNewton),
-    Quartic(Quartic),
-    CylinderIterated(ProjectionOnCylinderWithLocalIteration),
-    FpViUpk(FpViUpk),
-    Bipotential(EnhancedBipotential),
-}
-
-impl AnyLocalSolver {
-    pub fn new(options: &LocalSolverOptions) -> Self {
-        use LocalSolverKind::*;
-        match options.kind {
-            NewtonAlartCurnier
-            | NewtonAlartCurnierGp
-            | NewtonHybrid
-            | EnhancedAugmentedLagrangian => {
-                AnyLocalSolver::Newton(AlartCurnierNewton::new(options))
-            }
-            ProjectionOnCone => AnyLocalSolver::Cone(projection::ProjectionOnCone),
-            ProjectionOnConeWithLocalIteration => AnyLocalSolver::ConeIterated(
-                projection::ProjectionOnConeWithLocalIteration::new(options),
-            ),
-            ProjectionOnCylinder => AnyLocalSolver::Cylinder(projection::ProjectionOnCylinder),
-            ProjectionOnConeWithRegularization => AnyLocalSolver::Regularized(
-                regularized::ProjectionOnConeWithRegularization::new(options),
-            ),
-            ProjectionOnConeWithDiagonalization => {
-                AnyLocalSolver::Diagonalized(regularized::ProjectionOnConeWithDiagonalization)
-            }
-            ProjectionOnConeVelocity => {
-                AnyLocalSolver::Velocity(regularized::ProjectionOnConeVelocity)
-            }
-            FischerBurmeisterNewton => AnyLocalSolver::FischerBurmeister(
-                fischer_burmeister::FischerBurmeisterNewton::new(options),
-            ),
-            Quartic => AnyLocalSolver::Quartic(quartic::Quartic::new(options)),
-            ProjectionOnCylinderWithLocalIteration => AnyLocalSolver::CylinderIterated(
-                regularized::ProjectionOnCylinderWithLocalIteration::new(options),
-            ),
-            FpViUpk => AnyLocalSolver::FpViUpk(vi_upk::FpViUpk::new(options)),
-            EnhancedBipotential => {
-                AnyLocalSolver::Bipotential(dumont::EnhancedBipotential::new(options))
-            }
-        }
+/// Moves a one-step solver to `next`; converged when the step left `r` unchanged. A step that
+/// is not finite leaves `r` as it was.
+#[inline]
+pub(crate) fn take_step(r: &mut Vec3, next: Vec3) -> LocalOutcome {
+    if !next.iter().all(|x| x.is_finite()) {
+        return LocalOutcome {
+            converged: false,
+            iterations: 1,
+        };
     }
-}
-
-impl LocalSolver for AnyLocalSolver {
-    fn rho(&self, w: &Mat3) -> (f64, f64) {
-        match self {
-            AnyLocalSolver::Newton(s) => s.rho(w),
-            AnyLocalSolver::Cone(s) => s.rho(w),
-            AnyLocalSolver::ConeIterated(s) => s.rho(w),
-            AnyLocalSolver::Cylinder(s) => s.rho(w),
-            AnyLocalSolver::Regularized(s) => s.rho(w),
-            AnyLocalSolver::Diagonalized(s) => s.rho(w),
-            AnyLocalSolver::Velocity(s) => s.rho(w),
-            AnyLocalSolver::FischerBurmeister(s) => s.rho(w),
-            AnyLocalSolver::Quartic(s) => s.rho(w),
-            AnyLocalSolver::CylinderIterated(s) => s.rho(w),
-            AnyLocalSolver::FpViUpk(s) => s.rho(w),
-            AnyLocalSolver::Bipotential(s) => s.rho(w),
-        }
-    }
-
-    #[inline]
-    fn solve_with_rho(
-        &mut self,
-        p: &LocalProblem<'_>,
-        rho: (f64, f64),
-        r: &mut Vec3,
-    ) -> LocalOutcome {
-        match self {
-            AnyLocalSolver::Newton(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Cone(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::ConeIterated(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Cylinder(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Regularized(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Diagonalized(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Velocity(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::FischerBurmeister(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Quartic(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::CylinderIterated(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::FpViUpk(s) => s.solve_with_rho(p, rho, r),
-            AnyLocalSolver::Bipotential(s) => s.solve_with_rho(p, rho, r),
-        }
+    let converged = next == *r;
+    *r = next;
+    LocalOutcome {
+        converged,
+        iterations: 1,
     }
 }
 

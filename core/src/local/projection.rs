@@ -1,42 +1,73 @@
 //! Projection-type local solvers: one step on the cone (SBP / FP-DS-One), iterated steps with a
 //! self-adaptive rho, and one augmented-Lagrangian step on the cylinder (SAL).
 
-use super::{local_rho, LocalOutcome, LocalProblem, LocalSolver};
-use crate::cone::{modified_velocity, project_on_cone, project_on_cylinder};
-use crate::linalg::{norm3, sub3, Mat3, Vec3};
-use crate::options::{LocalSolverOptions, RhoRule};
+use super::adaptive::{self_adaptive_projection, ProjectionStep};
+use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
+use crate::local::{LocalSolverOptions, RhoRule};
+use crate::math::cone::{modified_velocity, project_on_cone, project_on_cylinder};
+use crate::math::linalg::{norm3, sub3, Mat3, Vec3};
 
 /// `rho = 1 / W_NN` for every component (with the degenerate-block fallback of [`local_rho`]).
 #[inline]
-fn normal_rho(w: &Mat3) -> (f64, f64) {
+pub(super) fn normal_rho(w: &Mat3) -> (f64, f64) {
     let rho = local_rho(w, RhoRule::SplitSpectralNorm).0;
     (rho, rho)
 }
 
-/// One step `r <- P_K(r - rho ũ(r))`, with ũ the De Saxcé velocity.
-#[inline]
-fn cone_step(p: &LocalProblem<'_>, r: &Vec3, rho: f64) -> Vec3 {
-    let ut = modified_velocity(&p.velocity(r), p.mu);
-    project_on_cone(
-        &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
-        p.mu,
-    )
+/// Steps on the Coulomb cone along the De Saxcé velocity ũ: `P_K(r - rho ũ(r))`.
+pub(super) struct ConeStep;
+
+impl ProjectionStep for ConeStep {
+    #[inline]
+    fn field(&self, p: &LocalProblem<'_>, r: &Vec3) -> Vec3 {
+        modified_velocity(&p.velocity(r), p.mu)
+    }
+
+    #[inline]
+    fn step(&self, p: &LocalProblem<'_>, r: &Vec3, ut: &Vec3, rho: f64) -> Vec3 {
+        project_on_cone(
+            &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
+            p.mu,
+        )
+    }
+
+    #[inline]
+    fn residual(&self, p: &LocalProblem<'_>, r: &Vec3, ut: &Vec3) -> f64 {
+        norm3(&sub3(r, &self.step(p, r, ut, 1.0)))
+    }
 }
 
-/// Moves a one-step solver to `next`; it has converged when the step left `r` unchanged.
-#[inline]
-fn take_step(r: &mut Vec3, next: Vec3) -> LocalOutcome {
-    let converged = next == *r;
-    *r = next;
-    LocalOutcome {
-        converged,
-        iterations: 1,
+/// Augmented-Lagrangian steps on the cylinder `R+ x B(0, mu r_N)` along the velocity:
+/// `r_N <- (r_N - rho u_N)_+`, `r_T <- P_{B(0, mu r_N)}(r_T - rho u_T)` with the new `r_N`.
+pub(super) struct CylinderStep;
+
+impl ProjectionStep for CylinderStep {
+    #[inline]
+    fn field(&self, p: &LocalProblem<'_>, r: &Vec3) -> Vec3 {
+        p.velocity(r)
+    }
+
+    #[inline]
+    fn step(&self, p: &LocalProblem<'_>, r: &Vec3, u: &Vec3, rho: f64) -> Vec3 {
+        let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
+        project_on_cylinder(&tau, p.mu * tau[0].max(0.0))
+    }
+
+    #[inline]
+    fn residual(&self, p: &LocalProblem<'_>, r: &Vec3, u: &Vec3) -> f64 {
+        crate::measure::contact_residual_sq(r, u, p.mu).sqrt()
     }
 }
 
 /// [552] Dumont's SBP: a single projection step on the Coulomb cone along the De Saxcé
 /// direction, rho = 1 / W_NN. Reports convergence when the step left r unchanged.
 pub struct ProjectionOnCone;
+
+impl ProjectionOnCone {
+    pub fn new(_: &LocalSolverOptions) -> Self {
+        ProjectionOnCone
+    }
+}
 
 impl LocalSolver for ProjectionOnCone {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
@@ -50,13 +81,18 @@ impl LocalSolver for ProjectionOnCone {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        take_step(r, cone_step(p, r, rho.0))
+        take_step(r, ConeStep.step(p, r, &ConeStep.field(p, r), rho.0))
     }
 }
 
-/// [557] Dumont's SAL: one augmented-Lagrangian step,
-/// `r_N <- (r_N - rho u_N)_+`, `r_T <- P_{B(0, mu r_N)}(r_T - rho u_T)` with the new `r_N`.
+/// [557] Dumont's SAL: one augmented-Lagrangian step ([`CylinderStep`]).
 pub struct ProjectionOnCylinder;
+
+impl ProjectionOnCylinder {
+    pub fn new(_: &LocalSolverOptions) -> Self {
+        ProjectionOnCylinder
+    }
+}
 
 impl LocalSolver for ProjectionOnCylinder {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
@@ -70,24 +106,16 @@ impl LocalSolver for ProjectionOnCylinder {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        let rho = rho.0;
-        let u = p.velocity(r);
-        let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
-        take_step(r, project_on_cylinder(&tau, p.mu * tau[0].max(0.0)))
+        take_step(r, CylinderStep.step(p, r, &CylinderStep.field(p, r), rho.0))
     }
 }
 
 /// [553] Projection steps on the cone until the natural-map residual of the contact is below
-/// the local tolerance, with a self-adaptive rho (the UPK-type rule of the VI solvers:
-/// shrink by `NU` when `rho ||ũ(r+) - ũ(r)|| > L ||r+ - r||`, grow when below `LMIN`).
+/// the local tolerance, with the self-adaptive rho of [`super::adaptive`], from `1 / W_NN`.
 pub struct ProjectionOnConeWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
 }
-
-const NU: f64 = 2.0 / 3.0;
-const L: f64 = 0.9;
-const LMIN: f64 = 0.3;
 
 impl ProjectionOnConeWithLocalIteration {
     pub fn new(options: &LocalSolverOptions) -> Self {
@@ -109,45 +137,6 @@ impl LocalSolver for ProjectionOnConeWithLocalIteration {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        let mut rho = rho.0;
-        let mut ut = modified_velocity(&p.velocity(r), p.mu);
-        for it in 0..self.max_iter {
-            let next = project_on_cone(
-                &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
-                p.mu,
-            );
-            let step = norm3(&sub3(&next, r));
-            if step == 0.0 {
-                return LocalOutcome {
-                    converged: true,
-                    iterations: it,
-                };
-            }
-            let ut_next = modified_velocity(&p.velocity(&next), p.mu);
-            let ratio = rho * norm3(&sub3(&ut_next, &ut)) / step;
-            if ratio > L && rho > f64::MIN_POSITIVE {
-                rho *= NU;
-                continue;
-            }
-            *r = next;
-            ut = ut_next;
-            if ratio < LMIN {
-                rho /= NU;
-            }
-            let res = {
-                let pr = project_on_cone(&[r[0] - ut[0], r[1] - ut[1], r[2] - ut[2]], p.mu);
-                norm3(&sub3(r, &pr))
-            };
-            if res <= self.tolerance * p.scale(r) {
-                return LocalOutcome {
-                    converged: true,
-                    iterations: it + 1,
-                };
-            }
-        }
-        LocalOutcome {
-            converged: p.residual(r) <= self.tolerance * p.scale(r),
-            iterations: self.max_iter,
-        }
+        self_adaptive_projection(&ConeStep, p, rho.0, self.tolerance, self.max_iter, r)
     }
 }

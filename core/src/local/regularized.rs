@@ -1,33 +1,18 @@
 //! Variants of the projection local solvers: proximal regularization (554), diagonal metric
 //! (555), the cone step computed in velocity space (558) and iterated cylinder steps (564).
 
-use super::{local_rho, LocalOutcome, LocalProblem, LocalSolver};
-use crate::cone::{modified_velocity, project_on_cone, project_on_cylinder, project_on_dual_cone};
-use crate::linalg::{norm3, sub3, Mat3, Vec3};
-use crate::options::{LocalSolverOptions, RhoRule};
+use super::adaptive::self_adaptive_projection;
+use super::adaptive::ProjectionStep;
+use super::projection::{ConeStep, CylinderStep};
+use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
+use crate::local::{LocalSolverOptions, RhoRule};
+use crate::math::cone::{modified_velocity, project_on_cone, project_on_cylinder, project_on_dual_cone};
+use crate::math::linalg::{Mat3, Vec3};
 
 /// `1 / W_NN` with the degenerate-block fallback of [`local_rho`].
 #[inline]
 fn inverse_normal(w: &Mat3) -> f64 {
     local_rho(w, RhoRule::SplitSpectralNorm).0
-}
-
-/// Moves a one-step solver to `next`; converged when the step left `r` unchanged, or when
-/// the step is not finite (then `r` is kept).
-#[inline]
-fn take_step(r: &mut Vec3, next: Vec3) -> LocalOutcome {
-    if !next.iter().all(|x| x.is_finite()) {
-        return LocalOutcome {
-            converged: false,
-            iterations: 1,
-        };
-    }
-    let converged = next == *r;
-    *r = next;
-    LocalOutcome {
-        converged,
-        iterations: 1,
-    }
 }
 
 /// [554] One step of the proximal point iteration on the contact: the problem with
@@ -58,13 +43,7 @@ impl LocalSolver for ProjectionOnConeWithRegularization {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        let rho = rho.0;
-        let ut = modified_velocity(&p.velocity(r), p.mu);
-        let next = project_on_cone(
-            &[r[0] - rho * ut[0], r[1] - rho * ut[1], r[2] - rho * ut[2]],
-            p.mu,
-        );
-        take_step(r, next)
+        take_step(r, ConeStep.step(p, r, &ConeStep.field(p, r), rho.0))
     }
 }
 
@@ -76,6 +55,12 @@ impl LocalSolver for ProjectionOnConeWithRegularization {
 /// when `W_T1T1 = W_T2T2`: otherwise NSGS stalls at a non-zero error (Siconos 4.4 stalls at the
 /// same error, e.g. 1.955e-2 on FrictionContact3D_RR_1c). This is Siconos' step, kept as such.
 pub struct ProjectionOnConeWithDiagonalization;
+
+impl ProjectionOnConeWithDiagonalization {
+    pub fn new(_: &LocalSolverOptions) -> Self {
+        ProjectionOnConeWithDiagonalization
+    }
+}
 
 impl LocalSolver for ProjectionOnConeWithDiagonalization {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
@@ -112,6 +97,12 @@ impl LocalSolver for ProjectionOnConeWithDiagonalization {
 /// one used when the dual (velocity) variable is the primary unknown.
 pub struct ProjectionOnConeVelocity;
 
+impl ProjectionOnConeVelocity {
+    pub fn new(_: &LocalSolverOptions) -> Self {
+        ProjectionOnConeVelocity
+    }
+}
+
 impl LocalSolver for ProjectionOnConeVelocity {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
         let rho = inverse_normal(w);
@@ -137,17 +128,12 @@ impl LocalSolver for ProjectionOnConeVelocity {
 }
 
 /// [564] Augmented-Lagrangian (557) steps until the natural-map residual is below the local
-/// tolerance, with the self-adaptive rho of 553 (shrink by `NU` when
-/// `rho ||u(r+) - u(r)|| > L ||r+ - r||`, grow when below `LMIN`). Its fixed points are those of
-/// the Jean-Moreau function (58), i.e. the Coulomb law.
+/// tolerance, with the self-adaptive rho of [`super::adaptive`] from `1 / W_NN`. Its fixed points
+/// are those of the Jean-Moreau function (58), i.e. the Coulomb law.
 pub struct ProjectionOnCylinderWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
 }
-
-const NU: f64 = 2.0 / 3.0;
-const L: f64 = 0.9;
-const LMIN: f64 = 0.3;
 
 impl ProjectionOnCylinderWithLocalIteration {
     pub fn new(options: &LocalSolverOptions) -> Self {
@@ -156,12 +142,6 @@ impl ProjectionOnCylinderWithLocalIteration {
             max_iter: options.max_iter,
         }
     }
-}
-
-#[inline]
-fn cylinder_step(r: &Vec3, u: &Vec3, rho: f64, mu: f64) -> Vec3 {
-    let tau = [r[0] - rho * u[0], r[1] - rho * u[1], r[2] - rho * u[2]];
-    project_on_cylinder(&tau, mu * tau[0].max(0.0))
 }
 
 impl LocalSolver for ProjectionOnCylinderWithLocalIteration {
@@ -176,38 +156,6 @@ impl LocalSolver for ProjectionOnCylinderWithLocalIteration {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        let mut rho = rho.0;
-        let mut u = p.velocity(r);
-        for it in 0..self.max_iter {
-            let next = cylinder_step(r, &u, rho, p.mu);
-            let step = norm3(&sub3(&next, r));
-            if step == 0.0 || !step.is_finite() {
-                return LocalOutcome {
-                    converged: step == 0.0,
-                    iterations: it,
-                };
-            }
-            let u_next = p.velocity(&next);
-            let ratio = rho * norm3(&sub3(&u_next, &u)) / step;
-            if ratio > L && rho > f64::MIN_POSITIVE {
-                rho *= NU;
-                continue;
-            }
-            *r = next;
-            u = u_next;
-            if ratio < LMIN {
-                rho /= NU;
-            }
-            if p.residual(r) <= self.tolerance * p.scale(r) {
-                return LocalOutcome {
-                    converged: true,
-                    iterations: it + 1,
-                };
-            }
-        }
-        LocalOutcome {
-            converged: p.residual(r) <= self.tolerance * p.scale(r),
-            iterations: self.max_iter,
-        }
+        self_adaptive_projection(&CylinderStep, p, rho.0, self.tolerance, self.max_iter, r)
     }
 }

@@ -16,8 +16,8 @@
 //! [`one_step_solvers_cannot_stick_when_tangent_is_stiffer_than_twice_normal`] documents the rest.
 
 use super::*;
-use crate::linalg::{mat3_vec_add, norm3};
-use crate::options::{LocalSolverKind, LocalSolverOptions};
+use crate::math::linalg::{mat3_vec_add, norm3};
+use crate::local::{LocalSolverKind, LocalSolverOptions};
 use approx::assert_relative_eq;
 use proptest::prelude::*;
 
@@ -407,8 +407,8 @@ fn sampled_rayleigh_max(w: &Mat3) -> f64 {
         for j in 0..2 * n {
             let ph = std::f64::consts::PI * f64::from(j) / f64::from(n);
             let x = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
-            let wx = crate::linalg::mat3_vec(w, &x);
-            best = best.max(crate::linalg::dot3(&x, &wx));
+            let wx = crate::math::linalg::mat3_vec(w, &x);
+            best = best.max(crate::math::linalg::dot3(&x, &wx));
         }
     }
     best
@@ -695,7 +695,7 @@ fn jean_moreau_newton_solves_analytic_contacts() {
         LocalSolverKind::NewtonHybrid,
     ] {
         let mut options = LocalSolverOptions::new(kind);
-        options.formulation = crate::options::NewtonFormulation::JeanMoreau;
+        options.formulation = crate::local::NewtonFormulation::JeanMoreau;
         for (w, q, mu, r_expected, u_expected) in &cases {
             let mut solver = AnyLocalSolver::new(&options);
             let p = LocalProblem { w, q: *q, mu: *mu };
@@ -784,7 +784,7 @@ fn constructed(w: &Mat3, mu: f64, regime: usize, a: f64, b: f64, theta: f64) -> 
             [0.0, b * d[0], b * d[1]],
         ),
     };
-    let wr = crate::linalg::mat3_vec(w, &r);
+    let wr = crate::math::linalg::mat3_vec(w, &r);
     (r, [u[0] - wr[0], u[1] - wr[1], u[2] - wr[2]])
 }
 
@@ -836,9 +836,9 @@ proptest! {
         let rho = 1.0 / w[0][0];
         let p = LocalProblem { w: &w, q, mu };
         let g = |x: &Vec3| {
-            let ut = crate::cone::modified_velocity(&p.velocity(x), mu);
+            let ut = crate::math::cone::modified_velocity(&p.velocity(x), mu);
             let tau = [x[0] - rho * ut[0], x[1] - rho * ut[1], x[2] - rho * ut[2]];
-            let pr = crate::cone::project_on_cone(&tau, mu);
+            let pr = crate::math::cone::project_on_cone(&tau, mu);
             ([x[0] - pr[0], x[1] - pr[1], x[2] - pr[2]], tau, p.velocity(x))
         };
         let (_, tau, u) = g(&r);

@@ -8,8 +8,8 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
-use crate::linalg::{Mat3, Vec3};
-use crate::options::{LocalSolverOptions, RhoRule};
+use crate::math::linalg::{Mat3, Vec3};
+use crate::local::{LocalSolverOptions, RhoRule};
 
 pub struct FpViUpk {
     rule: RhoRule,

@@ -1,6 +1,6 @@
 use super::Delassus;
 use crate::error::Fc3dError;
-use crate::linalg::{mat3_vec_add, Mat3, Vec3};
+use crate::math::linalg::{mat3_vec_add, Mat3, Vec3};
 
 /// Block-row view of a square W with 3x3 blocks, built once per solve for Gauss-Seidel sweeps:
 /// for each contact, its diagonal block and its non-zero off-diagonal blocks (row-major).
@@ -52,7 +52,7 @@ impl BlockRows {
             }
             Delassus::SparseBlock(s) => {
                 for (bi, bj, cm) in s.iter_blocks() {
-                    let b = crate::linalg::mat3_from_col_major(cm);
+                    let b = crate::math::linalg::mat3_from_col_major(cm);
                     if bi == bj {
                         add_into(&mut diagonal[bi], &b);
                         have_diag[bi] = true;
@@ -126,7 +126,7 @@ impl BlockRows {
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
             let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-            let uc = crate::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
+            let uc = crate::math::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
             u[3 * c..3 * c + 3].copy_from_slice(&uc);
         }
     }

@@ -1,5 +1,5 @@
 use crate::error::{check_finite, Fc3dError};
-use crate::linalg::{mat3_from_col_major, Mat3};
+use crate::math::linalg::{mat3_from_col_major, Mat3};
 
 /// Square 3x3-block sparse matrix in block-CSR order, blocks stored column-major as in Siconos'
 /// `SparseBlockStructuredMatrix` (restricted to the uniform 3x3 blocks of fc3d).

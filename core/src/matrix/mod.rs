@@ -20,7 +20,7 @@ pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
 
 use crate::error::Fc3dError;
-use crate::linalg::Mat3;
+use crate::math::linalg::Mat3;
 
 /// The Delassus operator W of a problem, in the storage the host gave.
 #[derive(Debug, Clone, PartialEq)]

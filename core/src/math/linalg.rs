@@ -161,6 +161,21 @@ pub fn norm(x: &[f64]) -> f64 {
     amax * s.sqrt()
 }
 
+/// Entries below [`DIVERGENCE_BOUND`] in magnitude: squares and sums of squares stay finite, so
+/// every norm and error of such an iterate is finite. The global iterations (VI, ADMM) stop a
+/// diverging run before it leaves this set.
+pub fn bounded(v: &[f64]) -> bool {
+    v.iter().all(|x| x.abs() < DIVERGENCE_BOUND)
+}
+
+/// See [`bounded`].
+pub const DIVERGENCE_BOUND: f64 = 1e100;
+
+/// `||a - b||^2` for slices of equal length.
+pub fn distance_sq(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,30 +1,14 @@
-//! Nonsmooth Gauss-Seidel (NSGS, Algorithm 7): sweep over contacts, solve each one-contact problem
-//! FC(W_cc, q_c + sum_{b != c} W_cb r_b, mu_c) with the chosen local solver, and write its
-//! reaction back (relaxed by omega when asked) before moving to the next contact.
-//!
-//! Sweep options, all off by default: over-relaxation (PSOR), shuffled contact order, freezing of
-//! contacts that stopped moving, adaptive local tolerance, a stopping test every k sweeps, and
-//! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
-//! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
-
-use std::time::Instant;
+//! One Gauss-Seidel sweep over the contacts, prepared once per problem: the block-row view of
+//! W, the local solver, each contact's rho, and the sweep options (order, relaxation, freezing).
 
 use crate::error::Fc3dError;
-use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver};
+use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
 use crate::matrix::BlockRows;
-use crate::measure::{cheap_error, natural_map_error};
-use crate::options::{
-    ContactOrder, ErrorEvaluation, LocalSolverOptions, LocalTolerance, NsgsOptions,
-};
+use crate::measure::natural_map_error_by_rows;
 use crate::problem::FrictionProblem;
-use crate::solver::{IterationEvent, SolverOutcome};
 
-/// The best iterate by full natural-map error, kept only when a time budget may cut the run
-/// short (the copy is allocated once, before the loop).
-struct BestIterate {
-    r: Vec<f64>,
-    error: f64,
-}
+use super::settings::{ContactOrder, NsgsOptions};
+use crate::contract::ErrorEvaluation;
 
 /// A small, portable pseudo-random generator (SplitMix64): the same seed gives the same contact
 /// orders on every platform and run, which makes shuffled runs reproducible bit for bit.
@@ -111,21 +95,17 @@ impl Sweeper {
     }
 
     /// A sweeper with the sweep options of `options` (order, relaxation, freezing, and the
-    /// bookkeeping Dumont's criterion needs). Rejects an omega outside (0, 2).
+    /// bookkeeping Dumont's criterion needs); `tolerance` is the run's, against which freezing
+    /// judges a contact still. Rejects options out of range.
     pub fn with_options(
         problem: &FrictionProblem<'_>,
         options: &NsgsOptions,
+        tolerance: f64,
     ) -> Result<Self, Fc3dError> {
+        options.validate()?;
         let mut s = Sweeper::new(problem, &options.local)?;
         let nc = s.rows.n_contacts();
-        if let Some(omega) = options.relaxation {
-            if !(omega > 0.0 && omega < 2.0) {
-                return Err(Fc3dError::InvalidOption(format!(
-                    "relaxation omega must lie in (0, 2), got {omega}"
-                )));
-            }
-            s.plan.relaxation = Some(omega);
-        }
+        s.plan.relaxation = options.relaxation;
         match options.order {
             ContactOrder::Natural => {}
             ContactOrder::ShuffledOnce { seed } => {
@@ -139,7 +119,7 @@ impl Sweeper {
         }
         if let Some(k) = options.freezing {
             if k > 0 {
-                s.plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), options.tolerance));
+                s.plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), tolerance));
                 s.plan.frozen = vec![0; nc];
             }
         }
@@ -221,7 +201,7 @@ impl Sweeper {
             ];
             if omega > 1.0 {
                 // Over-relaxation can leave the cone; the iterate must stay admissible.
-                rc = crate::cone::project_on_cone(&rc, mu[c]);
+                rc = crate::math::cone::project_on_cone(&rc, mu[c]);
             }
         }
         let d = [rc[0] - old[0], rc[1] - old[1], rc[2] - old[2]];
@@ -234,23 +214,23 @@ impl Sweeper {
         }
         r[3 * c..3 * c + 3].copy_from_slice(&rc);
         if let Some(lq) = local_q.filter(|_| !self.plan.u_solved.is_empty()) {
-            let uc = crate::linalg::mat3_vec_add(w, &rc, &lq);
+            let uc = crate::math::linalg::mat3_vec_add(w, &rc, &lq);
             self.plan.u_solved[3 * c..3 * c + 3].copy_from_slice(&uc);
         }
         d_sq
     }
 
-    fn any_frozen(&self) -> bool {
+    pub(super) fn any_frozen(&self) -> bool {
         self.plan.frozen.iter().any(|&f| f > 0)
     }
 
     /// Unfreezes every contact.
-    fn thaw(&mut self) {
+    pub(super) fn thaw(&mut self) {
         self.plan.frozen.iter_mut().for_each(|f| *f = 0);
     }
 
     /// Sets the local solver's tolerance (adaptive local tolerance strategies).
-    fn set_local_tolerance(&mut self, tolerance: f64) {
+    pub(super) fn set_local_tolerance(&mut self, tolerance: f64) {
         if tolerance != self.local_options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
             self.local_options.tolerance = tolerance;
             self.local = AnyLocalSolver::new(&self.local_options);
@@ -265,157 +245,12 @@ impl Sweeper {
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
-        self.rows.velocity(problem.q(), r, u);
-        crate::measure::natural_map_error_of(problem, r, u)
+        natural_map_error_by_rows(problem, &self.rows, r, u)
     }
 
     /// Dumont's criterion (37) after the last sweep (`u` receives `W r + q`).
-    fn dumont_criterion(&self, problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
+    pub(super) fn dumont_criterion(&self, problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
         self.rows.velocity(problem.q(), r, u);
         crate::measure::dumont_criterion(r, u, &self.plan.u_solved, problem.mu())
     }
-}
-
-/// An NSGS run: how it ended, plus Dumont's criterion at the last test when that was the mode.
-pub(crate) struct NsgsRun {
-    pub outcome: SolverOutcome,
-    pub dumont_criterion: Option<f64>,
-}
-
-/// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
-/// `u = W r + q` and the final error.
-pub(crate) fn nsgs(
-    problem: &FrictionProblem<'_>,
-    options: &NsgsOptions,
-    r: &mut [f64],
-    u: &mut [f64],
-    observer: &mut dyn FnMut(&IterationEvent<'_>),
-) -> Result<NsgsRun, Fc3dError> {
-    // Everything that can fail happens before r is touched.
-    let mut sweeper = Sweeper::with_options(problem, options)?;
-    let (q, mu) = (problem.q(), problem.mu());
-    let nc = problem.n_contacts().max(1) as f64;
-    let tol = options.tolerance;
-    let frequency = options.evaluation_frequency.max(1);
-    let mut light_tol = tol;
-    let deadline = options.time_budget.map(|b| Instant::now() + b);
-    let mut best = deadline.map(|_| BestIterate {
-        r: r.to_vec(),
-        error: f64::INFINITY,
-    });
-
-    let mut last_measured = None;
-    let mut last_tested = f64::INFINITY;
-    let mut dumont = None;
-    for iteration in 1..=options.max_iter {
-        let increment_sq = sweeper.sweep(q, mu, r);
-        let test_now = iteration % frequency == 0 || iteration == options.max_iter;
-
-        // (error tested this sweep, whether it is the full error, converged)
-        let (error, full, mut converged) = if !test_now {
-            (last_tested, false, false)
-        } else {
-            match options.error_evaluation {
-                ErrorEvaluation::Full => {
-                    let e = natural_map_error(problem, r, u);
-                    (e, true, e <= tol)
-                }
-                ErrorEvaluation::Light => {
-                    let e = cheap_error(increment_sq, r);
-                    (e, false, e <= tol)
-                }
-                ErrorEvaluation::LightWithFullFinal => {
-                    let light = cheap_error(increment_sq, r);
-                    if light <= light_tol {
-                        let full = natural_map_error(problem, r, u);
-                        if full > tol {
-                            // Assume full/light stays roughly proportional and ask the cheap
-                            // error for what the full one still lacks.
-                            light_tol = light * tol / full;
-                        }
-                        (full, true, full <= tol)
-                    } else {
-                        (light, false, false)
-                    }
-                }
-                ErrorEvaluation::DumontCriterion => {
-                    let e = sweeper.dumont_criterion(problem, r, u);
-                    dumont = Some(e);
-                    (e, false, e <= tol)
-                }
-            }
-        };
-        if converged && !full && sweeper.any_frozen() {
-            // A cheap test cannot see frozen contacts (they did not move because they were not
-            // visited): visit everything again before believing it.
-            sweeper.thaw();
-            converged = false;
-        }
-        if test_now {
-            last_tested = error;
-            match options.local_tolerance {
-                LocalTolerance::Given => {}
-                LocalTolerance::Adaptive { ratio } => {
-                    sweeper.set_local_tolerance((error / ratio).max(tol / nc))
-                }
-                LocalTolerance::AdaptivePerContact { ratio } => {
-                    sweeper.set_local_tolerance(error / (ratio * nc))
-                }
-            }
-        }
-        if let Some(b) = best.as_mut() {
-            // Under a time budget the run may be cut at any sweep: measure every iterate so the
-            // one returned is the best seen, not merely the last one measured.
-            let e = if full {
-                error
-            } else {
-                sweeper.natural_map_error(problem, r, u)
-            };
-            if e < b.error {
-                b.error = e;
-                b.r.copy_from_slice(r);
-            }
-        }
-        observer(&IterationEvent {
-            iteration,
-            reaction: r,
-            error,
-        });
-        let measured = full.then_some(error);
-        if test_now {
-            last_measured = measured;
-        }
-        if converged {
-            return Ok(NsgsRun {
-                outcome: SolverOutcome {
-                    iterations: iteration,
-                    out_of_time: false,
-                    final_error: measured,
-                },
-                dumont_criterion: dumont,
-            });
-        }
-        if deadline.is_some_and(|d| Instant::now() >= d) {
-            if let Some(b) = best {
-                // b holds the best measured iterate, the current one included.
-                r.copy_from_slice(&b.r);
-            }
-            return Ok(NsgsRun {
-                outcome: SolverOutcome {
-                    iterations: iteration,
-                    out_of_time: true,
-                    final_error: None,
-                },
-                dumont_criterion: dumont,
-            });
-        }
-    }
-    Ok(NsgsRun {
-        outcome: SolverOutcome {
-            iterations: options.max_iter,
-            out_of_time: false,
-            final_error: last_measured,
-        },
-        dumont_criterion: dumont,
-    })
 }

@@ -8,44 +8,66 @@
 //!
 //! until the Coulomb natural-map error is below the tolerance.
 
-use std::time::Duration;
-
+use crate::contract::{Family, InnerTolerance, Limits, Observer, OuterLoop, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::matrix::BlockRows;
-use crate::measure::cheap_error;
+use crate::measure::{cheap_error, natural_map_error_by_rows};
 use crate::problem::FrictionProblem;
-use crate::solver::{IterationEvent, SolverOutcome};
-use crate::tresca::{
-    coulomb_error, InnerTolerance, OuterLoop, TrescaInnerSolver, TrescaMode, TrescaWorkspace,
-};
+use crate::solvers::tresca::subproblem::{TrescaMode, TrescaWorkspace};
+use crate::solvers::tresca::TrescaInnerSolver;
 
-/// Options of the Panagiotopoulos fixed point (PFP, Siconos id 522).
+/// Settings of the Panagiotopoulos fixed point (PFP, Siconos id 522). Its limits default to 1000
+/// outer (normal + tangent) iterations and a tolerance of 1e-4 on the Coulomb error.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PfpOptions {
-    /// Maximum outer (normal + tangent) iterations (default 1000, iparam[0]).
-    pub max_iter: usize,
-    /// Tolerance on the Coulomb natural-map error (default 1e-4, dparam[0]).
-    pub tolerance: f64,
     /// Solver of the tangent (Tresca-on-disks) problem (default FP-VI-UPK).
     pub tangent: TrescaInnerSolver,
     /// Maximum iterations of each inner solve, PGS sweeps or tangent iterations (default 1000).
     pub inner_max_iter: usize,
     /// Inner tolerance strategy (default adaptive with ratio 10, iparam[2] = 0, dparam[2] = 10).
     pub inner_tolerance: InnerTolerance,
-    /// Wall-clock budget (default none): stop after the current outer iteration when spent.
-    pub time_budget: Option<Duration>,
 }
 
 impl Default for PfpOptions {
     fn default() -> Self {
         PfpOptions {
-            max_iter: 1000,
-            tolerance: 1e-4,
             tangent: TrescaInnerSolver::FixedPointViUpk,
             inner_max_iter: 1000,
             inner_tolerance: InnerTolerance::Adaptive { ratio: 10.0 },
-            time_budget: None,
         }
+    }
+}
+
+impl Family for PfpOptions {
+    fn name(&self) -> &'static str {
+        "PFP"
+    }
+
+    fn label(&self) -> String {
+        format!("PFP/{}", self.tangent.siconos_id())
+    }
+
+    fn siconos_id(&self) -> i32 {
+        522
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-4, 1000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        self.inner_tolerance.validate()
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        pfp(problem, self, limits, r, u, observer)
     }
 }
 
@@ -82,20 +104,22 @@ pub(crate) fn normal_pgs(
 }
 
 /// Runs PFP from the reaction in `r`. `u` is work space.
-pub(crate) fn pfp(
+fn pfp(
     problem: &FrictionProblem<'_>,
     options: &PfpOptions,
+    limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
-    observer: &mut dyn FnMut(&IterationEvent<'_>),
+    observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.inner_tolerance.validate()?;
     let mut work = TrescaWorkspace::new(problem)?;
     let (q, mu) = (problem.q(), problem.mu());
-    let tol = options.tolerance;
-    let mut outer = OuterLoop::new(options.time_budget, r);
-    let mut error = coulomb_error(problem, &work.rows, r, u);
-    for iteration in 1..=options.max_iter {
+    let run = limits.start();
+    let tol = run.tolerance;
+    let mut outer = OuterLoop::new(run, r);
+    let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);
+    for iteration in 1..=run.max_iter {
         let inner_tol = options.inner_tolerance.value(error, tol);
         normal_pgs(&work.rows, q, inner_tol, options.inner_max_iter, r);
         for (c, radius) in work.radius.iter_mut().enumerate() {
@@ -109,11 +133,11 @@ pub(crate) fn pfp(
             options.inner_max_iter,
             r,
         );
-        let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, tol, observer);
+        let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, observer);
         error = e;
         if let Some(outcome) = stop {
             return Ok(outcome);
         }
     }
-    Ok(OuterLoop::iterations_exhausted(options.max_iter))
+    Ok(outer.exhausted())
 }

@@ -16,123 +16,52 @@
 //! and may follow residual balancing (Boyd et al. §3.4.1). `W + rho I` is factored with faer's
 //! sparse LU once per rho value (symbolic analysis once per solve).
 
-use std::time::Instant;
+mod settings;
+
+pub use settings::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par};
 
-use crate::cone::{modified_velocity, project_on_cone};
+use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
 use crate::error::Fc3dError;
-use crate::linalg::norm;
+use crate::math::cone::{modified_velocity, project_on_cone};
+use crate::math::linalg::{bounded, distance_sq, norm};
 use crate::measure::natural_map_error_of;
 use crate::problem::FrictionProblem;
-use crate::solver::{IterationEvent, SolverOutcome};
 
-/// How the first rho is chosen (Siconos' iparam[10]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AdmmInitialRho {
-    /// [`AdmmOptions::rho`] as given [0].
-    Given,
-    /// `||W||_inf`, the largest absolute row sum [1].
-    NormInf,
-    /// `sqrt(lambda_max max(lambda_min, 1e-2 lambda_max))`, from the moduli of W's extreme
-    /// eigenvalues by power iterations on W and W^{-1} [2, Siconos' default]. The floor matters
-    /// for the singular W of scenes with more contacts than degrees of freedom: there
-    /// `lambda_min ≈ 0` gives a rho so small that `W + rho I` is numerically singular and the
-    /// iteration diverges (measured on Rover1040, OneObject-i1028-138); with the floor, rho lies
-    /// in `[0.1 lambda_max, lambda_max]`, which converged on every shared problem tried.
-    Eigenvalues,
-}
-
-/// How rho evolves (Siconos' iparam[9]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AdmmRhoStrategy {
-    /// rho stays at its initial value [0, Siconos' default].
-    Constant,
-    /// Residual balancing: multiply rho by tau when the primal residual `||x - z||` exceeds phi
-    /// times the dual one `rho ||z - ẑ||`, divide it by tau in the opposite case [2].
-    ResidualBalancing,
-    /// The same on residuals relative to `max(||x||, ||z||)` and `||rho ξ||` [3].
-    ScaledResidualBalancing,
-}
-
-/// Nesterov acceleration (Siconos' iparam[11]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum AdmmAcceleration {
-    /// Plain ADMM [0].
-    None,
-    /// Extrapolation, restarted from the previous iterate whenever the combined residual
-    /// `||x - z||^2 + rho^2 ||z - ẑ||^2` does not decrease by the factor eta [1 and 2: Siconos 4.4
-    /// restarts in both modes; 1 is its default].
-    Accelerated,
-}
-
-/// Options of ADMM (Siconos id 523), Siconos 4.4's defaults.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AdmmOptions {
-    /// Maximum iterations (default 20000).
-    pub max_iter: usize,
-    /// Tolerance on the natural-map error, measured at every iteration (default 1e-6).
-    pub tolerance: f64,
-    /// rho for [`AdmmInitialRho::Given`] (default 1).
-    pub rho: f64,
-    /// Default [`AdmmInitialRho::Eigenvalues`].
-    pub initial_rho: AdmmInitialRho,
-    /// Default [`AdmmRhoStrategy::Constant`].
-    pub rho_strategy: AdmmRhoStrategy,
-    /// Default [`AdmmAcceleration::Accelerated`].
-    pub acceleration: AdmmAcceleration,
-    /// Restart factor eta in (0, 1] of the acceleration (default 0.999).
-    pub restart_eta: f64,
-    /// Residual-balancing factor tau > 1 (default 2).
-    pub balancing_tau: f64,
-    /// Residual-balancing ratio phi > 1 (default 2).
-    pub balancing_phi: f64,
-    /// Wall-clock budget (default none).
-    pub time_budget: Option<std::time::Duration>,
-}
-
-impl Default for AdmmOptions {
-    fn default() -> Self {
-        AdmmOptions {
-            max_iter: 20000,
-            tolerance: 1e-6,
-            rho: 1.0,
-            initial_rho: AdmmInitialRho::Eigenvalues,
-            rho_strategy: AdmmRhoStrategy::Constant,
-            acceleration: AdmmAcceleration::Accelerated,
-            restart_eta: 0.999,
-            balancing_tau: 2.0,
-            balancing_phi: 2.0,
-            time_budget: None,
-        }
+impl Family for AdmmOptions {
+    fn name(&self) -> &'static str {
+        "ADMM"
     }
-}
 
-impl AdmmOptions {
-    pub fn validate(&self) -> Result<(), Fc3dError> {
-        let bad = |what: &str, v: f64, range: &str| {
-            Err(Fc3dError::InvalidOption(format!(
-                "ADMM: {what} = {v} must be {range}"
-            )))
-        };
-        if self.initial_rho == AdmmInitialRho::Given && !(self.rho > 0.0 && self.rho.is_finite()) {
-            return bad("rho", self.rho, "finite and > 0");
-        }
-        if !(self.restart_eta > 0.0 && self.restart_eta <= 1.0) {
-            return bad("restart eta", self.restart_eta, "in (0, 1]");
-        }
-        if self.rho_strategy != AdmmRhoStrategy::Constant {
-            if !(self.balancing_tau > 1.0 && self.balancing_tau.is_finite()) {
-                return bad("balancing tau", self.balancing_tau, "finite and > 1");
-            }
-            if !(self.balancing_phi > 1.0 && self.balancing_phi.is_finite()) {
-                return bad("balancing phi", self.balancing_phi, "finite and > 1");
-            }
-        }
-        Ok(())
+    fn label(&self) -> String {
+        "ADMM".to_string()
+    }
+
+    fn siconos_id(&self) -> i32 {
+        523
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-6, 20000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        AdmmOptions::validate(self)
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        admm(problem, self, limits, r, u, observer)
     }
 }
 
@@ -249,8 +178,6 @@ fn power_iteration(x: &mut [f64], y: &mut [f64], mut apply: impl FnMut(&[f64], &
 /// See [`AdmmInitialRho::Eigenvalues`].
 const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
 
-/// Entries below this magnitude keep every norm finite; a larger iterate means divergence.
-const DIVERGENCE_BOUND: f64 = 1e100;
 
 fn initial_rho(
     problem: &FrictionProblem<'_>,
@@ -310,22 +237,20 @@ fn de_saxce_term(mu: &[f64], u: &[f64], s: &mut [f64]) {
     }
 }
 
-fn distance_sq(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
-}
 
 /// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`.
-pub(crate) fn admm(
+fn admm(
     problem: &FrictionProblem<'_>,
     options: &AdmmOptions,
+    limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
-    observer: &mut dyn FnMut(&IterationEvent<'_>),
+    observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let n = problem.size();
     let (q, mu) = (problem.q(), problem.mu());
-    let deadline = options.time_budget.map(|b| Instant::now() + b);
+    let run = limits.start();
     let mut system = ShiftedSystem::new(problem)?;
 
     // Work vectors, allocated once.
@@ -361,22 +286,17 @@ pub(crate) fn admm(
 
     let mut alpha = 1.0_f64;
     let mut combined_prev = f64::INFINITY;
-    let mut last_error = None;
 
-    for iteration in 1..=options.max_iter {
+    for iteration in 1..=run.max_iter {
         // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s.
         for i in 0..n {
             x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - s[i];
         }
         system.solve_in_place(&mut x);
-        if !x.iter().all(|v| v.abs() < DIVERGENCE_BOUND) {
+        if !bounded(&x) {
             // Diverging, or the factorization lost all accuracy: keep the last z (r and
             // u = W r + q are still those of the previous iteration) and stop.
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: false,
-                final_error: last_error,
-            });
+            return Ok(SolverOutcome::stopped(iteration, false));
         }
         // z- and dual updates; r holds z.
         for (c, &m) in mu.iter().enumerate() {
@@ -394,25 +314,13 @@ pub(crate) fn admm(
         problem.velocity(r, u);
         de_saxce_term(mu, u, &mut s);
         let error = natural_map_error_of(problem, r, u);
-        last_error = Some(error);
         observer(&IterationEvent {
             iteration,
             reaction: r,
             error,
         });
-        if error <= options.tolerance {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: false,
-                final_error: last_error,
-            });
-        }
-        if deadline.is_some_and(|d| Instant::now() >= d) {
-            return Ok(SolverOutcome {
-                iterations: iteration,
-                out_of_time: true,
-                final_error: last_error,
-            });
+        if let Some(outcome) = run.end_of_iteration(iteration, error <= run.tolerance) {
+            return Ok(outcome);
         }
 
         let primal = distance_sq(&x, r).sqrt();
@@ -486,9 +394,5 @@ pub(crate) fn admm(
         z_hat.copy_from_slice(r);
         xi_hat.copy_from_slice(&xi);
     }
-    Ok(SolverOutcome {
-        iterations: options.max_iter,
-        out_of_time: false,
-        final_error: last_error,
-    })
+    Ok(run.exhausted())
 }

@@ -17,7 +17,7 @@
 //! of the linearised gyroscopic term `omega x I omega`, `C = [omega]_x I - [I omega]_x`, which makes
 //! `W` non-symmetric (relative asymmetry around 1e-4), as the W of real simulators are.
 
-use crate::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
+use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
 

@@ -17,36 +17,18 @@ pub use settings::{NsnFormulation, NsnLineSearch, NsnOptions, NONMONOTONE_MEMORY
 
 use std::time::Instant;
 
+use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
 use crate::error::Fc3dError;
-use crate::linalg::{norm, Mat3, Vec3};
+use crate::math::linalg::{norm, Mat3, Vec3};
 use crate::matrix::BlockSparseMatrix;
 use crate::measure::{absolute_natural_map_residual, relative_scale};
-use crate::options::RhoRule;
 use crate::problem::FrictionProblem;
-use crate::solver::{IterationEvent, SolverOutcome};
 use jacobian::{residual, ContactData};
 use sparse::NewtonMatrix;
 
 /// Diagonal shifts tried, relative to the largest diagonal entry of W, when the Newton matrix
 /// cannot be factored or gives a non-finite step.
 const REGULARIZATION_SHIFTS: [f64; 4] = [1e-12, 1e-9, 1e-6, 1e-3];
-
-/// Checks the options a caller may get wrong.
-pub(crate) fn validate(o: &NsnOptions) -> Result<(), Fc3dError> {
-    if let RhoRule::Constant(rho) = o.rho_rule {
-        if !(rho > 0.0 && rho.is_finite()) {
-            return Err(Fc3dError::InvalidOption(format!(
-                "constant rho must be finite and > 0, got {rho}"
-            )));
-        }
-    }
-    if o.line_search != NsnLineSearch::None && o.line_search_max_iter == 0 {
-        return Err(Fc3dError::InvalidOption(
-            "a line search needs at least one trial step (line_search_max_iter >= 1)".into(),
-        ));
-    }
-    Ok(())
-}
 
 /// How a [`NewtonSolver::run`] ended.
 pub(crate) struct RunOutcome {
@@ -77,7 +59,7 @@ pub(crate) struct NewtonSolver {
 
 impl NewtonSolver {
     pub fn new(problem: &FrictionProblem<'_>, options: &NsnOptions) -> Result<Self, Fc3dError> {
-        validate(options)?;
+        options.validate()?;
         let w = problem.w().to_block_sparse()?;
         let matrix = NewtonMatrix::new(&w)?;
         let n = problem.size();
@@ -151,7 +133,7 @@ impl NewtonSolver {
         deadline: Option<Instant>,
         r: &mut [f64],
         u: &mut [f64],
-        observer: &mut dyn FnMut(&IterationEvent<'_>),
+        observer: &mut Observer<'_>,
     ) -> RunOutcome {
         let form = self.options.formulation;
         for (c, d) in self.data.iter_mut().enumerate() {
@@ -319,30 +301,61 @@ fn add3m(a: &Mat3, x: &Vec3, b: &Mat3, y: &Vec3) -> Vec3 {
     out
 }
 
-/// Runs a nonsmooth Newton solve of `problem` from the reaction in `r`.
-pub(crate) fn nsn(
-    problem: &FrictionProblem<'_>,
-    options: &NsnOptions,
-    r: &mut [f64],
-    u: &mut [f64],
-    observer: &mut dyn FnMut(&IterationEvent<'_>),
-) -> Result<SolverOutcome, Fc3dError> {
-    let mut solver = NewtonSolver::new(problem, options)?;
-    let deadline = options.time_budget.map(|b| Instant::now() + b);
-    let out = solver.run(
-        problem.q(),
-        problem.mu(),
-        0.0,
-        options.tolerance,
-        options.max_iter,
-        deadline,
-        r,
-        u,
-        observer,
-    );
-    Ok(SolverOutcome {
-        iterations: out.iterations,
-        out_of_time: out.out_of_time,
-        final_error: None,
-    })
+impl Family for NsnOptions {
+    fn presets() -> Vec<Self> {
+        [
+            NsnFormulation::AlartCurnier,
+            NsnFormulation::JeanMoreau,
+            NsnFormulation::FischerBurmeister,
+            NsnFormulation::NaturalMap,
+        ]
+        .into_iter()
+        .map(NsnOptions::new)
+        .collect()
+    }
+
+    fn name(&self) -> &'static str {
+        self.formulation.short_name()
+    }
+
+    fn label(&self) -> String {
+        NsnOptions::label(self)
+    }
+
+    fn siconos_id(&self) -> i32 {
+        self.formulation.siconos_id()
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-3, 200)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        NsnOptions::validate(self)
+    }
+
+    /// A nonsmooth Newton solve of `problem` from the reaction in `r`.
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        let mut solver = NewtonSolver::new(problem, self)?;
+        let run = limits.start();
+        let out = solver.run(
+            problem.q(),
+            problem.mu(),
+            0.0,
+            run.tolerance,
+            run.max_iter,
+            run.deadline(),
+            r,
+            u,
+            observer,
+        );
+        Ok(SolverOutcome::stopped(out.iterations, out.out_of_time))
+    }
 }

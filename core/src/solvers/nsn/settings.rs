@@ -1,9 +1,8 @@
 //! Typed options of the nonsmooth Newton family (Siconos ids 504, 513, 520) with Siconos 4.4's
 //! defaults.
 
-use std::time::Duration;
-
-use crate::options::RhoRule;
+use crate::error::{require_setting, Fc3dError};
+use crate::local::RhoRule;
 
 /// The nonsmooth equation `F(r) = 0` Newton is applied to (section 3 of Acary-Brémond-Huber).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -57,15 +56,12 @@ pub enum NsnLineSearch {
 /// How many past merits the non-monotone line search compares against.
 pub const NONMONOTONE_MEMORY: usize = 10;
 
-/// Options of a nonsmooth Newton solve. [`NsnOptions::new`] gives Siconos 4.4's defaults for the
-/// formulation's id.
+/// Settings of a nonsmooth Newton solve. [`NsnOptions::new`] gives Siconos 4.4's defaults for the
+/// formulation's id. Its limits default to 200 Newton iterations and a tolerance of 1e-3 on the
+/// relative natural-map error (Siconos creates 520 with one iteration: see [`NsnOptions::new`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NsnOptions {
     pub formulation: NsnFormulation,
-    /// Maximum Newton iterations (Siconos: 200 for 504 and 513; see [`NsnOptions::new`] for 520).
-    pub max_iter: usize,
-    /// Tolerance on the relative natural-map error (Siconos: 1e-3).
-    pub tolerance: f64,
     /// Penalty parameters per contact from its diagonal block (rules (109)-(112)); Siconos:
     /// [`RhoRule::SpectralNorm`] for 504, a constant 1 for 513 and 520. Fischer-Burmeister
     /// ignores it.
@@ -74,14 +70,12 @@ pub struct NsnOptions {
     pub line_search: NsnLineSearch,
     /// Maximum trial steps per line search (Siconos: 100).
     pub line_search_max_iter: usize,
-    /// Wall-clock budget (default none): stop after the current iteration once spent.
-    pub time_budget: Option<Duration>,
 }
 
 impl NsnOptions {
-    /// Siconos 4.4's defaults for the formulation (`solver_options_create(id)`), except that
-    /// the natural map gets 200 iterations: Siconos creates 520 with `iparam[0] = 1`, which the C
-    /// API reproduces but which leaves a Rust caller a solver that stops after one step.
+    /// Siconos 4.4's defaults for the formulation (`solver_options_create(id)`). The limits are
+    /// 200 iterations for every formulation: Siconos creates 520 with `iparam[0] = 1`, which the
+    /// C API reproduces but which would leave a Rust caller a solver that stops after one step.
     pub fn new(formulation: NsnFormulation) -> Self {
         let rho_rule = match formulation {
             NsnFormulation::AlartCurnier | NsnFormulation::JeanMoreau => RhoRule::SpectralNorm,
@@ -91,12 +85,9 @@ impl NsnOptions {
         };
         NsnOptions {
             formulation,
-            max_iter: 200,
-            tolerance: 1e-3,
             rho_rule,
             line_search: NsnLineSearch::GoldsteinPrice,
             line_search_max_iter: 100,
-            time_budget: None,
         }
     }
 
@@ -109,6 +100,21 @@ impl NsnOptions {
             NsnLineSearch::NonMonotone => "NM-A",
         };
         format!("{}/{ls}", self.formulation.short_name())
+    }
+}
+
+impl NsnOptions {
+    /// Checks the settings a caller may get wrong.
+    pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
+        if let RhoRule::Constant(rho) = self.rho_rule {
+            require_setting(rho > 0.0 && rho.is_finite(), "nsn.rho", rho, "finite and > 0")?;
+        }
+        require_setting(
+            self.line_search == NsnLineSearch::None || self.line_search_max_iter > 0,
+            "nsn.line_search_max_iter",
+            self.line_search_max_iter,
+            ">= 1 with a line search",
+        )
     }
 }
 

@@ -2,7 +2,7 @@
 //! `K_mu = { ||x_T|| <= mu x_N }`, its dual `K*_mu = K_{1/mu}`, the disk and the Tresca cylinder.
 //! Components are ordered `(N, T1, T2)`.
 
-use crate::linalg::{norm2, Vec3};
+use crate::math::linalg::{norm2, Vec3};
 
 /// Projection on the Coulomb cone of coefficient `mu` (eq. (150), re-derived):
 /// inside: unchanged; in the polar cone (`mu ||x_T|| <= -x_N`): 0; otherwise onto the boundary
@@ -74,7 +74,7 @@ pub fn modified_velocity(u: &Vec3, mu: f64) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linalg::{dot3, norm3, sub3};
+    use crate::math::linalg::{dot3, norm3, sub3};
     use approx::assert_relative_eq;
     use proptest::prelude::*;
 

@@ -9,7 +9,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
 use crate::error::Fc3dError;
-use crate::linalg::Mat3;
+use crate::math::linalg::Mat3;
 use crate::matrix::BlockSparseMatrix;
 
 pub(crate) struct NewtonMatrix {

@@ -3,8 +3,8 @@
 //! with `u = W r + q` the Jacobian of `F` is `J = A + B W` (A, B block diagonal).
 
 use super::settings::NsnFormulation;
-use crate::cone::{modified_velocity, project_on_cone};
-use crate::linalg::{norm2, solve3, Mat3, Vec3};
+use crate::math::cone::{modified_velocity, project_on_cone};
+use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
 
 const ZERO: Mat3 = [[0.0; 3]; 3];
 const IDENTITY: Mat3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];

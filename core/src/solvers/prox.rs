@@ -5,33 +5,39 @@
 //! Siconos' variable rule `a_k = sigma error_k^nu` (read off Siconos 4.4's trace: its first shift
 //! is `sigma` times the error of the initial guess), capped by `alpha`.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-use crate::error::Fc3dError;
+use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::error::{require_setting, Fc3dError};
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::measure::natural_map_error;
-use crate::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
-use crate::options::NsgsOptions;
 use crate::problem::FrictionProblem;
-use crate::solver::{IterationEvent, SolverOutcome};
+use crate::solvers::nsgs::{nsgs, NsgsOptions};
+use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 
-/// The solver of the regularized problems.
+/// The solver of the regularized problems. Its tolerance is the internal tolerance of each
+/// proximal step; its other settings (rho, line search, local solver, ...) are used as given.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ProxInternal {
-    /// Alart-Curnier nonsmooth Newton (Siconos' default, 504). Its tolerance is replaced by the
-    /// internal tolerance; its other options (iterations, rho, line search) are used as given.
+    /// Alart-Curnier nonsmooth Newton (Siconos' default, 504).
     NsnAc(NsnOptions),
-    /// Nonsmooth Gauss-Seidel (500), tolerance replaced likewise.
+    /// Nonsmooth Gauss-Seidel (500).
     Nsgs(NsgsOptions),
 }
 
-/// Options of the proximal point method. Defaults are Siconos 4.4's.
+impl ProxInternal {
+    fn family(&self) -> &dyn Family {
+        match self {
+            ProxInternal::NsnAc(n) => n,
+            ProxInternal::Nsgs(g) => g,
+        }
+    }
+}
+
+/// Settings of the proximal point method, Siconos 4.4's defaults. Its limits default to 1000
+/// proximal iterations and a tolerance of 1e-4.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProxOptions {
-    /// Maximum proximal iterations (1000).
-    pub max_iter: usize,
-    /// Tolerance on the natural-map error (1e-4).
-    pub tolerance: f64,
     /// Largest diagonal shift `a_k` (Siconos' alpha, dparam[3], 1e4).
     pub alpha: f64,
     /// Factor of the shift rule `a_k = sigma error_k^nu` (dparam[4], 5).
@@ -40,20 +46,19 @@ pub struct ProxOptions {
     pub nu: f64,
     /// Internal solver (NSN-AC with Siconos' 504 defaults).
     pub internal: ProxInternal,
-    /// Wall-clock budget (default none).
-    pub time_budget: Option<std::time::Duration>,
+    /// Iteration limit of each internal solve; `None` (default) takes the internal solver's own
+    /// default (200 Newton iterations, 1000 NSGS sweeps).
+    pub internal_max_iter: Option<usize>,
 }
 
 impl Default for ProxOptions {
     fn default() -> Self {
         ProxOptions {
-            max_iter: 1000,
-            tolerance: 1e-4,
             alpha: 1e4,
             sigma: 5.0,
             nu: 1.0,
             internal: ProxInternal::NsnAc(NsnOptions::new(NsnFormulation::AlartCurnier)),
-            time_budget: None,
+            internal_max_iter: None,
         }
     }
 }
@@ -68,16 +73,16 @@ impl ProxOptions {
     }
 }
 
-pub(crate) fn validate(o: &ProxOptions) -> Result<(), Fc3dError> {
-    for (name, v) in [("alpha", o.alpha), ("sigma", o.sigma), ("nu", o.nu)] {
-        if !(v > 0.0 && v.is_finite()) {
-            return Err(Fc3dError::InvalidOption(format!(
-                "proximal {name} must be finite and > 0, got {v}"
-            )));
+impl ProxOptions {
+    fn validate(&self) -> Result<(), Fc3dError> {
+        for (setting, v) in [
+            ("prox.alpha", self.alpha),
+            ("prox.sigma", self.sigma),
+            ("prox.nu", self.nu),
+        ] {
+            require_setting(v > 0.0 && v.is_finite(), setting, v, "finite and > 0")?;
         }
-    }
-    match &o.internal {
-        ProxInternal::NsnAc(n) => {
+        if let ProxInternal::NsnAc(n) = &self.internal {
             if !matches!(
                 n.formulation,
                 NsnFormulation::AlartCurnier | NsnFormulation::JeanMoreau
@@ -88,9 +93,60 @@ pub(crate) fn validate(o: &ProxOptions) -> Result<(), Fc3dError> {
                         .into(),
                 ));
             }
-            crate::nsn::validate(n)
         }
-        ProxInternal::Nsgs(_) => Ok(()),
+        self.internal.family().validate()
+    }
+
+    /// The iteration limit of each internal solve.
+    fn internal_max_iter(&self) -> usize {
+        self.internal_max_iter
+            .unwrap_or_else(|| self.internal.family().default_limits().1)
+    }
+}
+
+impl Family for ProxOptions {
+    fn presets() -> Vec<Self> {
+        vec![
+            ProxOptions::default(),
+            ProxOptions {
+                internal: ProxInternal::Nsgs(NsgsOptions::default()),
+                ..ProxOptions::default()
+            },
+        ]
+    }
+
+    fn name(&self) -> &'static str {
+        match self.internal {
+            ProxInternal::NsnAc(_) => "PROX",
+            ProxInternal::Nsgs(_) => "PROX-NSGS",
+        }
+    }
+
+    fn label(&self) -> String {
+        ProxOptions::label(self)
+    }
+
+    fn siconos_id(&self) -> i32 {
+        502
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-4, 1000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        ProxOptions::validate(self)
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        prox(problem, self, limits, r, u, observer)
     }
 }
 
@@ -135,34 +191,31 @@ fn shifted(w: &Delassus<'_>, shift: f64) -> Result<Delassus<'static>, Fc3dError>
 }
 
 /// Runs the proximal point method from the reaction in `r`.
-pub(crate) fn prox(
+fn prox(
     problem: &FrictionProblem<'_>,
     options: &ProxOptions,
+    limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
-    observer: &mut dyn FnMut(&IterationEvent<'_>),
+    observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
-    validate(options)?;
+    options.validate()?;
     let mut newton = match &options.internal {
         ProxInternal::NsnAc(n) => Some(NewtonSolver::new(problem, n)?),
         ProxInternal::Nsgs(_) => None,
     };
-    let deadline = options.time_budget.map(|b| Instant::now() + b);
+    let internal_max_iter = options.internal_max_iter();
+    let run = limits.start();
     let n = problem.size();
     let mut shifted_q = vec![0.0; n];
-    let mut best_r = r.to_vec();
     let mut error = natural_map_error(problem, r, u);
-    let mut best_error = error;
-    if error <= options.tolerance {
-        return Ok(SolverOutcome {
-            iterations: 0,
-            out_of_time: false,
-            final_error: Some(error),
-        });
+    let mut best = BestIterate::new(r, error);
+    if error <= run.tolerance {
+        return Ok(SolverOutcome::stopped(0, false));
     }
     let mut iterations = 0;
     let mut out_of_time = false;
-    for iteration in 1..=options.max_iter {
+    for iteration in 1..=run.max_iter {
         iterations = iteration;
         let shift = (options.sigma * error.powf(options.nu)).min(options.alpha);
         for ((sq, q), ri) in shifted_q.iter_mut().zip(problem.q()).zip(r.iter()) {
@@ -170,15 +223,15 @@ pub(crate) fn prox(
         }
         let internal_tol = error / 10.0;
         match &options.internal {
-            ProxInternal::NsnAc(n) => {
+            ProxInternal::NsnAc(_) => {
                 let solver = newton.as_mut().expect("built for NSN-AC");
                 solver.run(
                     &shifted_q,
                     problem.mu(),
                     shift,
                     internal_tol,
-                    n.max_iter,
-                    deadline,
+                    internal_max_iter,
+                    run.deadline(),
                     r,
                     u,
                     &mut |_| {},
@@ -190,48 +243,39 @@ pub(crate) fn prox(
                     shifted_q.clone(),
                     problem.mu().to_vec(),
                 )?;
-                let mut o = *g;
-                o.tolerance = internal_tol;
-                o.time_budget = deadline.map(|d| d.saturating_duration_since(Instant::now()));
-                if o.time_budget.is_some_and(|b| b.is_zero()) {
-                    o.time_budget = Some(std::time::Duration::from_nanos(1));
-                }
-                crate::nsgs::nsgs(&inner, &o, r, u, &mut |_| {})?;
+                // What is left of the budget; an exhausted one still allows one sweep.
+                let time_budget = run.deadline().map(|d| {
+                    let left = d.saturating_duration_since(Instant::now());
+                    left.max(Duration::from_nanos(1))
+                });
+                let inner_limits = Limits {
+                    tolerance: internal_tol,
+                    max_iter: internal_max_iter,
+                    time_budget,
+                };
+                nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
             }
         }
         error = natural_map_error(problem, r, u);
-        if error < best_error {
-            best_error = error;
-            best_r.copy_from_slice(r);
-        }
+        best.offer(r, error);
         observer(&IterationEvent {
             iteration,
             reaction: r,
             error,
         });
-        if error <= options.tolerance {
-            return Ok(SolverOutcome {
-                iterations,
-                out_of_time: false,
-                final_error: Some(error),
-            });
+        if error <= run.tolerance {
+            return Ok(SolverOutcome::stopped(iterations, false));
         }
         if !error.is_finite() {
             break;
         }
-        if deadline.is_some_and(|d| Instant::now() >= d) {
+        if run.out_of_time() {
             out_of_time = true;
             break;
         }
     }
-    if best_error < error || !error.is_finite() {
-        r.copy_from_slice(&best_r);
-    }
-    Ok(SolverOutcome {
-        iterations,
-        out_of_time,
-        final_error: None,
-    })
+    best.restore_if_better(r, error);
+    Ok(SolverOutcome::stopped(iterations, out_of_time))
 }
 
 #[cfg(test)]
