@@ -36,6 +36,29 @@
 // reported error `dparam[1]` stays the natural-map error.
 #define FC3D_ERROR_EVALUATION_DUMONT 20
 
+// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
+#define OPTIONS_PARAM_SIZE 20
+
+// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule
+// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
+// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
+#define FC3D_RHO_STRATEGY_DUMONT 10
+
+// fc3d's one-contact solver ids are in 568..=599, a range Siconos 4.4 leaves free (its
+// one-contact solvers use 550..=567). FP-VI-UPK of Acary-Brémond-Huber's Table 3 on one contact:
+// projection steps with the self-adaptive rho rule (98), started from rho strategy iparam[9]
+// (default 1, spectral norm). Use it as NSGS's internal solver.
+#define FC3D_ONECONTACT_FP_VI_UPK 570
+
+// Dumont's EBP (2021): Newton on the bipotential fixed point `r = P_K(r - rho ũ)` with the
+// condensed 3x3 system (32); rho by iparam[9] (default `FC3D_RHO_STRATEGY_DUMONT`, alpha =
+// dparam[3] = 1). Use it as NSGS's internal solver.
+#define FC3D_ONECONTACT_EBP 571
+
+// Dumont's EAL (2021): Newton on the augmented-Lagrangian fixed point; the same function as
+// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
+#define FC3D_ONECONTACT_EAL 572
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 
@@ -65,29 +88,6 @@
 
 // A bug in fc3d (a caught panic). Please report it.
 #define FC3D_ERR_INTERNAL -99
-
-// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
-#define OPTIONS_PARAM_SIZE 20
-
-// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule
-// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
-// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
-#define FC3D_RHO_STRATEGY_DUMONT 10
-
-// fc3d's one-contact solver ids are in 568..=599, a range Siconos 4.4 leaves free (its
-// one-contact solvers use 550..=567). FP-VI-UPK of Acary-Brémond-Huber's Table 3 on one contact:
-// projection steps with the self-adaptive rho rule (98), started from rho strategy iparam[9]
-// (default 1, spectral norm). Use it as NSGS's internal solver.
-#define FC3D_ONECONTACT_FP_VI_UPK 570
-
-// Dumont's EBP (2021): Newton on the bipotential fixed point `r = P_K(r - rho ũ)` with the
-// condensed 3x3 system (32); rho by iparam[9] (default `FC3D_RHO_STRATEGY_DUMONT`, alpha =
-// dparam[3] = 1). Use it as NSGS's internal solver.
-#define FC3D_ONECONTACT_EBP 571
-
-// Dumont's EAL (2021): Newton on the augmented-Lagrangian fixed point; the same function as
-// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
-#define FC3D_ONECONTACT_EAL 572
 
 // Siconos' data version counter.
 typedef struct NumericsDataVersion {

@@ -5,13 +5,12 @@
 use std::os::raw::{c_double, c_int};
 
 use super::matrix::c_slice;
-use super::options::{config_from_c, rescaling_from_c, write_outputs};
+use super::params::{config_from_c, write_outputs};
 use super::problem::problem_from_c;
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION};
 use fc3d_core::measure::{absolute_natural_map_residual, relative_scale};
-use fc3d_core::scaling::solve_rescaled;
-use fc3d_core::solver::IterationEvent;
+use fc3d_core::{solve_with_observer, IterationEvent};
 
 unsafe fn driver_impl(
     problem: *mut FrictionContactProblem,
@@ -26,7 +25,6 @@ unsafe fn driver_impl(
         return Err(CError::null("options"));
     }
     let config = config_from_c(&*options)?;
-    let rescaling = rescaling_from_c(&*options)?;
     let p = problem_from_c(&*problem)?;
     let n = p.size();
     let r_in = c_slice(reaction as *const c_double, n, "reaction")?;
@@ -58,7 +56,7 @@ unsafe fn driver_impl(
             );
         }
     };
-    let report = solve_rescaled(&p, &config, rescaling, &mut r, &mut u, &mut observer)?;
+    let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut observer)?;
 
     std::ptr::copy_nonoverlapping(r.as_ptr(), reaction, n);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, n);
@@ -71,7 +69,7 @@ unsafe fn driver_impl(
             report.status,
             report.iterations,
             report.error,
-            config.tolerance()
+            config.tolerance
         );
     }
     Ok(report.status.info_code())

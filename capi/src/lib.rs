@@ -20,6 +20,7 @@ mod driver;
 mod lmgc;
 mod matrix;
 mod options;
+mod params;
 mod problem;
 mod stream;
 
@@ -51,6 +52,25 @@ pub const FC3D_DPARAM_DUMONT_CRITERION: c_int = 18;
 /// stopping test, beside Siconos' 0 (full), 1 (light) and 2 (light with full final). The
 /// reported error `dparam[1]` stays the natural-map error.
 pub const FC3D_ERROR_EVALUATION_DUMONT: c_int = 20;
+/// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
+pub const OPTIONS_PARAM_SIZE: c_int = 20;
+/// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule
+/// `rho_N = rho_T = alpha / W_NN`, with alpha in `dparam[3]` (Siconos 4.4 uses 0..=4). Default
+/// of the local solvers `FC3D_ONECONTACT_EBP` and `FC3D_ONECONTACT_EAL` (alpha = 1).
+pub const FC3D_RHO_STRATEGY_DUMONT: c_int = 10;
+/// fc3d's one-contact solver ids are in 568..=599, a range Siconos 4.4 leaves free (its
+/// one-contact solvers use 550..=567). FP-VI-UPK of Acary-Brémond-Huber's Table 3 on one contact:
+/// projection steps with the self-adaptive rho rule (98), started from rho strategy iparam[9]
+/// (default 1, spectral norm). Use it as NSGS's internal solver.
+pub const FC3D_ONECONTACT_FP_VI_UPK: c_int = 570;
+/// Dumont's EBP (2021): Newton on the bipotential fixed point `r = P_K(r - rho ũ)` with the
+/// condensed 3x3 system (32); rho by iparam[9] (default `FC3D_RHO_STRATEGY_DUMONT`, alpha =
+/// dparam[3] = 1). Use it as NSGS's internal solver.
+pub const FC3D_ONECONTACT_EBP: c_int = 571;
+/// Dumont's EAL (2021): Newton on the augmented-Lagrangian fixed point; the same function as
+/// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
+pub const FC3D_ONECONTACT_EAL: c_int = 572;
+
 /// A required pointer argument (or a pointer inside a struct) is NULL.
 pub const FC3D_ERR_NULL_POINTER: c_int = -1;
 /// Sizes are negative, inconsistent, or too large.
@@ -107,7 +127,9 @@ impl From<Fc3dError> for CError {
             }
             Fc3dError::InvalidStructure(_) | Fc3dError::Unsupported(_) => FC3D_ERR_INVALID_STORAGE,
             Fc3dError::UnsupportedSolver { .. } => FC3D_ERR_UNSUPPORTED_SOLVER,
-            Fc3dError::InvalidOption(_) => FC3D_ERR_INVALID_OPTION,
+            Fc3dError::InvalidOption(_) | Fc3dError::InvalidSetting { .. } => {
+                FC3D_ERR_INVALID_OPTION
+            }
             Fc3dError::Parse { .. } => FC3D_ERR_PARSE,
             Fc3dError::Io { .. } => FC3D_ERR_IO,
         };
@@ -195,4 +217,22 @@ pub extern "C" fn fc3d_clear_last_error() {
 #[allow(non_snake_case)]
 pub extern "C" fn numerics_set_verbose(newVerboseMode: c_int) {
     VERBOSE.store(newVerboseMode, Ordering::Relaxed);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fc3d_core::LocalSolverKind;
+
+    /// The C names of fc3d's one-contact ids are the core's ids.
+    #[test]
+    fn one_contact_ids_are_the_cores() {
+        for (id, kind) in [
+            (FC3D_ONECONTACT_FP_VI_UPK, LocalSolverKind::FpViUpk),
+            (FC3D_ONECONTACT_EBP, LocalSolverKind::EnhancedBipotential),
+            (FC3D_ONECONTACT_EAL, LocalSolverKind::EnhancedAugmentedLagrangian),
+        ] {
+            assert_eq!(id, kind.siconos_id());
+        }
+    }
 }

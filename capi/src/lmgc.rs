@@ -6,11 +6,12 @@ use std::os::raw::{c_double, c_int, c_uint};
 
 use super::alloc::c_free;
 use super::matrix::c_slice;
-use super::options::{config_from_c, create_options, delete_contents};
+use super::options::{create_options, delete_contents};
+use super::params::config_from_c;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
 use fc3d_core::matrix::{BlockSparseMatrix, Delassus};
 use fc3d_core::problem::FrictionProblem;
-use fc3d_core::solver::solve;
+use fc3d_core::solve;
 
 unsafe fn lmgc_impl(
     reaction: *mut c_double,

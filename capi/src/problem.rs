@@ -254,7 +254,7 @@ pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactPr
                 p.w().nrows(),
                 p.w().ncols(),
                 p.w().storage_name(),
-                fc3d_core::linalg::norm(p.q())
+                fc3d_core::math::linalg::norm(p.q())
             );
             println!("  mu = {:?}", p.mu());
             println!("  q = {:?}", p.q());

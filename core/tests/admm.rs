@@ -12,17 +12,15 @@ use std::path::PathBuf;
 use approx::assert_relative_eq;
 use fc3d_core::{
     solve, solve_with_observer, AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy,
-    Delassus, DenseMatrix, Fc3dError, FrictionProblem, SolveReport, SolverConfig,
+    Delassus, DenseMatrix, FrictionProblem, SolveReport, SolverConfig,
 };
 
-fn run(p: &FrictionProblem<'_>, o: &AdmmOptions) -> (SolveReport, Vec<f64>, Vec<f64>, usize) {
+fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (SolveReport, Vec<f64>, Vec<f64>, usize) {
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
     let mut calls = 0;
-    let rep = solve_with_observer(p, &SolverConfig::Admm(*o), &mut r, &mut u, &mut |_| {
-        calls += 1
-    })
-    .expect("valid problem and options");
+    let rep = solve_with_observer(p, c, &mut r, &mut u, &mut |_| calls += 1)
+        .expect("valid problem and options");
     (rep, r, u, calls)
 }
 
@@ -36,13 +34,9 @@ fn siconos(name: &str) -> FrictionProblem<'static> {
 }
 
 /// The default (Siconos') configuration and the two automatic penalty updates.
-fn variants(tol: f64, max_iter: usize) -> Vec<(&'static str, AdmmOptions)> {
-    let base = AdmmOptions {
-        tolerance: tol,
-        max_iter,
-        ..AdmmOptions::default()
-    };
-    vec![
+fn variants(tol: f64, max_iter: usize) -> Vec<(&'static str, SolverConfig)> {
+    let base = AdmmOptions::default();
+    let options = vec![
         ("default", base),
         (
             "residual-balancing",
@@ -73,7 +67,18 @@ fn variants(tol: f64, max_iter: usize) -> Vec<(&'static str, AdmmOptions)> {
                 ..base
             },
         ),
-    ]
+    ];
+    options
+        .into_iter()
+        .map(|(name, o)| {
+            (
+                name,
+                SolverConfig::new(o)
+                    .with_tolerance(tol)
+                    .with_max_iter(max_iter),
+            )
+        })
+        .collect()
 }
 
 /// Take-off, stick and slide on decoupled `diag(1.25, 1, 1)` blocks (see tests/vi.rs).
@@ -197,37 +202,34 @@ fn bad_options_are_rejected_and_leave_r_untouched() {
     let p = siconos("FC3D_Example1.dat");
     let n = p.size();
     let bad = [
-        AdmmOptions {
+        SolverConfig::new(AdmmOptions {
             initial_rho: AdmmInitialRho::Given,
             rho: 0.0,
             ..AdmmOptions::default()
-        },
-        AdmmOptions {
+        }),
+        SolverConfig::new(AdmmOptions {
             restart_eta: 1.5,
             ..AdmmOptions::default()
-        },
-        AdmmOptions {
+        }),
+        SolverConfig::new(AdmmOptions {
             rho_strategy: AdmmRhoStrategy::ResidualBalancing,
             balancing_tau: 1.0,
             ..AdmmOptions::default()
-        },
-        AdmmOptions {
+        }),
+        SolverConfig::new(AdmmOptions {
             rho_strategy: AdmmRhoStrategy::ScaledResidualBalancing,
             balancing_phi: f64::NAN,
             ..AdmmOptions::default()
-        },
-        AdmmOptions {
-            tolerance: f64::INFINITY,
-            ..AdmmOptions::default()
-        },
+        }),
+        SolverConfig::new(AdmmOptions::default()).with_tolerance(f64::INFINITY),
     ];
-    for o in bad {
+    for c in bad {
         let mut r = vec![0.25; n];
         let mut u = vec![0.5; n];
-        let e = solve(&p, &SolverConfig::Admm(o), &mut r, &mut u);
+        let e = solve(&p, &c, &mut r, &mut u);
         assert!(
-            matches!(e, Err(Fc3dError::InvalidOption(_))),
-            "{o:?}: {e:?}"
+            matches!(&e, Err(e) if e.is_invalid_option()),
+            "{c:?}: {e:?}"
         );
         assert_eq!(r, vec![0.25; n]);
         assert_eq!(u, vec![0.5; n]);
@@ -237,7 +239,8 @@ fn bad_options_are_rejected_and_leave_r_untouched() {
 #[test]
 fn defaults_are_siconos() {
     let o = AdmmOptions::default();
-    assert_eq!((o.max_iter, o.tolerance, o.rho), (20000, 1e-6, 1.0));
+    let c = SolverConfig::new(o);
+    assert_eq!((c.max_iter, c.tolerance, o.rho), (20000, 1e-6, 1.0));
     assert_eq!(o.initial_rho, AdmmInitialRho::Eigenvalues);
     assert_eq!(o.rho_strategy, AdmmRhoStrategy::Constant);
     assert_eq!(o.acceleration, AdmmAcceleration::Accelerated);
@@ -245,19 +248,17 @@ fn defaults_are_siconos() {
         (o.restart_eta, o.balancing_tau, o.balancing_phi),
         (0.999, 2.0, 2.0)
     );
-    assert_eq!(SolverConfig::Admm(o).siconos_id(), 523);
+    assert_eq!(c.siconos_id(), 523);
 }
 
 #[test]
 fn time_budget_stops_the_run() {
     let p = siconos("OneObject-i1028-138.hdf5.dat");
-    let o = AdmmOptions {
-        tolerance: 0.0,
-        max_iter: usize::MAX,
-        time_budget: Some(std::time::Duration::from_millis(20)),
-        ..AdmmOptions::default()
-    };
-    let (rep, r, u, calls) = run(&p, &o);
+    let c = SolverConfig::new(AdmmOptions::default())
+        .with_tolerance(0.0)
+        .with_max_iter(usize::MAX)
+        .with_time_budget(Some(std::time::Duration::from_millis(20)));
+    let (rep, r, u, calls) = run(&p, &c);
     assert_eq!(
         rep.status,
         fc3d_core::SolveStatus::TimeBudgetExhausted,

@@ -204,11 +204,9 @@ mod with_hdf5 {
     fn nsgs_reaches_1e8_on_both_files() {
         for name in [BOX_STACKS, PERIO_BOX] {
             let p = load(name);
-            let config = SolverConfig::Nsgs(NsgsOptions {
-                tolerance: 1e-8,
-                max_iter: 100000,
-                ..Default::default()
-            });
+            let config = SolverConfig::new(NsgsOptions::default())
+                .with_tolerance(1e-8)
+                .with_max_iter(100000);
             let mut r = vec![0.0; p.size()];
             let mut u = vec![0.0; p.size()];
             let report = fc3d_core::solve(&p, &config, &mut r, &mut u).expect("a solve");

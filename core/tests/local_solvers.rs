@@ -20,12 +20,12 @@ fn shared(name: &str) -> PathBuf {
 }
 
 fn config(local: LocalSolverOptions, tol: f64, max_iter: usize) -> SolverConfig {
-    SolverConfig::Nsgs(NsgsOptions {
+    SolverConfig::new(NsgsOptions {
         local,
-        tolerance: tol,
-        max_iter,
         ..NsgsOptions::default()
     })
+    .with_tolerance(tol)
+    .with_max_iter(max_iter)
 }
 
 fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (SolveReport, Vec<f64>, Vec<f64>) {
@@ -55,7 +55,7 @@ fn new_local_solvers() -> Vec<(String, LocalSolverOptions)> {
         LocalSolverKind::NewtonHybrid,
     ] {
         let mut o = LocalSolverOptions::new(k);
-        o.formulation = fc3d_core::options::NewtonFormulation::JeanMoreau;
+        o.formulation = fc3d_core::NewtonFormulation::JeanMoreau;
         v.push((format!("{k:?}-JeanMoreau"), o));
     }
     v

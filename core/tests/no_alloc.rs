@@ -224,16 +224,16 @@ fn mul_add_allocates_nothing() {
     }
 }
 
-/// Allocations of a whole NSGS solve from r = 0 that runs exactly `max_iter` sweeps.
-fn solve_allocations(p: &FrictionProblem<'_>, options: NsgsOptions, max_iter: usize) -> usize {
-    let options = NsgsOptions {
+/// Allocations of a whole NSGS solve from r = 0 that runs exactly `max_iter` sweeps (`config`
+/// with tolerance 0 and `max_iter`).
+fn solve_allocations(p: &FrictionProblem<'_>, config: SolverConfig, max_iter: usize) -> usize {
+    let options = SolverConfig {
         max_iter,
         tolerance: 0.0,
-        ..options
+        ..config
     };
     let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
-    let (n, report) =
-        count_allocations(|| solve(p, &SolverConfig::Nsgs(options), &mut r, &mut u).unwrap());
+    let (n, report) = count_allocations(|| solve(p, &options, &mut r, &mut u).unwrap());
     assert_eq!(report.iterations, max_iter, "{options:?}");
     assert_eq!(
         report.status,
@@ -271,11 +271,11 @@ fn solve_allocations_do_not_grow_with_iterations() {
                 LocalSolverKind::ProjectionOnConeWithLocalIteration,
             ] {
                 for budget in [None, Some(Duration::from_secs(3600))] {
-                    let options = NsgsOptions {
+                    let options = SolverConfig::new(NsgsOptions {
                         error_evaluation: mode,
-                        time_budget: budget,
                         ..NsgsOptions::with_local(kind)
-                    };
+                    })
+                    .with_time_budget(budget);
                     let one = solve_allocations(p, options, 1);
                     let many = solve_allocations(p, options, 200);
                     println!(
@@ -294,14 +294,14 @@ fn solve_allocations_do_not_grow_with_iterations() {
     // Every sweep option at once: shuffled each sweep, relaxed, frozen, adaptive local tolerance
     // (which rebuilds the local solver), tested every 3 sweeps.
     for (name, p) in cases {
-        let options = NsgsOptions {
+        let options = SolverConfig::new(NsgsOptions {
             order: fc3d_core::ContactOrder::ShuffledEachSweep { seed: 3 },
             relaxation: Some(1.2),
             freezing: Some(4),
             local_tolerance: fc3d_core::LocalTolerance::AdaptivePerContact { ratio: 10.0 },
             evaluation_frequency: 3,
             ..NsgsOptions::default()
-        };
+        });
         let one = solve_allocations(p, options, 1);
         let many = solve_allocations(p, options, 200);
         assert_eq!(one, many, "{name}, all sweep options: {one} vs {many}");
@@ -330,26 +330,24 @@ fn vi_and_admm_iterations_allocate_nothing() {
     for q in [&p, &csr, &dense] {
         for make in [
             |k: usize| {
-                fc3d_core::SolverConfig::Vi(fc3d_core::ViOptions {
-                    max_iter: k,
-                    tolerance: 0.0,
-                    ..fc3d_core::ViOptions::new(fc3d_core::ViSolver::ViExtraGradient)
-                })
+                fc3d_core::SolverConfig::new(fc3d_core::ViOptions::new(
+                    fc3d_core::ViSolver::ViExtraGradient,
+                ))
+                .with_max_iter(k)
+                .with_tolerance(0.0)
             },
             |k: usize| {
-                fc3d_core::SolverConfig::Vi(fc3d_core::ViOptions {
-                    max_iter: k,
-                    tolerance: 0.0,
+                fc3d_core::SolverConfig::new(fc3d_core::ViOptions {
                     error_evaluation: ErrorEvaluation::Full,
                     ..fc3d_core::ViOptions::new(fc3d_core::ViSolver::ViFixedPointProjection)
                 })
+                .with_max_iter(k)
+                .with_tolerance(0.0)
             },
             |k: usize| {
-                fc3d_core::SolverConfig::Admm(fc3d_core::AdmmOptions {
-                    max_iter: k,
-                    tolerance: 0.0,
-                    ..fc3d_core::AdmmOptions::default()
-                })
+                fc3d_core::SolverConfig::new(fc3d_core::AdmmOptions::default())
+                    .with_max_iter(k)
+                    .with_tolerance(0.0)
             },
         ] {
             let one = config_allocations(q, make(1), 1);

@@ -21,10 +21,9 @@ use fc3d_core::{
 // Helpers.
 
 fn config(kind: LocalSolverKind, tol: f64, max_iter: usize) -> SolverConfig {
-    let mut o = NsgsOptions::with_local(kind);
-    o.tolerance = tol;
-    o.max_iter = max_iter;
-    SolverConfig::Nsgs(o)
+    SolverConfig::new(NsgsOptions::with_local(kind))
+        .with_tolerance(tol)
+        .with_max_iter(max_iter)
 }
 
 /// Solves from r = 0; returns (report, r, u, solve time).
@@ -224,7 +223,7 @@ fn zero_contacts() {
         assert_eq!(p.n_contacts(), 0);
         let report = solve(
             &p,
-            &SolverConfig::Nsgs(NsgsOptions::default()),
+            &SolverConfig::new(NsgsOptions::default()),
             &mut [],
             &mut [],
         )
@@ -239,7 +238,7 @@ fn zero_contacts() {
 fn bad_inputs_are_errors_and_leave_r_u_untouched() {
     let p = scene("box_stack").problem;
     let n = p.size();
-    let c = SolverConfig::Nsgs(NsgsOptions::default());
+    let c = SolverConfig::new(NsgsOptions::default());
 
     // Wrong lengths.
     for (nr, nu) in [(n - 1, n), (n + 3, n), (n, n - 3), (0, 0)] {
@@ -269,15 +268,12 @@ fn bad_inputs_are_errors_and_leave_r_u_untouched() {
     }
 
     // An invalid option.
-    let o = NsgsOptions {
-        tolerance: f64::NAN,
-        ..NsgsOptions::default()
-    };
+    let o = SolverConfig::new(NsgsOptions::default()).with_tolerance(f64::NAN);
     let mut r = vec![0.0; n];
     let mut u = vec![1.0; n];
     assert!(matches!(
-        solve(&p, &SolverConfig::Nsgs(o), &mut r, &mut u),
-        Err(Fc3dError::InvalidOption(_))
+        solve(&p, &o, &mut r, &mut u),
+        Err(e) if e.is_invalid_option()
     ));
     assert!(r.iter().all(|&v| v == 0.0) && u.iter().all(|&v| v == 1.0));
 }
@@ -395,11 +391,9 @@ const NOT_CONVERGING: [&str; 3] = [
 
 fn solve_collection(files: &[PathBuf]) {
     let tol = 1e-6;
-    let c = SolverConfig::Nsgs(NsgsOptions {
-        tolerance: tol,
-        max_iter: 100_000,
-        ..NsgsOptions::default()
-    });
+    let c = SolverConfig::new(NsgsOptions::default())
+        .with_tolerance(tol)
+        .with_max_iter(100_000);
     let mut lines = vec![format!(
         "{:34} {:>8} {:>10} {:>9} {:>12} status",
         "problem", "contacts", "iterations", "error", "time"

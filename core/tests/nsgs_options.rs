@@ -9,7 +9,7 @@ use approx::assert_relative_eq;
 use fc3d_core::io::read_problem_file;
 use fc3d_core::measure::dumont_criterion;
 use fc3d_core::{
-    natural_map_error, solve, ContactOrder, Delassus, DenseMatrix, ErrorEvaluation, Fc3dError,
+    natural_map_error, solve, ContactOrder, Delassus, DenseMatrix, ErrorEvaluation,
     FrictionProblem, LocalTolerance, NsgsOptions, SolveReport, SolveStatus, SolverConfig,
 };
 
@@ -41,10 +41,10 @@ fn problems() -> Vec<(&'static str, FrictionProblem<'static>)> {
     ]
 }
 
-fn run(p: &FrictionProblem<'_>, o: NsgsOptions) -> (SolveReport, Vec<f64>, Vec<f64>) {
+fn run(p: &FrictionProblem<'_>, c: SolverConfig) -> (SolveReport, Vec<f64>, Vec<f64>) {
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
-    let report = solve(p, &SolverConfig::Nsgs(o), &mut r, &mut u).expect("valid problem");
+    let report = solve(p, &c, &mut r, &mut u).expect("valid problem");
     // The reported error is the natural-map error of the returned pair.
     let mut u2 = vec![0.0; p.size()];
     assert_eq!(report.error, natural_map_error(p, &r, &mut u2));
@@ -52,12 +52,11 @@ fn run(p: &FrictionProblem<'_>, o: NsgsOptions) -> (SolveReport, Vec<f64>, Vec<f
     (report, r, u)
 }
 
-fn options(tol: f64) -> NsgsOptions {
-    NsgsOptions {
-        tolerance: tol,
-        max_iter: 100_000,
-        ..NsgsOptions::default()
-    }
+/// NSGS with `o` at tolerance `tol` and 100 000 sweeps at most.
+fn options(tol: f64, o: NsgsOptions) -> SolverConfig {
+    SolverConfig::new(o)
+        .with_tolerance(tol)
+        .with_max_iter(100_000)
 }
 
 fn in_cones(p: &FrictionProblem<'_>, r: &[f64]) -> bool {
@@ -79,10 +78,13 @@ fn shuffled_order_is_reproducible_bit_for_bit_and_converges() {
             ContactOrder::ShuffledEachSweep { seed: 42 },
             ContactOrder::ShuffledEachSweep { seed: u64::MAX },
         ] {
-            let o = NsgsOptions {
-                order,
-                ..options(1e-8)
-            };
+            let o = options(
+                1e-8,
+                NsgsOptions {
+                    order,
+                    ..Default::default()
+                },
+            );
             let (a, ra, ua) = run(&p, o);
             let (b, rb, ub) = run(&p, o);
             assert_eq!(bits(&ra), bits(&rb), "{name} {order:?}");
@@ -97,46 +99,48 @@ fn shuffled_order_is_reproducible_bit_for_bit_and_converges() {
 fn different_seeds_visit_contacts_in_different_orders() {
     let p = load("Confeti-ex13-Fc3D-SBM.dat");
     let with_seed = |seed| {
-        let o = NsgsOptions {
-            order: ContactOrder::ShuffledOnce { seed },
-            max_iter: 3,
-            ..options(1e-14)
-        };
+        let o = options(
+            1e-14,
+            NsgsOptions {
+                order: ContactOrder::ShuffledOnce { seed },
+                ..Default::default()
+            },
+        )
+        .with_max_iter(3);
         run(&p, o).1
     };
     // Three sweeps are far from convergence, so the order shows in the iterate.
     assert_ne!(bits(&with_seed(1)), bits(&with_seed(2)));
-    let natural = run(
-        &p,
-        NsgsOptions {
-            max_iter: 3,
-            ..options(1e-14)
-        },
-    )
-    .1;
+    let natural = run(&p, options(1e-14, NsgsOptions::default()).with_max_iter(3)).1;
     assert_ne!(bits(&with_seed(1)), bits(&natural));
 }
 
 #[test]
 fn relaxation_one_is_plain_gauss_seidel_and_others_converge_in_the_cone() {
     for (name, p) in problems() {
-        let (plain, r_plain, _) = run(&p, options(1e-8));
+        let (plain, r_plain, _) = run(&p, options(1e-8, NsgsOptions::default()));
         let (one, r_one, _) = run(
             &p,
-            NsgsOptions {
-                relaxation: Some(1.0),
-                ..options(1e-8)
-            },
+            options(
+                1e-8,
+                NsgsOptions {
+                    relaxation: Some(1.0),
+                    ..Default::default()
+                },
+            ),
         );
         assert_eq!(bits(&r_plain), bits(&r_one), "{name}");
         assert_eq!(plain, one, "{name}");
         for omega in [0.7, 1.3] {
             let (rep, r, _) = run(
                 &p,
-                NsgsOptions {
-                    relaxation: Some(omega),
-                    ..options(1e-8)
-                },
+                options(
+                    1e-8,
+                    NsgsOptions {
+                        relaxation: Some(omega),
+                        ..Default::default()
+                    },
+                ),
             );
             assert!(rep.converged(), "{name} omega {omega}: {rep:?}");
             assert!(in_cones(&p, &r), "{name} omega {omega}");
@@ -150,12 +154,15 @@ fn relaxation_outside_zero_two_is_rejected() {
     for omega in [0.0, -1.0, 2.0, f64::NAN, f64::INFINITY] {
         let mut r = vec![7.0; p.size()];
         let mut u = vec![7.0; p.size()];
-        let o = NsgsOptions {
-            relaxation: Some(omega),
-            ..options(1e-8)
-        };
-        let e = solve(&p, &SolverConfig::Nsgs(o), &mut r, &mut u);
-        assert!(matches!(e, Err(Fc3dError::InvalidOption(_))), "{omega}");
+        let o = options(
+            1e-8,
+            NsgsOptions {
+                relaxation: Some(omega),
+                ..Default::default()
+            },
+        );
+        let e = solve(&p, &o, &mut r, &mut u);
+        assert!(matches!(e, Err(e) if e.is_invalid_option()), "{omega}");
         assert!(r.iter().chain(&u).all(|&v| v == 7.0));
     }
 }
@@ -172,11 +179,14 @@ fn freezing_converges() {
         ] {
             let (rep, r, _) = run(
                 &p,
-                NsgsOptions {
-                    freezing: Some(5),
-                    error_evaluation: mode,
-                    ..options(1e-10)
-                },
+                options(
+                    1e-10,
+                    NsgsOptions {
+                        freezing: Some(5),
+                        error_evaluation: mode,
+                        ..Default::default()
+                    },
+                ),
             );
             assert!(rep.converged(), "{name} {mode:?}: {rep:?}");
             assert!(in_cones(&p, &r), "{name} {mode:?}");
@@ -193,10 +203,13 @@ fn adaptive_local_tolerances_converge() {
         ] {
             let (rep, _, _) = run(
                 &p,
-                NsgsOptions {
-                    local_tolerance: lt,
-                    ..options(1e-8)
-                },
+                options(
+                    1e-8,
+                    NsgsOptions {
+                        local_tolerance: lt,
+                        ..Default::default()
+                    },
+                ),
             );
             assert!(rep.converged(), "{name} {lt:?}: {rep:?}");
         }
@@ -209,11 +222,14 @@ fn evaluation_frequency_tests_every_k_sweeps() {
         for mode in [ErrorEvaluation::Full, ErrorEvaluation::LightWithFullFinal] {
             let (rep, _, _) = run(
                 &p,
-                NsgsOptions {
-                    evaluation_frequency: 4,
-                    error_evaluation: mode,
-                    ..options(1e-8)
-                },
+                options(
+                    1e-8,
+                    NsgsOptions {
+                        evaluation_frequency: 4,
+                        error_evaluation: mode,
+                        ..Default::default()
+                    },
+                ),
             );
             assert!(rep.converged(), "{name}: {rep:?}");
             assert_eq!(rep.iterations % 4, 0, "{name}: {rep:?}");
@@ -223,12 +239,15 @@ fn evaluation_frequency_tests_every_k_sweeps() {
     let p = load("Confeti-ex13-Fc3D-SBM.dat");
     let (rep, _, _) = run(
         &p,
-        NsgsOptions {
-            evaluation_frequency: 4,
-            max_iter: 7,
-            error_evaluation: ErrorEvaluation::Full,
-            ..options(1e-14)
-        },
+        options(
+            1e-14,
+            NsgsOptions {
+                evaluation_frequency: 4,
+                error_evaluation: ErrorEvaluation::Full,
+                ..Default::default()
+            },
+        )
+        .with_max_iter(7),
     );
     assert_eq!(rep.iterations, 7);
     assert_eq!(rep.status, SolveStatus::MaxIterationsReached);
@@ -241,10 +260,13 @@ fn dumont_criterion_stops_and_is_reported_beside_the_natural_map_error() {
     for (name, p) in problems() {
         let (rep, r, u) = run(
             &p,
-            NsgsOptions {
-                error_evaluation: ErrorEvaluation::DumontCriterion,
-                ..options(1e-6)
-            },
+            options(
+                1e-6,
+                NsgsOptions {
+                    error_evaluation: ErrorEvaluation::DumontCriterion,
+                    ..Default::default()
+                },
+            ),
         );
         let d = rep.dumont_criterion.expect("criterion measured");
         assert!(d <= 1e-6, "{name}: {rep:?}");
@@ -259,7 +281,10 @@ fn dumont_criterion_stops_and_is_reported_beside_the_natural_map_error() {
         assert_eq!(rep.converged(), rep.error <= 1e-6, "{name}: {rep:?}");
         assert!(rep.error < 1e-4, "{name}: {rep:?}");
     }
-    let (rep, _, _) = run(&load("Confeti-ex13-Fc3D-SBM.dat"), options(1e-8));
+    let (rep, _, _) = run(
+        &load("Confeti-ex13-Fc3D-SBM.dat"),
+        options(1e-8, NsgsOptions::default()),
+    );
     assert_eq!(rep.dumont_criterion, None);
 }
 
@@ -290,7 +315,7 @@ fn frictionless_contacts_are_solved_as_scalar_problems() {
     // One contact, mu = 0, coupled W: r_N = -q_N / W_NN exactly and r_T = 0 whatever W_NT is.
     let w = DenseMatrix::new(3, 3, vec![2.0, 0.3, -0.2, 0.5, 3.0, 0.1, 0.4, 0.2, 4.0]).unwrap();
     let p = FrictionProblem::new(Delassus::Dense(w), vec![-1.0, 0.7, -0.3], vec![0.0]).unwrap();
-    let (rep, r, u) = run(&p, options(1e-14));
+    let (rep, r, u) = run(&p, options(1e-14, NsgsOptions::default()));
     assert!(rep.converged(), "{rep:?}");
     assert_eq!(r, vec![0.5, 0.0, 0.0]);
     assert_eq!(u[0], 0.0);
@@ -302,7 +327,7 @@ fn frictionless_contacts_are_solved_as_scalar_problems() {
         .find(|s| s.problem.mu().contains(&0.0))
         .expect("a built-in scene with mu = 0 contacts");
     let p = scene.problem;
-    let (rep, r, _) = run(&p, options(1e-12));
+    let (rep, r, _) = run(&p, options(1e-12, NsgsOptions::default()));
     assert!(rep.converged(), "{rep:?}");
     for (c, &mu) in p.mu().iter().enumerate() {
         if mu == 0.0 {
@@ -315,7 +340,7 @@ fn frictionless_contacts_are_solved_as_scalar_problems() {
         .map(|&m| if m == 0.0 { 1e-300 } else { m })
         .collect();
     let p3 = FrictionProblem::new(p.w().clone(), p.q().to_vec(), tiny_mu).unwrap();
-    let (rep3, r3, _) = run(&p3, options(1e-12));
+    let (rep3, r3, _) = run(&p3, options(1e-12, NsgsOptions::default()));
     assert!(rep3.converged(), "{rep3:?}");
     let scale = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     for (a, b) in r.iter().zip(&r3) {

@@ -7,8 +7,8 @@ use std::time::Duration;
 
 use approx::assert_relative_eq;
 use fc3d_core::{
-    solve, Delassus, DenseMatrix, Fc3dError, FrictionProblem, NsnFormulation, NsnLineSearch,
-    NsnOptions, RhoRule, SolveStatus, SolverConfig,
+    solve, Delassus, DenseMatrix, FrictionProblem, NsnFormulation, NsnLineSearch, NsnOptions,
+    RhoRule, SolveStatus, SolverConfig,
 };
 
 const FORMULATIONS: [NsnFormulation; 4] = [
@@ -28,9 +28,9 @@ const LINE_SEARCHES: [NsnLineSearch; 4] = [
 fn config(f: NsnFormulation, ls: NsnLineSearch, tol: f64, max_iter: usize) -> SolverConfig {
     let mut o = NsnOptions::new(f);
     o.line_search = ls;
-    o.tolerance = tol;
-    o.max_iter = max_iter;
-    SolverConfig::Nsn(o)
+    SolverConfig::new(o)
+        .with_tolerance(tol)
+        .with_max_iter(max_iter)
 }
 
 /// Relative natural-map error recomputed from scratch (entry-wise u, cone projection written
@@ -207,11 +207,12 @@ fn failures_are_honest_and_finite() {
         assert!(rep.iterations <= 1);
     }
     // A time budget stops the run with the best iterate.
-    let mut o = NsnOptions::new(NsnFormulation::NaturalMap);
-    o.tolerance = 0.0;
-    o.max_iter = usize::MAX;
-    o.time_budget = Some(Duration::from_millis(30));
-    let (rep, r, _) = run(&p, &SolverConfig::Nsn(o));
+    let o = NsnOptions::new(NsnFormulation::NaturalMap);
+    let c = SolverConfig::new(o)
+        .with_tolerance(0.0)
+        .with_max_iter(usize::MAX)
+        .with_time_budget(Some(Duration::from_millis(30)));
+    let (rep, r, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::TimeBudgetExhausted);
     assert!(r.iter().all(|v| v.is_finite()));
 }
@@ -226,16 +227,16 @@ fn bad_options_are_rejected() {
     let mut r = vec![0.0; 6];
     let mut u = vec![0.0; 6];
     assert!(matches!(
-        solve(&p, &SolverConfig::Nsn(o), &mut r, &mut u),
-        Err(Fc3dError::InvalidOption(_))
+        solve(&p, &SolverConfig::new(o), &mut r, &mut u),
+        Err(e) if e.is_invalid_option()
     ));
     let o = NsnOptions {
         line_search_max_iter: 0,
         ..NsnOptions::default()
     };
     assert!(matches!(
-        solve(&p, &SolverConfig::Nsn(o), &mut r, &mut u),
-        Err(Fc3dError::InvalidOption(_))
+        solve(&p, &SolverConfig::new(o), &mut r, &mut u),
+        Err(e) if e.is_invalid_option()
     ));
     assert_eq!(r, vec![0.0; 6]);
 }
@@ -251,10 +252,9 @@ fn every_rho_rule_solves_a_shared_problem() {
     ] {
         let o = NsnOptions {
             rho_rule: rule,
-            tolerance: 1e-8,
             ..NsnOptions::default()
         };
-        let (rep, r, _) = run(&p, &SolverConfig::Nsn(o));
+        let (rep, r, _) = run(&p, &SolverConfig::new(o).with_tolerance(1e-8));
         assert_eq!(rep.status, SolveStatus::Converged, "{rule:?}");
         assert!(independent_error(&p, &r) <= 1e-8);
     }

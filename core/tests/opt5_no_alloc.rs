@@ -6,10 +6,10 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
-use fc3d_core::pfp::PfpOptions;
-use fc3d_core::soclcp::{AclmOptions, SoclcpOptions};
-use fc3d_core::tresca::{TrescaInnerSolver, TrescaOptions};
-use fc3d_core::{solve, Delassus, SolverConfig};
+use fc3d_core::{
+    solve, AclmOptions, Delassus, PfpOptions, SoclcpOptions, SolverConfig, TrescaInnerSolver,
+    TrescaOptions,
+};
 
 struct CountingAllocator;
 
@@ -63,35 +63,27 @@ fn configs(max_iter: usize) -> Vec<SolverConfig> {
     .into_iter()
     .flat_map(|inner| {
         [
-            SolverConfig::Tresca(TrescaOptions {
+            SolverConfig::new(TrescaOptions {
                 inner,
-                max_iter,
                 inner_max_iter: 5,
-                tolerance: 0.0,
                 ..Default::default()
             }),
-            SolverConfig::Pfp(PfpOptions {
+            SolverConfig::new(PfpOptions {
                 tangent: inner,
-                max_iter,
                 inner_max_iter: 5,
-                tolerance: 0.0,
                 ..Default::default()
             }),
         ]
     })
     .collect();
-    v.push(SolverConfig::Aclm(AclmOptions {
-        max_iter,
+    v.push(SolverConfig::new(AclmOptions {
         inner_max_iter: 5,
-        tolerance: 0.0,
         ..Default::default()
     }));
-    v.push(SolverConfig::Soclcp(SoclcpOptions {
-        max_iter,
-        tolerance: 0.0,
-        ..Default::default()
-    }));
-    v
+    v.push(SolverConfig::new(SoclcpOptions::default()));
+    v.into_iter()
+        .map(|c| c.with_max_iter(max_iter).with_tolerance(0.0))
+        .collect()
 }
 
 #[test]

@@ -4,23 +4,22 @@
 
 mod opt5_common;
 
-use fc3d_core::pfp::PfpOptions;
-use fc3d_core::tresca::{InnerTolerance, TrescaInnerSolver};
-use fc3d_core::{SolveStatus, SolverConfig};
+use fc3d_core::{InnerTolerance, PfpOptions, SolveStatus, SolverConfig, TrescaInnerSolver};
 use opt5_common::*;
 
 fn pfp(tangent: TrescaInnerSolver, tol: f64) -> SolverConfig {
-    SolverConfig::Pfp(PfpOptions {
+    SolverConfig::new(PfpOptions {
         tangent,
-        tolerance: tol,
         ..Default::default()
     })
+    .with_tolerance(tol)
 }
 
 #[test]
 fn defaults() {
+    let c = SolverConfig::new(PfpOptions::default());
+    assert_eq!((c.max_iter, c.tolerance), (1000, 1e-4));
     let o = PfpOptions::default();
-    assert_eq!((o.max_iter, o.tolerance), (1000, 1e-4));
     assert_eq!(o.tangent, TrescaInnerSolver::FixedPointViUpk);
     assert_eq!(o.inner_tolerance, InnerTolerance::Adaptive { ratio: 10.0 });
 }
@@ -56,12 +55,12 @@ fn shared_problems_in_three_storages() {
 #[test]
 fn iteration_limit_gives_honest_failure() {
     let p = load("Confeti-ex03-Fc3D-SBM.dat");
-    let c = SolverConfig::Pfp(PfpOptions {
-        max_iter: 1,
+    let c = SolverConfig::new(PfpOptions {
         inner_max_iter: 1,
-        tolerance: 1e-12,
         ..Default::default()
-    });
+    })
+    .with_max_iter(1)
+    .with_tolerance(1e-12);
     let (rep, _, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::MaxIterationsReached);
     assert!(rep.error > 1e-12);

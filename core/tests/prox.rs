@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use approx::assert_relative_eq;
 use fc3d_core::{
-    natural_map_error, solve, Delassus, DenseMatrix, Fc3dError, FrictionProblem, NsgsOptions,
-    NsnFormulation, NsnOptions, ProxInternal, ProxOptions, SolveStatus, SolverConfig,
+    natural_map_error, solve, Delassus, DenseMatrix, FrictionProblem, NsgsOptions, NsnFormulation,
+    NsnOptions, ProxInternal, ProxOptions, SolveStatus, SolverConfig,
 };
 
 fn internals() -> [ProxInternal; 2] {
@@ -18,12 +18,12 @@ fn internals() -> [ProxInternal; 2] {
 }
 
 fn config(internal: ProxInternal, tol: f64, max_iter: usize) -> SolverConfig {
-    SolverConfig::Prox(ProxOptions {
-        tolerance: tol,
-        max_iter,
+    SolverConfig::new(ProxOptions {
         internal,
         ..ProxOptions::default()
     })
+    .with_tolerance(tol)
+    .with_max_iter(max_iter)
 }
 
 fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (fc3d_core::SolveReport, Vec<f64>, Vec<f64>) {
@@ -143,8 +143,8 @@ fn bad_options_are_rejected() {
         },
     ] {
         assert!(matches!(
-            solve(&p, &SolverConfig::Prox(bad), &mut r, &mut u),
-            Err(Fc3dError::InvalidOption(_))
+            solve(&p, &SolverConfig::new(bad), &mut r, &mut u),
+            Err(e) if e.is_invalid_option()
         ));
     }
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 
 use fc3d_core::io::read_problem_file;
 use fc3d_core::{
-    natural_map_error, solve_rescaled, Delassus, FrictionProblem, NsgsOptions, Rescaling,
+    natural_map_error, solve_with_observer, Delassus, FrictionProblem, NsgsOptions, Rescaling,
     SolveReport, SolverConfig,
 };
 
@@ -30,14 +30,13 @@ fn scaled(p: &FrictionProblem<'_>, alpha: f64, beta: f64) -> FrictionProblem<'st
 }
 
 fn run(p: &FrictionProblem<'_>, rescaling: Rescaling, tol: f64) -> (SolveReport, Vec<f64>) {
-    let config = SolverConfig::Nsgs(NsgsOptions {
-        tolerance: tol,
-        max_iter: 20_000,
-        ..NsgsOptions::default()
-    });
+    let config = SolverConfig::new(NsgsOptions::default())
+        .with_tolerance(tol)
+        .with_max_iter(20_000)
+        .with_rescaling(rescaling);
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
-    let report = solve_rescaled(p, &config, rescaling, &mut r, &mut u, &mut |_| {}).unwrap();
+    let report = solve_with_observer(p, &config, &mut r, &mut u, &mut |_| {}).unwrap();
     let mut u2 = vec![0.0; p.size()];
     assert_eq!(report.error, natural_map_error(p, &r, &mut u2));
     (report, r)
@@ -92,11 +91,9 @@ fn rescaled_solves_are_scale_invariant() {
 fn rescaling_none_is_the_plain_solve() {
     let p = load("Confeti-ex13-Fc3D-SBM.dat");
     let (a, ra) = run(&p, Rescaling::None, 1e-8);
-    let config = SolverConfig::Nsgs(NsgsOptions {
-        tolerance: 1e-8,
-        max_iter: 20_000,
-        ..NsgsOptions::default()
-    });
+    let config = SolverConfig::new(NsgsOptions::default())
+        .with_tolerance(1e-8)
+        .with_max_iter(20_000);
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
     let b = fc3d_core::solve(&p, &config, &mut r, &mut u).unwrap();

@@ -4,22 +4,15 @@
 
 mod opt5_common;
 
-use fc3d_core::soclcp::{AclmOptions, SoclcpOptions};
-use fc3d_core::{Fc3dError, SolveStatus, SolverConfig};
+use fc3d_core::{AclmOptions, SoclcpOptions, SolveStatus, SolverConfig};
 use opt5_common::*;
 
 fn aclm(tol: f64) -> SolverConfig {
-    SolverConfig::Aclm(AclmOptions {
-        tolerance: tol,
-        ..Default::default()
-    })
+    SolverConfig::new(AclmOptions::default()).with_tolerance(tol)
 }
 
 fn soclcp(tol: f64) -> SolverConfig {
-    SolverConfig::Soclcp(SoclcpOptions {
-        tolerance: tol,
-        ..Default::default()
-    })
+    SolverConfig::new(SoclcpOptions::default()).with_tolerance(tol)
 }
 
 #[test]
@@ -88,32 +81,27 @@ fn soclcp_on_shared_problems_in_three_storages() {
 #[test]
 fn iteration_limit_and_bad_options() {
     let p = load("Confeti-ex03-Fc3D-SBM.dat");
-    let c = SolverConfig::Soclcp(SoclcpOptions {
-        max_iter: 1,
-        tolerance: 1e-12,
-        ..Default::default()
-    });
+    let c = SolverConfig::new(SoclcpOptions::default())
+        .with_max_iter(1)
+        .with_tolerance(1e-12);
     let (rep, _, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::MaxIterationsReached);
-    let c = SolverConfig::Aclm(AclmOptions {
-        max_iter: 1,
+    let c = SolverConfig::new(AclmOptions {
         inner_max_iter: 1,
-        tolerance: 1e-12,
         ..Default::default()
-    });
+    })
+    .with_max_iter(1)
+    .with_tolerance(1e-12);
     let (rep, _, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::MaxIterationsReached);
 
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
     for omega in [0.0, 2.0, f64::NAN] {
-        let c = SolverConfig::Soclcp(SoclcpOptions {
-            relaxation: omega,
-            ..Default::default()
-        });
+        let c = SolverConfig::new(SoclcpOptions { relaxation: omega });
         assert!(matches!(
             fc3d_core::solve(&p, &c, &mut r, &mut u),
-            Err(Fc3dError::InvalidOption(_))
+            Err(e) if e.is_invalid_option()
         ));
     }
 }

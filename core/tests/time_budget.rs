@@ -4,7 +4,9 @@
 use std::time::{Duration, Instant};
 
 use fc3d_core::io::dat::read_dat_file;
-use fc3d_core::{solve, solve_with_observer, ErrorEvaluation, NsgsOptions, SolveStatus, SolverConfig};
+use fc3d_core::{
+    solve, solve_with_observer, ErrorEvaluation, NsgsOptions, SolveStatus, SolverConfig,
+};
 
 fn rockpile() -> fc3d_core::FrictionProblem<'static> {
     read_dat_file(std::path::Path::new(concat!(
@@ -18,24 +20,18 @@ fn rockpile() -> fc3d_core::FrictionProblem<'static> {
 fn budget_stops_the_solver_and_returns_the_best_measured_iterate() {
     let p = rockpile();
     let n = p.size();
-    let options = NsgsOptions {
-        tolerance: 1e-14,
-        max_iter: 1_000_000,
+    let config = SolverConfig::new(NsgsOptions {
         error_evaluation: ErrorEvaluation::Full,
-        time_budget: Some(Duration::from_millis(20)),
         ..Default::default()
-    };
+    })
+    .with_tolerance(1e-14)
+    .with_max_iter(1_000_000)
+    .with_time_budget(Some(Duration::from_millis(20)));
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
     let mut seen = Vec::new();
     let start = Instant::now();
-    let report = solve_with_observer(
-        &p,
-        &SolverConfig::Nsgs(options),
-        &mut r,
-        &mut u,
-        &mut |ev| seen.push(ev.error),
-    )
-    .unwrap();
+    let report =
+        solve_with_observer(&p, &config, &mut r, &mut u, &mut |ev| seen.push(ev.error)).unwrap();
     let elapsed = start.elapsed();
     assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
     assert_eq!(report.status.info_code(), 2);
@@ -64,18 +60,15 @@ fn a_generous_budget_does_not_change_the_result() {
     )))
     .unwrap();
     let n = p.size();
-    let base = NsgsOptions {
-        tolerance: 1e-10,
-        ..Default::default()
-    };
-    let with_budget = NsgsOptions {
+    let base = SolverConfig::new(NsgsOptions::default()).with_tolerance(1e-10);
+    let with_budget = SolverConfig {
         time_budget: Some(Duration::from_secs(3600)),
         ..base
     };
     let (mut r1, mut u1) = (vec![0.0; n], vec![0.0; n]);
     let (mut r2, mut u2) = (vec![0.0; n], vec![0.0; n]);
-    let a = solve(&p, &SolverConfig::Nsgs(base), &mut r1, &mut u1).unwrap();
-    let b = solve(&p, &SolverConfig::Nsgs(with_budget), &mut r2, &mut u2).unwrap();
+    let a = solve(&p, &base, &mut r1, &mut u1).unwrap();
+    let b = solve(&p, &with_budget, &mut r2, &mut u2).unwrap();
     assert_eq!(a, b);
     assert_eq!(r1, r2);
     assert_eq!(a.status, SolveStatus::Converged);
@@ -85,12 +78,9 @@ fn a_generous_budget_does_not_change_the_result() {
 fn a_zero_budget_is_rejected() {
     let p = rockpile();
     let n = p.size();
-    let options = NsgsOptions {
-        time_budget: Some(Duration::ZERO),
-        ..Default::default()
-    };
+    let config = SolverConfig::new(NsgsOptions::default()).with_time_budget(Some(Duration::ZERO));
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
-    assert!(solve(&p, &SolverConfig::Nsgs(options), &mut r, &mut u).is_err());
+    assert!(solve(&p, &config, &mut r, &mut u).is_err());
     assert!(r.iter().all(|&v| v == 0.0));
 }
 
@@ -100,12 +90,11 @@ fn with_the_default_cheap_error_the_budget_still_returns_the_best_iterate() {
     // light error evaluation the answer is the best reaction the run produced.
     let p = rockpile();
     let n = p.size();
-    let options = NsgsOptions {
-        tolerance: 1e-14,
-        max_iter: 1_000_000,
-        time_budget: Some(Duration::from_millis(30)),
-        ..Default::default()
-    };
+    let options = NsgsOptions::default();
+    let config = SolverConfig::new(options)
+        .with_tolerance(1e-14)
+        .with_max_iter(1_000_000)
+        .with_time_budget(Some(Duration::from_millis(30)));
     assert_eq!(
         options.error_evaluation,
         ErrorEvaluation::LightWithFullFinal
@@ -113,15 +102,9 @@ fn with_the_default_cheap_error_the_budget_still_returns_the_best_iterate() {
     let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
     let mut best_seen = f64::INFINITY;
     let mut scratch = vec![0.0; n];
-    let report = solve_with_observer(
-        &p,
-        &SolverConfig::Nsgs(options),
-        &mut r,
-        &mut u,
-        &mut |ev| {
-            best_seen = best_seen.min(fc3d_core::natural_map_error(&p, ev.reaction, &mut scratch));
-        },
-    )
+    let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut |ev| {
+        best_seen = best_seen.min(fc3d_core::natural_map_error(&p, ev.reaction, &mut scratch));
+    })
     .unwrap();
     assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
     // Equal up to the rounding of W r + q computed through blocks vs through the host storage.

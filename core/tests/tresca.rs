@@ -3,23 +3,23 @@
 
 mod opt5_common;
 
-use fc3d_core::tresca::{InnerTolerance, TrescaInnerSolver, TrescaOptions};
-use fc3d_core::{Fc3dError, SolveStatus, SolverConfig};
+use fc3d_core::{InnerTolerance, SolveStatus, SolverConfig, TrescaInnerSolver, TrescaOptions};
 use opt5_common::*;
 
 fn tfp(inner: TrescaInnerSolver, tol: f64) -> SolverConfig {
-    SolverConfig::Tresca(TrescaOptions {
+    SolverConfig::new(TrescaOptions {
         inner,
-        tolerance: tol,
         ..Default::default()
     })
+    .with_tolerance(tol)
 }
 
 #[test]
 fn defaults_are_siconos() {
+    let c = SolverConfig::new(TrescaOptions::default());
+    assert_eq!(c.max_iter, 1000);
+    assert_eq!(c.tolerance, 1e-4);
     let o = TrescaOptions::default();
-    assert_eq!(o.max_iter, 1000);
-    assert_eq!(o.tolerance, 1e-4);
     assert_eq!(o.inner, TrescaInnerSolver::GaussSeidel);
     assert_eq!(o.inner_tolerance, InnerTolerance::Adaptive { ratio: 10.0 });
 }
@@ -72,12 +72,12 @@ fn storages_agree() {
 #[test]
 fn iteration_limit_gives_honest_failure() {
     let p = load("Confeti-ex03-Fc3D-SBM.dat");
-    let c = SolverConfig::Tresca(TrescaOptions {
-        max_iter: 1,
+    let c = SolverConfig::new(TrescaOptions {
         inner_max_iter: 1,
-        tolerance: 1e-12,
         ..Default::default()
-    });
+    })
+    .with_max_iter(1)
+    .with_tolerance(1e-12);
     let (rep, _, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::MaxIterationsReached);
     assert_eq!(rep.iterations, 1);
@@ -93,13 +93,13 @@ fn bad_options_are_rejected() {
         InnerTolerance::Adaptive { ratio: 0.0 },
         InnerTolerance::Given(f64::NAN),
     ] {
-        let c = SolverConfig::Tresca(TrescaOptions {
+        let c = SolverConfig::new(TrescaOptions {
             inner_tolerance,
             ..Default::default()
         });
         assert!(matches!(
             fc3d_core::solve(&p, &c, &mut r, &mut u),
-            Err(Fc3dError::InvalidOption(_))
+            Err(e) if e.is_invalid_option()
         ));
     }
 }
@@ -110,27 +110,12 @@ fn every_family_stops_when_its_time_budget_is_spent() {
     let p = load("Confeti-ex03-Fc3D-SBM.dat");
     let budget = Some(std::time::Duration::from_nanos(1));
     let configs = [
-        SolverConfig::Tresca(TrescaOptions {
-            tolerance: 1e-14,
-            time_budget: budget,
-            ..Default::default()
-        }),
-        SolverConfig::Pfp(fc3d_core::pfp::PfpOptions {
-            tolerance: 1e-14,
-            time_budget: budget,
-            ..Default::default()
-        }),
-        SolverConfig::Aclm(fc3d_core::soclcp::AclmOptions {
-            tolerance: 1e-14,
-            time_budget: budget,
-            ..Default::default()
-        }),
-        SolverConfig::Soclcp(fc3d_core::soclcp::SoclcpOptions {
-            tolerance: 1e-14,
-            time_budget: budget,
-            ..Default::default()
-        }),
-    ];
+        SolverConfig::new(TrescaOptions::default()),
+        SolverConfig::new(fc3d_core::PfpOptions::default()),
+        SolverConfig::new(fc3d_core::AclmOptions::default()),
+        SolverConfig::new(fc3d_core::SoclcpOptions::default()),
+    ]
+    .map(|c| c.with_tolerance(1e-14).with_time_budget(budget));
     for c in configs {
         let (rep, _, _) = run(&p, &c);
         assert_eq!(

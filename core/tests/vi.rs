@@ -12,27 +12,29 @@ use std::path::PathBuf;
 
 use approx::assert_relative_eq;
 use fc3d_core::{
-    solve, solve_with_observer, Delassus, DenseMatrix, Fc3dError, FrictionProblem,
-    SelfAdaptiveStep, SolveReport, SolverConfig, StepRatio, StepSize, ViOptions, ViSolver,
+    solve, solve_with_observer, Delassus, DenseMatrix, FrictionProblem, SelfAdaptiveStep,
+    SolveReport, SolverConfig, StepRatio, StepSize, ViOptions, ViSolver,
 };
 
 // ---------------------------------------------------------------------------------------------
 // Helpers.
 
-fn options(solver: ViSolver, tol: f64, max_iter: usize) -> ViOptions {
-    ViOptions {
-        tolerance: tol,
-        max_iter,
-        ..ViOptions::new(solver)
-    }
+fn config(o: ViOptions, tol: f64, max_iter: usize) -> SolverConfig {
+    SolverConfig::new(o)
+        .with_tolerance(tol)
+        .with_max_iter(max_iter)
+}
+
+fn options(solver: ViSolver, tol: f64, max_iter: usize) -> SolverConfig {
+    config(ViOptions::new(solver), tol, max_iter)
 }
 
 /// Every member of the family, plus the UPTS variants of the self-adaptive ones.
-fn all_variants(tol: f64, max_iter: usize) -> Vec<(String, ViOptions)> {
+fn all_variants(tol: f64, max_iter: usize) -> Vec<(String, SolverConfig)> {
     let mut v = Vec::new();
     for s in ViSolver::ALL {
-        let o = options(s, tol, max_iter);
-        v.push((s.short_name().to_string(), o));
+        let o = ViOptions::new(s);
+        v.push((s.short_name().to_string(), config(o, tol, max_iter)));
         if let StepSize::SelfAdaptive(step) = o.step {
             let upts = ViOptions {
                 step: StepSize::SelfAdaptive(SelfAdaptiveStep {
@@ -41,20 +43,21 @@ fn all_variants(tol: f64, max_iter: usize) -> Vec<(String, ViOptions)> {
                 }),
                 ..o
             };
-            v.push((format!("{}-UPTS", s.short_name()), upts));
+            v.push((
+                format!("{}-UPTS", s.short_name()),
+                config(upts, tol, max_iter),
+            ));
         }
     }
     v
 }
 
-fn run(p: &FrictionProblem<'_>, o: &ViOptions) -> (SolveReport, Vec<f64>, Vec<f64>, usize) {
+fn run(p: &FrictionProblem<'_>, c: &SolverConfig) -> (SolveReport, Vec<f64>, Vec<f64>, usize) {
     let mut r = vec![0.0; p.size()];
     let mut u = vec![0.0; p.size()];
     let mut calls = 0;
-    let rep = solve_with_observer(p, &SolverConfig::Vi(*o), &mut r, &mut u, &mut |_| {
-        calls += 1
-    })
-    .expect("valid problem and options");
+    let rep = solve_with_observer(p, c, &mut r, &mut u, &mut |_| calls += 1)
+        .expect("valid problem and options");
     (rep, r, u, calls)
 }
 
@@ -282,13 +285,7 @@ fn starts_from_the_given_reaction() {
     let mut r = vec![0.0, 0.0, 0.0, 1.6, -0.1, -0.05, 1.6, -0.48, -0.64];
     let mut u = vec![0.0; 9];
     for s in ViSolver::ALL {
-        let rep = solve(
-            &p,
-            &SolverConfig::Vi(options(s, 1e-12, 100)),
-            &mut r,
-            &mut u,
-        )
-        .unwrap();
+        let rep = solve(&p, &options(s, 1e-12, 100), &mut r, &mut u).unwrap();
         assert!(rep.converged());
         assert_eq!(rep.iterations, 1, "{}", s.short_name());
     }
@@ -299,69 +296,66 @@ fn bad_options_are_rejected_and_leave_r_untouched() {
     let p = three_contacts();
     let adaptive = SelfAdaptiveStep::default();
     let bad = [
-        ViOptions {
+        SolverConfig::new(ViOptions {
             step: StepSize::Fixed(0.0),
             ..ViOptions::new(ViSolver::DeSaxceFixedPoint)
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::Fixed(f64::NAN),
             ..ViOptions::new(ViSolver::FixedPointProjection)
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(adaptive),
             ..ViOptions::new(ViSolver::DeSaxceFixedPoint)
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep {
                 nu: 1.0,
                 ..adaptive
             }),
             ..ViOptions::default()
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep { l: 1.5, ..adaptive }),
             ..ViOptions::default()
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep {
                 l_min: 0.95,
                 ..adaptive
             }),
             ..ViOptions::default()
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep {
                 initial_rho: -1.0,
                 ..adaptive
             }),
             ..ViOptions::default()
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep {
                 increase: 0.5,
                 ..adaptive
             }),
             ..ViOptions::default()
-        },
-        ViOptions {
+        }),
+        SolverConfig::new(ViOptions {
             step: StepSize::SelfAdaptive(SelfAdaptiveStep {
                 max_trials: 0,
                 ..adaptive
             }),
             ..ViOptions::default()
-        },
-        ViOptions {
-            tolerance: -1.0,
-            ..ViOptions::default()
-        },
+        }),
+        SolverConfig::new(ViOptions::default()).with_tolerance(-1.0),
     ];
-    for o in bad {
+    for c in bad {
         let mut r = vec![0.25; 9];
         let mut u = vec![0.5; 9];
-        let e = solve(&p, &SolverConfig::Vi(o), &mut r, &mut u);
+        let e = solve(&p, &c, &mut r, &mut u);
         assert!(
-            matches!(e, Err(Fc3dError::InvalidOption(_))),
-            "{o:?}: {e:?}"
+            matches!(&e, Err(e) if e.is_invalid_option()),
+            "{c:?}: {e:?}"
         );
         assert_eq!(r, vec![0.25; 9]);
         assert_eq!(u, vec![0.5; 9]);
@@ -372,9 +366,9 @@ fn bad_options_are_rejected_and_leave_r_untouched() {
 fn defaults_are_siconos() {
     for s in ViSolver::ALL {
         let o = ViOptions::new(s);
-        assert_eq!(o.max_iter, 20000);
-        assert_eq!(o.tolerance, 1e-3);
-        let c = SolverConfig::Vi(o);
+        let c = SolverConfig::new(o);
+        assert_eq!(c.max_iter, 20000);
+        assert_eq!(c.tolerance, 1e-3);
         assert_eq!(c.siconos_id(), s.siconos_id());
         assert_eq!(ViSolver::from_siconos_id(s.siconos_id()), Some(s));
     }
@@ -402,13 +396,11 @@ fn defaults_are_siconos() {
 fn time_budget_stops_the_run() {
     let p = siconos("OneObject-i1028-138.hdf5.dat");
     for s in [ViSolver::ViFixedPointProjection, ViSolver::ExtraGradient] {
-        let o = ViOptions {
-            tolerance: 0.0,
-            max_iter: usize::MAX,
-            time_budget: Some(std::time::Duration::from_millis(20)),
-            ..ViOptions::new(s)
-        };
-        let (rep, r, u, calls) = run(&p, &o);
+        let c = SolverConfig::new(ViOptions::new(s))
+            .with_tolerance(0.0)
+            .with_max_iter(usize::MAX)
+            .with_time_budget(Some(std::time::Duration::from_millis(20)));
+        let (rep, r, u, calls) = run(&p, &c);
         assert_eq!(
             rep.status,
             fc3d_core::SolveStatus::TimeBudgetExhausted,

@@ -2,7 +2,7 @@
 //! inner tolerance, then the Coulomb error measured, the iterate guarded, the observer told.
 
 use super::{IterationEvent, Observer, Run, SolverOutcome};
-use crate::error::Fc3dError;
+use crate::error::{require_setting, Fc3dError};
 use crate::matrix::BlockRows;
 use crate::measure::natural_map_error_by_rows;
 use crate::problem::FrictionProblem;
@@ -29,13 +29,18 @@ impl InnerTolerance {
 
     pub(crate) fn validate(self) -> Result<(), Fc3dError> {
         match self {
-            InnerTolerance::Adaptive { ratio } if !(ratio > 0.0 && ratio.is_finite()) => Err(
-                Fc3dError::InvalidOption(format!("internal error ratio must be > 0, got {ratio}")),
+            InnerTolerance::Adaptive { ratio } => require_setting(
+                ratio > 0.0 && ratio.is_finite(),
+                "inner_tolerance.ratio",
+                ratio,
+                "finite and > 0",
             ),
-            InnerTolerance::Given(t) if !(t >= 0.0 && t.is_finite()) => Err(
-                Fc3dError::InvalidOption(format!("internal tolerance must be >= 0, got {t}")),
+            InnerTolerance::Given(t) => require_setting(
+                t >= 0.0 && t.is_finite(),
+                "inner_tolerance",
+                t,
+                "finite and >= 0",
             ),
-            _ => Ok(()),
         }
     }
 }

@@ -1,6 +1,6 @@
 //! Settings of ADMM (Siconos id 523) with Siconos 4.4's defaults.
 
-use crate::error::Fc3dError;
+use crate::error::{require_setting, Fc3dError};
 
 /// How the first rho is chosen (Siconos' iparam[10]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -77,24 +77,26 @@ impl Default for AdmmOptions {
 
 impl AdmmOptions {
     pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
-        let bad = |what: &str, v: f64, range: &str| {
-            Err(Fc3dError::InvalidOption(format!(
-                "ADMM: {what} = {v} must be {range}"
-            )))
-        };
-        if self.initial_rho == AdmmInitialRho::Given && !(self.rho > 0.0 && self.rho.is_finite()) {
-            return bad("rho", self.rho, "finite and > 0");
+        if self.initial_rho == AdmmInitialRho::Given {
+            let rho = self.rho;
+            require_setting(rho > 0.0 && rho.is_finite(), "admm.rho", rho, "finite and > 0")?;
         }
-        if !(self.restart_eta > 0.0 && self.restart_eta <= 1.0) {
-            return bad("restart eta", self.restart_eta, "in (0, 1]");
-        }
+        let eta = self.restart_eta;
+        require_setting(eta > 0.0 && eta <= 1.0, "admm.restart_eta", eta, "in (0, 1]")?;
         if self.rho_strategy != AdmmRhoStrategy::Constant {
-            if !(self.balancing_tau > 1.0 && self.balancing_tau.is_finite()) {
-                return bad("balancing tau", self.balancing_tau, "finite and > 1");
-            }
-            if !(self.balancing_phi > 1.0 && self.balancing_phi.is_finite()) {
-                return bad("balancing phi", self.balancing_phi, "finite and > 1");
-            }
+            let (tau, phi) = (self.balancing_tau, self.balancing_phi);
+            require_setting(
+                tau > 1.0 && tau.is_finite(),
+                "admm.balancing_tau",
+                tau,
+                "finite and > 1",
+            )?;
+            require_setting(
+                phi > 1.0 && phi.is_finite(),
+                "admm.balancing_phi",
+                phi,
+                "finite and > 1",
+            )?;
         }
         Ok(())
     }

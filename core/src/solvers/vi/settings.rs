@@ -1,7 +1,7 @@
 //! Settings of the VI / fixed-point family with Siconos 4.4's defaults.
 
 use crate::contract::ErrorEvaluation;
-use crate::error::Fc3dError;
+use crate::error::{require_setting, Fc3dError};
 use crate::math::step;
 
 /// The Siconos solver a [`ViOptions`] stands for.
@@ -160,12 +160,6 @@ impl ViOptions {
 
     /// Checks the step parameters (the tolerance is checked by the caller).
     pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
-        let bad = |what: &str, v: f64, range: &str| {
-            Err(Fc3dError::InvalidOption(format!(
-                "{}: {what} = {v} must be {range}",
-                self.solver.short_name()
-            )))
-        };
         if self.error_evaluation == ErrorEvaluation::DumontCriterion {
             return Err(Fc3dError::InvalidOption(format!(
                 "{}: Dumont's criterion is a stopping test of NSGS sweeps (it needs the velocities \
@@ -175,9 +169,7 @@ impl ViOptions {
         }
         match self.step {
             StepSize::Fixed(rho) => {
-                if !(rho > 0.0 && rho.is_finite()) {
-                    return bad("rho", rho, "finite and > 0");
-                }
+                require_setting(rho > 0.0 && rho.is_finite(), "vi.rho", rho, "finite and > 0")
             }
             StepSize::SelfAdaptive(s) => {
                 if self.solver == ViSolver::DeSaxceFixedPoint {
@@ -185,30 +177,30 @@ impl ViOptions {
                         "DSFP (505) is the fixed-rho fixed point: use StepSize::Fixed".into(),
                     ));
                 }
-                if !(s.initial_rho > 0.0 && s.initial_rho.is_finite()) {
-                    return bad("initial rho", s.initial_rho, "finite and > 0");
-                }
-                if !(s.nu > 0.0 && s.nu < 1.0) {
-                    return bad("nu", s.nu, "in (0, 1)");
-                }
-                if !(s.increase >= 1.0 && s.increase.is_finite()) {
-                    return bad("rho increase factor", s.increase, "finite and >= 1");
-                }
-                if !(s.l > 0.0 && s.l < 1.0) {
-                    return bad("L", s.l, "in (0, 1)");
-                }
-                if !(s.l_min >= 0.0 && s.l_min < s.l) {
-                    return bad("Lmin", s.l_min, "in [0, L)");
-                }
-                if s.max_trials == 0 {
-                    return Err(Fc3dError::InvalidOption(format!(
-                        "{}: the line search needs at least one trial",
-                        self.solver.short_name()
-                    )));
-                }
+                let rho = s.initial_rho;
+                require_setting(rho > 0.0 && rho.is_finite(), "vi.rho", rho, "finite and > 0")?;
+                require_setting(s.nu > 0.0 && s.nu < 1.0, "vi.nu", s.nu, "in (0, 1)")?;
+                require_setting(
+                    s.increase >= 1.0 && s.increase.is_finite(),
+                    "vi.increase",
+                    s.increase,
+                    "finite and >= 1",
+                )?;
+                require_setting(s.l > 0.0 && s.l < 1.0, "vi.l", s.l, "in (0, 1)")?;
+                require_setting(
+                    s.l_min >= 0.0 && s.l_min < s.l,
+                    "vi.l_min",
+                    s.l_min,
+                    "in [0, L)",
+                )?;
+                require_setting(
+                    s.max_trials > 0,
+                    "vi.max_trials",
+                    s.max_trials,
+                    ">= 1 (the line search needs a trial)",
+                )
             }
         }
-        Ok(())
     }
 }
 
