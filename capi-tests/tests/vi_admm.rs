@@ -26,17 +26,11 @@ fn unimplemented_options_are_rejected() {
 
 fn rust_config(id: c_int, tol: f64, max_iter: usize) -> SolverConfig {
     match ViSolver::from_siconos_id(id) {
-        Some(s) => SolverConfig::Vi(ViOptions {
-            tolerance: tol,
-            max_iter,
-            ..ViOptions::new(s)
-        }),
-        None => SolverConfig::Admm(AdmmOptions {
-            tolerance: tol,
-            max_iter,
-            ..AdmmOptions::default()
-        }),
+        Some(s) => SolverConfig::new(ViOptions::new(s)),
+        None => SolverConfig::new(AdmmOptions::default()),
     }
+    .with_tolerance(tol)
+    .with_max_iter(max_iter)
 }
 
 fn rust_problem(p: &FrictionProblem<'static>, storage: c_int) -> FrictionProblem<'static> {

@@ -145,10 +145,9 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
         inputs
     };
 
-    let mut options = NsgsOptions::with_local(args.local);
-    options.tolerance = args.tol;
-    options.max_iter = args.max_iter;
-    let config = SolverConfig::Nsgs(options);
+    let config = SolverConfig::new(NsgsOptions::with_local(args.local))
+        .with_tolerance(args.tol)
+        .with_max_iter(args.max_iter);
 
     let mut stdout = std::io::stdout().lock();
     // A closed stdout (e.g. `fc3d | head`) ends the program quietly, never with a panic.

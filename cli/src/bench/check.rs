@@ -77,11 +77,9 @@ mod tests {
             // Both at the start (r = 0) and at a solution.
             let e0 = natural_map_error(p, &r, &mut u);
             assert!(errors_agree(independent_error(p, &r), e0), "{}", scene.name);
-            let config = SolverConfig::Nsgs(NsgsOptions {
-                tolerance: 1e-10,
-                max_iter: 10_000,
-                ..Default::default()
-            });
+            let config = SolverConfig::new(NsgsOptions::default())
+                .with_tolerance(1e-10)
+                .with_max_iter(10_000);
             let report = solve(p, &config, &mut r, &mut u).unwrap();
             let e = independent_error(p, &r);
             assert!(

@@ -50,14 +50,8 @@ pub struct BenchArgs {
     /// scenes.
     #[arg(value_name = "FILES")]
     pub paths: Vec<PathBuf>,
-    /// Solvers, comma-separated: `all` (NSGS with every local solver), `500` or `NSGS` (NSGS with
-    /// its default local solver 565), `500/552`, `NSGS/SBP`, ... Local solvers by Siconos id or
-    /// name: 550 NSN, 551 NSN-GP, 552 PROJ|SBP|FP-DS-ONE, 553 PROJ-ITER, 557 CYL|SAL, 565 HYBRID,
-    /// 554 PROJ-REG, 555 PROJ-DIAG, 558 PROJ-VEL, 561 FB, 562 QUARTIC, 564 CYL-ITER,
-    /// 570 FP-VI-UPK, 571 EBP, 572 EAL.
-    /// Other families by id or name: 505 DSFP, 506 VI-FPP, 507 VI-EG, 511 FPP, 512 EG, 523 ADMM.
-    /// `503`|`TFP`, `522`|`PFP`, `516`|`ACLMFP`, `517`|`SOCLCP`.
-    #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list)]
+    /// Solvers, comma-separated (names and ids: `fc3d bench --help`).
+    #[arg(long, value_name = "SPECS", default_value = "all", value_parser = parse_spec_list, long_help = spec::solvers_help())]
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;
     /// with --budget: 1e-14, or the smallest given].
@@ -496,11 +490,11 @@ fn run_reps(
         family: p.family.clone(),
         contacts: p.problem.n_contacts(),
         solver: spec.label(),
-        tolerance: config.tolerance(),
+        tolerance: config.tolerance,
         time_budget_s: config
-            .time_budget()
+            .time_budget
             .map_or(f64::INFINITY, |b| b.as_secs_f64()),
-        max_iter: config.max_iter(),
+        max_iter: config.max_iter,
         status: status_name(rep.report.status),
         info: rep.report.status.info_code(),
         iterations: rep.report.iterations,
