@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, set-up included (README's test command; .ci/run calls it).
 #  1. cargo test --workspace: Rust unit/integration tests and the C checks of capi-tests
-#     (compiled with the cc crate against include/), including all shared Siconos problems.
+#     (compiled with the cc crate against capi/include/), including all shared Siconos problems.
 #  2. The C example built with plain cc against the compat headers and libfc3d, and run.
 #  3. The C checks linked against libfc3d.so and run under valgrind (ownership, bad input).
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos

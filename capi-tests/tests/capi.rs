@@ -6,9 +6,9 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::{Path, PathBuf};
 
+use fc3d_capi_tests::*;
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::{solve, Delassus, FrictionProblem, LocalSolverKind, NsgsOptions, SolverConfig};
-use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()

@@ -6,12 +6,12 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
+use fc3d_capi_tests::*;
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::{
     solve, Delassus, FrictionProblem, NsgsOptions, NsnFormulation, NsnOptions, ProxInternal,
     ProxOptions, SolverConfig,
 };
-use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()

@@ -5,12 +5,12 @@
 use std::ffi::CString;
 use std::os::raw::c_int;
 
+use fc3d_capi_tests::*;
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::{
     solve, AclmOptions, Delassus, FrictionProblem, Method, PfpOptions, SoclcpOptions, SolveStatus,
     SolverConfig, TrescaInnerSolver, TrescaOptions,
 };
-use fc3d_capi_tests::*;
 
 #[test]
 fn single_contacts_and_options_in_c() {

@@ -6,9 +6,9 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
+use fc3d_capi_tests::*;
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::{solve, AdmmOptions, Delassus, FrictionProblem, SolverConfig, ViOptions, ViSolver};
-use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()

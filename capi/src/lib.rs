@@ -230,7 +230,10 @@ mod tests {
         for (id, kind) in [
             (FC3D_ONECONTACT_FP_VI_UPK, LocalSolverKind::FpViUpk),
             (FC3D_ONECONTACT_EBP, LocalSolverKind::EnhancedBipotential),
-            (FC3D_ONECONTACT_EAL, LocalSolverKind::EnhancedAugmentedLagrangian),
+            (
+                FC3D_ONECONTACT_EAL,
+                LocalSolverKind::EnhancedAugmentedLagrangian,
+            ),
         ] {
             assert_eq!(id, kind.siconos_id());
         }

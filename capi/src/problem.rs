@@ -189,7 +189,8 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
 
 fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
     let mut out = Vec::new();
-    fc3d_core::io::dat::write_dat(p, &mut out).map_err(|e| CError::new(FC3D_ERR_IO, e.to_string()))?;
+    fc3d_core::io::dat::write_dat(p, &mut out)
+        .map_err(|e| CError::new(FC3D_ERR_IO, e.to_string()))?;
     Ok(out)
 }
 

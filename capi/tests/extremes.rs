@@ -70,9 +70,7 @@ impl Variant {
         }
         *(*o).iparam = MAX_ITER;
         *(*o).dparam = TOL;
-        *(*o)
-            .dparam
-            .add(fc3d::FC3D_DPARAM_TIME_BUDGET as usize) = BUDGET;
+        *(*o).dparam.add(fc3d::FC3D_DPARAM_TIME_BUDGET as usize) = BUDGET;
         o
     }
 }

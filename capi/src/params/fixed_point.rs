@@ -42,7 +42,10 @@ unsafe fn tresca_inner(i: &SolverOptions) -> CResult<(TrescaInnerSolver, usize)>
         ))
     })?;
     let ip = Params::of(i, "internal solver options")?;
-    Ok((solver, ip.count(IPARAM_MAX_ITER, "internal max iterations")?))
+    Ok((
+        solver,
+        ip.count(IPARAM_MAX_ITER, "internal max iterations")?,
+    ))
 }
 
 unsafe fn inner_tolerance(
@@ -147,7 +150,8 @@ fn write_tresca_inner(solver: TrescaInnerSolver, max_iter: usize) -> CResult<Enc
 
 pub(super) fn write_tfp(t: &TrescaOptions) -> CResult<Encoded> {
     let mut e = Encoded::new(503);
-    e.internal.push(write_tresca_inner(t.inner, t.inner_max_iter)?);
+    e.internal
+        .push(write_tresca_inner(t.inner, t.inner_max_iter)?);
     write_inner_tolerance(t.inner_tolerance, &mut e);
     Ok(e)
 }
@@ -158,7 +162,8 @@ pub(super) fn write_pfp(t: &PfpOptions) -> CResult<Encoded> {
     let mut e = Encoded::new(522);
     let d = PfpOptions::default();
     if (t.tangent, t.inner_max_iter) != (d.tangent, d.inner_max_iter) {
-        e.internal.push(write_tresca_inner(t.tangent, t.inner_max_iter)?);
+        e.internal
+            .push(write_tresca_inner(t.tangent, t.inner_max_iter)?);
     }
     write_inner_tolerance(t.inner_tolerance, &mut e);
     Ok(e)

@@ -36,7 +36,10 @@ fn has_rho_rule(kind: LocalSolverKind) -> bool {
 
 fn is_alart_curnier_newton(kind: LocalSolverKind) -> bool {
     use LocalSolverKind::*;
-    matches!(kind, NewtonAlartCurnier | NewtonAlartCurnierGp | NewtonHybrid)
+    matches!(
+        kind,
+        NewtonAlartCurnier | NewtonAlartCurnierGp | NewtonHybrid
+    )
 }
 
 /// The local solver described by internal solver options.

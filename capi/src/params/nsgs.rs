@@ -20,9 +20,11 @@ const IPARAM_SHUFFLE_SEED: usize = 6;
 const IPARAM_FREEZING_CONTACT: usize = 19;
 const DPARAM_RELAXATION_VALUE: usize = 8;
 
-pub(super) unsafe fn read(p: &Params<'_>, internal: Option<&SolverOptions>) -> CResult<NsgsOptions> {
-    let mut n = NsgsOptions::default();
-    n.error_evaluation = match p.iparam[IPARAM_ERROR_EVALUATION] {
+pub(super) unsafe fn read(
+    p: &Params<'_>,
+    internal: Option<&SolverOptions>,
+) -> CResult<NsgsOptions> {
+    let error_evaluation = match p.iparam[IPARAM_ERROR_EVALUATION] {
         0 => ErrorEvaluation::Full,
         1 => ErrorEvaluation::Light,
         2 => ErrorEvaluation::LightWithFullFinal,
@@ -30,37 +32,57 @@ pub(super) unsafe fn read(p: &Params<'_>, internal: Option<&SolverOptions>) -> C
         other => return Err(invalid(format!("error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light, 2 light with full final, {FC3D_ERROR_EVALUATION_DUMONT} Dumont's criterion)"))),
     };
     let ratio = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
-    n.local_tolerance = match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
+    let local_tolerance = match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
         0 => LocalTolerance::Adaptive { ratio },
         1 => LocalTolerance::Given,
         2 => LocalTolerance::AdaptivePerContact { ratio },
         other => return Err(invalid(format!("local tolerance strategy (iparam[2]) = {other} is not one of 0 (adaptive), 1 (given value), 2 (adaptive per contact)"))),
     };
-    n.relaxation = match p.iparam[IPARAM_RELAXATION] {
+    let relaxation = match p.iparam[IPARAM_RELAXATION] {
         0 => None,
         1 => Some(p.dparam[DPARAM_RELAXATION_VALUE]),
-        other => return Err(invalid(format!("relaxation (iparam[4]) = {other} is not 0 (off) or 1 (on, omega in dparam[8])"))),
+        other => {
+            return Err(invalid(format!(
+                "relaxation (iparam[4]) = {other} is not 0 (off) or 1 (on, omega in dparam[8])"
+            )))
+        }
     };
     // The seed is an int in C; every value, negative included, is a valid seed.
     let seed = p.iparam[IPARAM_SHUFFLE_SEED] as i64 as u64;
-    n.order = match p.iparam[IPARAM_SHUFFLE] {
+    let order = match p.iparam[IPARAM_SHUFFLE] {
         0 => ContactOrder::Natural,
         1 => ContactOrder::ShuffledOnce { seed },
         2 => ContactOrder::ShuffledEachSweep { seed },
-        other => return Err(invalid(format!("shuffle (iparam[5]) = {other} is not 0 (off), 1 (once) or 2 (each sweep)"))),
+        other => {
+            return Err(invalid(format!(
+                "shuffle (iparam[5]) = {other} is not 0 (off), 1 (once) or 2 (each sweep)"
+            )))
+        }
     };
     // 0 and 1 both mean every sweep.
-    n.evaluation_frequency = p
-        .count(IPARAM_ERROR_EVALUATION_FREQUENCY, "error evaluation frequency")?
+    let evaluation_frequency = p
+        .count(
+            IPARAM_ERROR_EVALUATION_FREQUENCY,
+            "error evaluation frequency",
+        )?
         .max(1);
-    n.freezing = match p.count(IPARAM_FREEZING_CONTACT, "contact freezing sweeps")? {
+    let freezing = match p.count(IPARAM_FREEZING_CONTACT, "contact freezing sweeps")? {
         0 => None,
         k => Some(k),
     };
-    if let Some(i) = internal {
-        n.local = local::read(i)?;
-    }
-    Ok(n)
+    let local = match internal {
+        Some(i) => local::read(i)?,
+        None => NsgsOptions::default().local,
+    };
+    Ok(NsgsOptions {
+        error_evaluation,
+        evaluation_frequency,
+        local,
+        local_tolerance,
+        relaxation,
+        order,
+        freezing,
+    })
 }
 
 /// Only NSGS gives `iparam[3]` this meaning (other families use index 3 for their own options):
@@ -120,8 +142,9 @@ pub(super) fn write(n: &NsgsOptions) -> Encoded {
         e.iparam[IPARAM_ERROR_EVALUATION_FREQUENCY] =
             c_int::try_from(n.evaluation_frequency).unwrap_or(c_int::MAX);
     }
-    e.iparam[IPARAM_FREEZING_CONTACT] =
-        n.freezing.map_or(0, |k| c_int::try_from(k).unwrap_or(c_int::MAX));
+    e.iparam[IPARAM_FREEZING_CONTACT] = n
+        .freezing
+        .map_or(0, |k| c_int::try_from(k).unwrap_or(c_int::MAX));
     e.internal.push(local::write(&n.local));
     e
 }

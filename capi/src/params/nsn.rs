@@ -31,7 +31,11 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         _ => NsnFormulation::NaturalMap,
     };
     if id != 504 {
-        p.require(IPARAM_FORMULATION, 0, "NSN formulation (fixed by the solver id)")?;
+        p.require(
+            IPARAM_FORMULATION,
+            0,
+            "NSN formulation (fixed by the solver id)",
+        )?;
     }
     let mut n = NsnOptions::new(formulation);
     n.rho_rule = match p.iparam[IPARAM_RHO_STRATEGY] {
@@ -47,11 +51,14 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         1 => NsnLineSearch::Armijo,
         other => return Err(invalid(format!("line search (iparam[11]) = {other} is not implemented in fc3d (-1 none, 0 Goldstein-Price, 1 Armijo)"))),
     };
-    n.line_search_max_iter =
-        p.count(IPARAM_LINESEARCH_MAX_ITER, "line-search max iterations")?;
+    n.line_search_max_iter = p.count(IPARAM_LINESEARCH_MAX_ITER, "line-search max iterations")?;
     match p.iparam[IPARAM_LINEAR_SOLVER] {
         0 | 1 => {}
-        other => return Err(invalid(format!("linear solver (iparam[13]) = {other} is not implemented in fc3d (0 or 1: a sparse LU)"))),
+        other => {
+            return Err(invalid(format!(
+            "linear solver (iparam[13]) = {other} is not implemented in fc3d (0 or 1: a sparse LU)"
+        )))
+        }
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
     Ok(n)

@@ -48,9 +48,9 @@ pub(super) unsafe fn read(
                 return Err(CError::new(
                     FC3D_ERR_UNSUPPORTED_SOLVER,
                     format!(
-                        "PROX's internal solver {} is not supported in fc3d (504 NSN_AC or 500 NSGS)",
-                        other.siconos_id()
-                    ),
+                    "PROX's internal solver {} is not supported in fc3d (504 NSN_AC or 500 NSGS)",
+                    other.siconos_id()
+                ),
                 ))
             }
         };
@@ -77,4 +77,3 @@ pub(super) fn write(x: &ProxOptions) -> CResult<Encoded> {
     e.internal.push(write_config(&internal)?);
     Ok(e)
 }
-

@@ -59,19 +59,25 @@ const NAMES: &[(c_int, &CStr)] = &[
 /// fc3d's one-contact solvers outside Siconos' range, by their registry names (NUL-terminated
 /// copies made once).
 fn fc3d_local_name(id: c_int) -> Option<&'static CStr> {
-    static NAMES: std::sync::OnceLock<Vec<(c_int, std::ffi::CString)>> =
-        std::sync::OnceLock::new();
+    static NAMES: std::sync::OnceLock<Vec<(c_int, std::ffi::CString)>> = std::sync::OnceLock::new();
     let names = NAMES.get_or_init(|| {
         LocalSolverKind::ALL
             .iter()
-            .filter(|k| !super::siconos::NAMES.iter().any(|(i, _)| *i == k.siconos_id()))
+            .filter(|k| {
+                !super::siconos::NAMES
+                    .iter()
+                    .any(|(i, _)| *i == k.siconos_id())
+            })
             .filter_map(|k| {
                 let name = std::ffi::CString::new(k.siconos_name()).ok()?;
                 Some((k.siconos_id(), name))
             })
             .collect()
     });
-    names.iter().find(|(i, _)| *i == id).map(|(_, n)| n.as_c_str())
+    names
+        .iter()
+        .find(|(i, _)| *i == id)
+        .map(|(_, n)| n.as_c_str())
 }
 
 /// Name of a solver id ("NONAME" if unknown, as Siconos).
@@ -139,7 +145,15 @@ const SLOTS: &[SiconosSlots] = &[
     },
     SiconosSlots {
         id: 520,
-        iparam: &[(0, 1), (1, 1), (3, 100000), (5, 1), (8, 1), (13, 1), (18, -1)],
+        iparam: &[
+            (0, 1),
+            (1, 1),
+            (3, 100000),
+            (5, 1),
+            (8, 1),
+            (13, 1),
+            (18, -1),
+        ],
         dparam: &[],
         internal: &[],
     },

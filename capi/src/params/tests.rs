@@ -264,9 +264,11 @@ const SICONOS: &[Reference] = &[
     },
 ];
 
-
 fn reference(id: c_int) -> &'static Reference {
-    SICONOS.iter().find(|r| r.id == id).expect("a reference row")
+    SICONOS
+        .iter()
+        .find(|r| r.id == id)
+        .expect("a reference row")
 }
 
 fn check_against_reference(e: &Encoded) {

@@ -130,16 +130,18 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
         Some((a, b)) => (a.trim(), Some(b.trim())),
         None => (s, None),
     };
-    let method = Method::preset(solver).filter(|_| !solver.is_empty()).ok_or_else(|| {
-        format!(
-            "unknown solver '{solver}' in '{s}' (implemented: {}; or `all`)",
-            Method::presets()
-                .iter()
-                .map(|m| format!("{} = {}", m.siconos_id(), m.name()))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )
-    })?;
+    let method = Method::preset(solver)
+        .filter(|_| !solver.is_empty())
+        .ok_or_else(|| {
+            format!(
+                "unknown solver '{solver}' in '{s}' (implemented: {}; or `all`)",
+                Method::presets()
+                    .iter()
+                    .map(|m| format!("{} = {}", m.siconos_id(), m.name()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })?;
     match (method, local) {
         (Method::Nsgs(_), None) => Ok(SolverSpec::nsgs(LocalSolverKind::NewtonHybrid)),
         (Method::Nsgs(_), Some(l)) => Ok(SolverSpec::nsgs(parse_local(l)?)),

@@ -37,6 +37,16 @@ pub(crate) struct Run {
 }
 
 impl Run {
+    /// A run of an inner solve with its own tolerance and iteration limit under the same
+    /// deadline.
+    pub fn inner(&self, tolerance: f64, max_iter: usize) -> Run {
+        Run {
+            tolerance,
+            max_iter,
+            deadline: self.deadline,
+        }
+    }
+
     /// The instant the budget runs out, if there is a budget.
     pub fn deadline(&self) -> Option<Instant> {
         self.deadline

@@ -85,7 +85,7 @@ impl ErrorSchedule {
         r: &[f64],
         measure: impl FnOnce(Measure) -> f64,
     ) -> Test {
-        let tested = iteration % self.frequency == 0 || iteration == self.max_iter;
+        let tested = iteration.is_multiple_of(self.frequency) || iteration == self.max_iter;
         if !tested {
             return Test {
                 error: self.last_tested,

@@ -19,10 +19,10 @@ pub use fclib::read_fclib_file;
 /// `fclib` feature. Without it, and for any other extension, an [`Fc3dError::Unsupported`] that
 /// names the file.
 ///
-/// [`Fc3dError::Unsupported`]: crate::Fc3dError::Unsupported
+/// [`Fc3dError::Unsupported`]: crate::error::Fc3dError::Unsupported
 pub fn read_problem_file(
     path: &std::path::Path,
-) -> Result<crate::FrictionProblem<'static>, crate::Fc3dError> {
+) -> Result<crate::problem::FrictionProblem<'static>, crate::error::Fc3dError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -30,7 +30,7 @@ pub fn read_problem_file(
     match ext.as_deref() {
         Some("dat") => read_dat_file(path),
         Some("hdf5" | "h5") => read_hdf5_problem(path),
-        _ => Err(crate::Fc3dError::Unsupported(format!(
+        _ => Err(crate::error::Fc3dError::Unsupported(format!(
             "{}: unknown problem file extension (expected .dat, .hdf5 or .h5)",
             path.display()
         ))),
@@ -40,15 +40,15 @@ pub fn read_problem_file(
 #[cfg(feature = "fclib")]
 fn read_hdf5_problem(
     path: &std::path::Path,
-) -> Result<crate::FrictionProblem<'static>, crate::Fc3dError> {
+) -> Result<crate::problem::FrictionProblem<'static>, crate::error::Fc3dError> {
     fclib::read_fclib_file(path)
 }
 
 #[cfg(not(feature = "fclib"))]
 fn read_hdf5_problem(
     path: &std::path::Path,
-) -> Result<crate::FrictionProblem<'static>, crate::Fc3dError> {
-    Err(crate::Fc3dError::Unsupported(format!(
+) -> Result<crate::problem::FrictionProblem<'static>, crate::error::Fc3dError> {
+    Err(crate::error::Fc3dError::Unsupported(format!(
         "{}: FCLIB .hdf5 problems cannot be read: fc3d was built without the `fclib` feature \
          (rebuild with `--features fclib`, which needs libhdf5-dev and pkg-config)",
         path.display()

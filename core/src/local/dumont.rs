@@ -27,9 +27,9 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
+use crate::local::{LocalSolverOptions, RhoRule};
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
-use crate::local::{LocalSolverOptions, RhoRule};
 
 const DECREASE: f64 = 1e-4;
 const MAX_BACKTRACKS: usize = 20;

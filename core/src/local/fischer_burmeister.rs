@@ -18,9 +18,9 @@
 //! function; the FB-Newton idea is the same, the cone formulation is ours.
 
 use super::{local_rho, AlartCurnierNewton, LocalOutcome, LocalProblem, LocalSolver};
+use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
 use crate::math::cone::modified_velocity;
 use crate::math::linalg::{norm2, norm3, solve3, Mat3, Vec3};
-use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
 
 const ARMIJO_SLOPE: f64 = 1e-4;
 const MAX_BACKTRACKS: usize = 30;

@@ -17,11 +17,11 @@ pub use fischer_burmeister::{fischer_burmeister_function, FischerBurmeisterNewto
 pub use newton::{alart_curnier_function, jean_moreau_function, AlartCurnierNewton};
 pub use projection::{ProjectionOnCone, ProjectionOnConeWithLocalIteration, ProjectionOnCylinder};
 pub use quartic::Quartic;
+pub use registry::{AnyLocalSolver, LocalSolverKind};
 pub use regularized::{
     ProjectionOnConeVelocity, ProjectionOnConeWithDiagonalization,
     ProjectionOnConeWithRegularization, ProjectionOnCylinderWithLocalIteration,
 };
-pub use registry::{AnyLocalSolver, LocalSolverKind};
 pub use settings::{LocalSolverOptions, NewtonFormulation, RhoRule};
 pub use vi_upk::FpViUpk;
 

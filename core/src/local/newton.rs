@@ -19,8 +19,8 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
-use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 use crate::local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
+use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 
 /// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
 pub fn alart_curnier_function(

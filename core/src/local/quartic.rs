@@ -25,8 +25,8 @@
 //! line search, which also keeps the answer finite.
 
 use super::{local_rho, AlartCurnierNewton, LocalOutcome, LocalProblem, LocalSolver};
-use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
 use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
+use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
 
 pub struct Quartic {
     tolerance: f64,

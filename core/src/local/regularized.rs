@@ -6,7 +6,9 @@ use super::adaptive::ProjectionStep;
 use super::projection::{ConeStep, CylinderStep};
 use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
 use crate::local::{LocalSolverOptions, RhoRule};
-use crate::math::cone::{modified_velocity, project_on_cone, project_on_cylinder, project_on_dual_cone};
+use crate::math::cone::{
+    modified_velocity, project_on_cone, project_on_cylinder, project_on_dual_cone,
+};
 use crate::math::linalg::{Mat3, Vec3};
 
 /// `1 / W_NN` with the degenerate-block fallback of [`local_rho`].

@@ -85,11 +85,19 @@ impl LocalSolverOptions {
     /// Checks the ranges of the local solver's settings.
     pub fn validate(&self) -> Result<(), Fc3dError> {
         let t = self.tolerance;
-        require_setting(t >= 0.0 && t.is_finite(), "local.tolerance", t, "finite and >= 0")?;
+        require_setting(
+            t >= 0.0 && t.is_finite(),
+            "local.tolerance",
+            t,
+            "finite and >= 0",
+        )?;
         match self.rho_rule {
-            RhoRule::Constant(rho) => {
-                require_setting(rho > 0.0 && rho.is_finite(), "local.rho", rho, "finite and > 0")?
-            }
+            RhoRule::Constant(rho) => require_setting(
+                rho > 0.0 && rho.is_finite(),
+                "local.rho",
+                rho,
+                "finite and > 0",
+            )?,
             RhoRule::Dumont(alpha) => require_setting(
                 alpha > 0.0 && alpha.is_finite(),
                 "local.rho",

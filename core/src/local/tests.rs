@@ -16,8 +16,8 @@
 //! [`one_step_solvers_cannot_stick_when_tangent_is_stiffer_than_twice_normal`] documents the rest.
 
 use super::*;
-use crate::math::linalg::{mat3_vec_add, norm3};
 use crate::local::{LocalSolverKind, LocalSolverOptions};
+use crate::math::linalg::{mat3_vec_add, norm3};
 use approx::assert_relative_eq;
 use proptest::prelude::*;
 

@@ -8,8 +8,8 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
-use crate::math::linalg::{Mat3, Vec3};
 use crate::local::{LocalSolverOptions, RhoRule};
+use crate::math::linalg::{Mat3, Vec3};
 
 pub struct FpViUpk {
     rule: RhoRule,

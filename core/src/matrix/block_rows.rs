@@ -126,7 +126,8 @@ impl BlockRows {
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
             let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-            let uc = crate::math::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
+            let uc =
+                crate::math::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
             u[3 * c..3 * c + 3].copy_from_slice(&uc);
         }
     }

@@ -225,17 +225,8 @@ fn prox(
         match &options.internal {
             ProxInternal::NsnAc(_) => {
                 let solver = newton.as_mut().expect("built for NSN-AC");
-                solver.run(
-                    &shifted_q,
-                    problem.mu(),
-                    shift,
-                    internal_tol,
-                    internal_max_iter,
-                    run.deadline(),
-                    r,
-                    u,
-                    &mut |_| {},
-                );
+                let inner = run.inner(internal_tol, internal_max_iter);
+                solver.run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
             }
             ProxInternal::Nsgs(g) => {
                 let inner = FrictionProblem::new(

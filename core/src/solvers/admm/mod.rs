@@ -178,7 +178,6 @@ fn power_iteration(x: &mut [f64], y: &mut [f64], mut apply: impl FnMut(&[f64], &
 /// See [`AdmmInitialRho::Eigenvalues`].
 const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
 
-
 fn initial_rho(
     problem: &FrictionProblem<'_>,
     options: &AdmmOptions,
@@ -236,7 +235,6 @@ fn de_saxce_term(mu: &[f64], u: &[f64], s: &mut [f64]) {
         s[k + 2] = 0.0;
     }
 }
-
 
 /// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`.
 fn admm(

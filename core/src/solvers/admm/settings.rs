@@ -79,10 +79,20 @@ impl AdmmOptions {
     pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
         if self.initial_rho == AdmmInitialRho::Given {
             let rho = self.rho;
-            require_setting(rho > 0.0 && rho.is_finite(), "admm.rho", rho, "finite and > 0")?;
+            require_setting(
+                rho > 0.0 && rho.is_finite(),
+                "admm.rho",
+                rho,
+                "finite and > 0",
+            )?;
         }
         let eta = self.restart_eta;
-        require_setting(eta > 0.0 && eta <= 1.0, "admm.restart_eta", eta, "in (0, 1]")?;
+        require_setting(
+            eta > 0.0 && eta <= 1.0,
+            "admm.restart_eta",
+            eta,
+            "in (0, 1]",
+        )?;
         if self.rho_strategy != AdmmRhoStrategy::Constant {
             let (tau, phi) = (self.balancing_tau, self.balancing_phi);
             require_setting(

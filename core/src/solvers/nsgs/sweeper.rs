@@ -249,7 +249,12 @@ impl Sweeper {
     }
 
     /// Dumont's criterion (37) after the last sweep (`u` receives `W r + q`).
-    pub(super) fn dumont_criterion(&self, problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
+    pub(super) fn dumont_criterion(
+        &self,
+        problem: &FrictionProblem<'_>,
+        r: &[f64],
+        u: &mut [f64],
+    ) -> f64 {
         self.rows.velocity(problem.q(), r, u);
         crate::measure::dumont_criterion(r, u, &self.plan.u_solved, problem.mu())
     }

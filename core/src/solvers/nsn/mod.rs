@@ -15,9 +15,7 @@ mod sparse;
 
 pub use settings::{NsnFormulation, NsnLineSearch, NsnOptions, NONMONOTONE_MEMORY};
 
-use std::time::Instant;
-
-use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::math::linalg::{norm, Mat3, Vec3};
 use crate::matrix::BlockSparseMatrix;
@@ -120,17 +118,16 @@ impl NewtonSolver {
         0.5 * sum
     }
 
-    /// Solves FC(W + shift I, q, mu) from `r` by Newton, to the relative natural-map error `tol`
-    /// (normalised by `||q||` of this q). `u` receives `(W + shift I) r + q`.
+    /// Solves FC(W + shift I, q, mu) from `r` by Newton, within the limits of `run` (its
+    /// tolerance on the relative natural-map error normalised by `||q||` of this q). `u`
+    /// receives `(W + shift I) r + q`.
     #[allow(clippy::too_many_arguments)]
     pub fn run(
         &mut self,
         q: &[f64],
         mu: &[f64],
         shift: f64,
-        tol: f64,
-        max_iter: usize,
-        deadline: Option<Instant>,
+        run: &Run,
         r: &mut [f64],
         u: &mut [f64],
         observer: &mut Observer<'_>,
@@ -161,14 +158,14 @@ impl NewtonSolver {
         let mut history = [merit; NONMONOTONE_MEMORY];
         let mut outcome = RunOutcome {
             iterations: 0,
-            converged: error <= tol,
+            converged: error <= run.tolerance,
             out_of_time: false,
             error,
         };
         if outcome.converged {
             return outcome;
         }
-        for iteration in 1..=max_iter {
+        for iteration in 1..=run.max_iter {
             // Newton direction J d = -F, regularised if needed, else the fixed-point direction.
             let mut found = false;
             for shift_try in std::iter::once(0.0).chain(REGULARIZATION_SHIFTS) {
@@ -256,12 +253,12 @@ impl NewtonSolver {
                 reaction: r,
                 error,
             });
-            if error <= tol {
-                outcome.converged = true;
-                outcome.error = error;
-                return outcome;
-            }
-            if deadline.is_some_and(|dl| Instant::now() >= dl) {
+            if let Some(stop) = run.end_of_iteration(iteration, error <= run.tolerance) {
+                if !stop.out_of_time {
+                    outcome.converged = true;
+                    outcome.error = error;
+                    return outcome;
+                }
                 outcome.out_of_time = true;
                 break;
             }
@@ -345,17 +342,7 @@ impl Family for NsnOptions {
     ) -> Result<SolverOutcome, Fc3dError> {
         let mut solver = NewtonSolver::new(problem, self)?;
         let run = limits.start();
-        let out = solver.run(
-            problem.q(),
-            problem.mu(),
-            0.0,
-            run.tolerance,
-            run.max_iter,
-            run.deadline(),
-            r,
-            u,
-            observer,
-        );
+        let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
         Ok(SolverOutcome::stopped(out.iterations, out.out_of_time))
     }
 }

@@ -107,7 +107,12 @@ impl NsnOptions {
     /// Checks the settings a caller may get wrong.
     pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
         if let RhoRule::Constant(rho) = self.rho_rule {
-            require_setting(rho > 0.0 && rho.is_finite(), "nsn.rho", rho, "finite and > 0")?;
+            require_setting(
+                rho > 0.0 && rho.is_finite(),
+                "nsn.rho",
+                rho,
+                "finite and > 0",
+            )?;
         }
         require_setting(
             self.line_search == NsnLineSearch::None || self.line_search_max_iter > 0,

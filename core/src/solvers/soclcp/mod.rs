@@ -15,12 +15,13 @@ mod local;
 
 pub use local::solve_local_soclcp;
 
-use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{
+    ErrorEvaluation, ErrorSchedule, Family, IterationEvent, Limits, Observer, SolverOutcome,
+};
 use crate::error::{require_setting, Fc3dError};
 use crate::math::cone::project_on_cone;
 use crate::math::linalg::norm;
 use crate::matrix::BlockRows;
-use crate::measure::cheap_error;
 use crate::problem::FrictionProblem;
 use local::local_soclcp_projection;
 
@@ -155,21 +156,20 @@ fn soclcp(
     let rows = problem.w().block_rows()?;
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
-    let tol = run.tolerance;
-    let mut light_tol = tol;
+    // The cheap increment error each sweep, confirmed by the relaxed problem's own natural-map
+    // error (Siconos' light-with-full-final schedule).
+    let mut schedule = ErrorSchedule::new(
+        ErrorEvaluation::LightWithFullFinal,
+        run.tolerance,
+        1,
+        run.max_iter,
+    );
     for iteration in 1..=run.max_iter {
         let increment_sq = soclcp_sweep(&rows, q, mu, None, options.relaxation, r);
-        let light = cheap_error(increment_sq, r);
-        let (error, relaxed_converged) = if light <= light_tol {
-            let full = soclcp_error(&rows, q, mu, r, u);
-            if full > tol {
-                // As NSGS: ask the cheap error for what the full one still lacks.
-                light_tol = light * tol / full;
-            }
-            (full, full <= tol)
-        } else {
-            (light, false)
-        };
+        let test = schedule.test(iteration, increment_sq, r, |_| {
+            soclcp_error(&rows, q, mu, r, u)
+        });
+        let (error, relaxed_converged) = (test.error, test.converged);
         observer(&IterationEvent {
             iteration,
             reaction: r,

@@ -91,8 +91,6 @@ fn project_step(mu: &[f64], r: &[f64], f: &[f64], rho: f64, out: &mut [f64]) {
     }
 }
 
-
-
 /// Algorithm 3's ratio for the trial `r̄` from `r` (F values `f`, `f̄`), 0 when `r̄ = r`.
 fn step_ratio(kind: StepRatio, rho: f64, r: &[f64], rbar: &[f64], f: &[f64], fbar: &[f64]) -> f64 {
     let dr_sq = distance_sq(r, rbar);

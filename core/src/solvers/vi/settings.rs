@@ -168,9 +168,12 @@ impl ViOptions {
             )));
         }
         match self.step {
-            StepSize::Fixed(rho) => {
-                require_setting(rho > 0.0 && rho.is_finite(), "vi.rho", rho, "finite and > 0")
-            }
+            StepSize::Fixed(rho) => require_setting(
+                rho > 0.0 && rho.is_finite(),
+                "vi.rho",
+                rho,
+                "finite and > 0",
+            ),
             StepSize::SelfAdaptive(s) => {
                 if self.solver == ViSolver::DeSaxceFixedPoint {
                     return Err(Fc3dError::InvalidOption(
@@ -178,7 +181,12 @@ impl ViOptions {
                     ));
                 }
                 let rho = s.initial_rho;
-                require_setting(rho > 0.0 && rho.is_finite(), "vi.rho", rho, "finite and > 0")?;
+                require_setting(
+                    rho > 0.0 && rho.is_finite(),
+                    "vi.rho",
+                    rho,
+                    "finite and > 0",
+                )?;
                 require_setting(s.nu > 0.0 && s.nu < 1.0, "vi.nu", s.nu, "in (0, 1)")?;
                 require_setting(
                     s.increase >= 1.0 && s.increase.is_finite(),
