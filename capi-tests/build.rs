@@ -6,8 +6,8 @@ fn main() {
     let sources = ["c/capi_checks.c", "c/nsgs_options.c"];
     let mut build = cc::Build::new();
     build
-        .include(root.join("../include/siconos-compat"))
-        .include(root.join("../include"))
+        .include(root.join("../capi/include/siconos-compat"))
+        .include(root.join("../capi/include"))
         .flag_if_supported("-std=c99")
         .flag_if_supported("-Wall")
         .flag_if_supported("-Wextra")
@@ -17,6 +17,6 @@ fn main() {
         build.file(root.join(s));
         println!("cargo:rerun-if-changed={s}");
     }
-    println!("cargo:rerun-if-changed=../include");
+    println!("cargo:rerun-if-changed=../capi/include");
     build.compile("fc3d_capi_checks");
 }

@@ -84,8 +84,8 @@ if [ ${#packages[@]} -gt 0 ]; then
 fi
 
 echo "== building libfc3d, compare_report and the two benchmark binaries"
-cargo build --release --lib
-cargo build --release --bin compare_report
+cargo build --release -p fc3d
+cargo build --release -p fc3d-cli --bin compare_report
 BUILD=$(mktemp -d)
 trap 'rm -rf "$BUILD"' EXIT
 trap 'exit 130' INT TERM
@@ -93,7 +93,7 @@ trap 'exit 130' INT TERM
 # the library under test halfway.
 cp target/release/libfc3d.so target/release/compare_report "$BUILD/"
 CFLAGS=(-std=c99 -O2 -Wall -Wextra -Werror)
-cc "${CFLAGS[@]}" -Iinclude/siconos-compat bench/siconos_compare.c -L"$BUILD" -lfc3d -lm -o "$BUILD/fc3d"
+cc "${CFLAGS[@]}" -Icapi/include/siconos-compat bench/siconos_compare.c -L"$BUILD" -lfc3d -lm -o "$BUILD/fc3d"
 cc "${CFLAGS[@]}" -I/usr/include/siconos/numerics -I/usr/include/siconos bench/siconos_compare.c \
   -lsiconos_numerics -lm -o "$BUILD/siconos"
 # Both libraries single-threaded (fc3d is; Siconos' OpenBLAS would otherwise start a thread pool).

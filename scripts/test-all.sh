@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite, set-up included (README's test command; .ci/run calls it).
 #  1. cargo test --workspace: Rust unit/integration tests and the C checks of capi-tests
-#     (compiled with the cc crate against include/), including all shared Siconos problems.
+#     (compiled with the cc crate against capi/include/), including all shared Siconos problems.
 #  2. The C example built with plain cc against the compat headers and libfc3d, and run.
 #  3. The C checks linked against libfc3d.so and run under valgrind (ownership, bad input).
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos
@@ -24,35 +24,35 @@ if [ ${#packages[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${packages[@]}" >/dev/null
 fi
 
-echo "== cargo test --workspace --features fc3d/fclib"
-cargo test --workspace --features fc3d/fclib
+echo "== cargo test --workspace --features fc3d-core/fclib"
+cargo test --workspace --features fc3d-core/fclib
 echo "== cargo test --test fclib (without the fclib feature: .hdf5 refused with a clear error)"
-cargo test -p fc3d --test fclib
+cargo test -p fc3d-core --test fclib
 
 echo "== release library"
-cargo build --release --lib
+cargo build --release -p fc3d
 LIB=target/release
 BUILD=$(mktemp -d)
 trap 'rm -rf "$BUILD"' EXIT
 CFLAGS=(-std=c99 -Wall -Wextra -Werror -O2)
 
 echo "== examples-c"
-cc "${CFLAGS[@]}" -Iinclude/siconos-compat examples-c/stack.c -L$LIB -lfc3d -lm -o "$BUILD/stack"
+cc "${CFLAGS[@]}" -Icapi/include/siconos-compat examples-c/stack.c -L$LIB -lfc3d -lm -o "$BUILD/stack"
 LD_LIBRARY_PATH=$LIB "$BUILD/stack"
 
 echo "== C checks under valgrind"
-cc "${CFLAGS[@]}" -Iinclude/siconos-compat capi-tests/c/ownership_main.c capi-tests/c/capi_checks.c \
+cc "${CFLAGS[@]}" -Icapi/include/siconos-compat capi-tests/c/ownership_main.c capi-tests/c/capi_checks.c \
   capi-tests/c/nsgs_options.c \
   -L$LIB -lfc3d -lm -o "$BUILD/capi_checks"
 LD_LIBRARY_PATH=$LIB valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
   "$BUILD/capi_checks" "$DATA" "$BUILD"
 
 echo "== Siconos 4.4 compatibility"
-cc -Iinclude/siconos-compat capi-tests/c/layout.c -o "$BUILD/layout_fc3d"
+cc -Icapi/include/siconos-compat capi-tests/c/layout.c -o "$BUILD/layout_fc3d"
 cc -I/usr/include/siconos/numerics -I/usr/include/siconos capi-tests/c/layout.c -o "$BUILD/layout_siconos"
 diff <("$BUILD/layout_fc3d") <("$BUILD/layout_siconos")
 echo "struct layouts and enum values identical ($("$BUILD/layout_fc3d" | wc -l) checks)"
-cc -O2 -Iinclude/siconos-compat examples-c/siconos_host.c -L$LIB -lfc3d -lm -o "$BUILD/host_fc3d"
+cc -O2 -Icapi/include/siconos-compat examples-c/siconos_host.c -L$LIB -lfc3d -lm -o "$BUILD/host_fc3d"
 cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos examples-c/siconos_host.c -lsiconos_numerics -lm \
   -o "$BUILD/host_siconos"
 agree=0

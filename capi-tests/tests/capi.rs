@@ -6,9 +6,9 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::{Path, PathBuf};
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{solve, Delassus, FrictionProblem, LocalSolverKind, NsgsOptions, SolverConfig};
 use fc3d_capi_tests::*;
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{solve, Delassus, FrictionProblem, LocalSolverKind, NsgsOptions, SolverConfig};
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()
@@ -145,11 +145,9 @@ fn shared_problems_through_the_c_api_in_all_storages() {
             let rp = rust_problem(&problem, storage);
             let mut rr = vec![0.0; n];
             let mut ru = vec![0.0; n];
-            let config = SolverConfig::Nsgs(NsgsOptions {
-                tolerance: tol,
-                max_iter: max_iter as usize,
-                ..NsgsOptions::with_local(LocalSolverKind::NewtonHybrid)
-            });
+            let config = SolverConfig::new(NsgsOptions::with_local(LocalSolverKind::NewtonHybrid))
+                .with_tolerance(tol)
+                .with_max_iter(max_iter as usize);
             let report = solve(&rp, &config, &mut rr, &mut ru).unwrap();
             assert_eq!(
                 r, rr,
@@ -205,7 +203,7 @@ fn shared_problems_through_the_c_api_in_all_storages() {
             match &first_r {
                 None => first_r = Some(r.clone()),
                 Some(r0) => {
-                    let scale = fc3d::linalg::norm(r0).max(1e-300);
+                    let scale = fc3d_core::math::linalg::norm(r0).max(1e-300);
                     let diff = r
                         .iter()
                         .zip(r0)
@@ -264,11 +262,9 @@ fn new_local_solvers_through_the_c_api_match_rust() {
                 assert_eq!(rc, 0, "{name}/{id}: C solve failed");
                 let rp = rust_problem(&problem, storage);
                 let (mut rr, mut ru) = (vec![0.0; n], vec![0.0; n]);
-                let config = SolverConfig::Nsgs(NsgsOptions {
-                    tolerance: tol,
-                    max_iter: max_iter as usize,
-                    ..NsgsOptions::with_local(kind)
-                });
+                let config = SolverConfig::new(NsgsOptions::with_local(kind))
+                    .with_tolerance(tol)
+                    .with_max_iter(max_iter as usize);
                 let report = solve(&rp, &config, &mut rr, &mut ru).unwrap();
                 assert_eq!(r, rr, "{name}/{id} storage {storage}: reactions differ");
                 assert_eq!(u, ru, "{name}/{id} storage {storage}: velocities differ");

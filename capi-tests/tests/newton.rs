@@ -6,12 +6,12 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{
+use fc3d_capi_tests::*;
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{
     solve, Delassus, FrictionProblem, NsgsOptions, NsnFormulation, NsnOptions, ProxInternal,
     ProxOptions, SolverConfig,
 };
-use fc3d_capi_tests::*;
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()
@@ -26,10 +26,9 @@ fn newton_and_prox_single_contacts_and_rejected_options() {
 /// `update_internal(internal)`) with the tolerance and iterations set.
 fn rust_config(id: c_int, internal: c_int, tol: f64, max_iter: usize) -> SolverConfig {
     let newton = |f| {
-        let mut o = NsnOptions::new(f);
-        o.tolerance = tol;
-        o.max_iter = max_iter;
-        SolverConfig::Nsn(o)
+        SolverConfig::new(NsnOptions::new(f))
+            .with_tolerance(tol)
+            .with_max_iter(max_iter)
     };
     match id {
         504 => newton(NsnFormulation::AlartCurnier),
@@ -37,12 +36,12 @@ fn rust_config(id: c_int, internal: c_int, tol: f64, max_iter: usize) -> SolverC
         520 => newton(NsnFormulation::NaturalMap),
         502 => {
             let mut o = ProxOptions::default();
-            o.tolerance = tol;
-            o.max_iter = max_iter;
             if internal == 500 {
                 o.internal = ProxInternal::Nsgs(NsgsOptions::default());
             }
-            SolverConfig::Prox(o)
+            SolverConfig::new(o)
+                .with_tolerance(tol)
+                .with_max_iter(max_iter)
         }
         _ => unreachable!(),
     }

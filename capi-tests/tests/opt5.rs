@@ -5,12 +5,12 @@
 use std::ffi::CString;
 use std::os::raw::c_int;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::pfp::PfpOptions;
-use fc3d::soclcp::{AclmOptions, SoclcpOptions};
-use fc3d::tresca::{TrescaInnerSolver, TrescaOptions};
-use fc3d::{solve, Delassus, FrictionProblem, SolveStatus, SolverConfig};
 use fc3d_capi_tests::*;
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{
+    solve, AclmOptions, Delassus, FrictionProblem, Method, PfpOptions, SoclcpOptions, SolveStatus,
+    SolverConfig, TrescaInnerSolver, TrescaOptions,
+};
 
 #[test]
 fn single_contacts_and_options_in_c() {
@@ -30,34 +30,24 @@ fn rust_problem(p: &FrictionProblem<'static>, storage: c_int) -> FrictionProblem
 
 /// The Rust configuration the C defaults of `id` (with `internal` renamed) stand for.
 fn rust_config(id: c_int, internal: c_int, tol: f64, max_iter: usize) -> SolverConfig {
-    match id {
-        503 => SolverConfig::Tresca(TrescaOptions {
-            tolerance: tol,
-            max_iter,
+    let method: Method = match id {
+        503 => TrescaOptions {
             inner: if internal == 0 {
                 TrescaInnerSolver::GaussSeidel
             } else {
                 TrescaInnerSolver::from_siconos_id(internal).unwrap()
             },
             ..Default::default()
-        }),
-        522 => SolverConfig::Pfp(PfpOptions {
-            tolerance: tol,
-            max_iter,
-            ..Default::default()
-        }),
-        516 => SolverConfig::Aclm(AclmOptions {
-            tolerance: tol,
-            max_iter,
-            ..Default::default()
-        }),
-        517 => SolverConfig::Soclcp(SoclcpOptions {
-            tolerance: tol,
-            max_iter,
-            ..Default::default()
-        }),
+        }
+        .into(),
+        522 => PfpOptions::default().into(),
+        516 => AclmOptions::default().into(),
+        517 => SoclcpOptions::default().into(),
         _ => unreachable!(),
-    }
+    };
+    SolverConfig::new(method)
+        .with_tolerance(tol)
+        .with_max_iter(max_iter)
 }
 
 #[test]

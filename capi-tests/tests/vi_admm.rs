@@ -6,9 +6,9 @@ use std::ffi::CString;
 use std::os::raw::c_int;
 use std::path::Path;
 
-use fc3d::io::dat::read_dat_file;
-use fc3d::{solve, AdmmOptions, Delassus, FrictionProblem, SolverConfig, ViOptions, ViSolver};
 use fc3d_capi_tests::*;
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::{solve, AdmmOptions, Delassus, FrictionProblem, SolverConfig, ViOptions, ViSolver};
 
 fn cstr(p: &Path) -> CString {
     CString::new(p.to_str().unwrap()).unwrap()
@@ -26,17 +26,11 @@ fn unimplemented_options_are_rejected() {
 
 fn rust_config(id: c_int, tol: f64, max_iter: usize) -> SolverConfig {
     match ViSolver::from_siconos_id(id) {
-        Some(s) => SolverConfig::Vi(ViOptions {
-            tolerance: tol,
-            max_iter,
-            ..ViOptions::new(s)
-        }),
-        None => SolverConfig::Admm(AdmmOptions {
-            tolerance: tol,
-            max_iter,
-            ..AdmmOptions::default()
-        }),
+        Some(s) => SolverConfig::new(ViOptions::new(s)),
+        None => SolverConfig::new(AdmmOptions::default()),
     }
+    .with_tolerance(tol)
+    .with_max_iter(max_iter)
 }
 
 fn rust_problem(p: &FrictionProblem<'static>, storage: c_int) -> FrictionProblem<'static> {

@@ -3,7 +3,7 @@
 
 use std::os::raw::{c_double, c_int};
 
-use fc3d::capi::types::{FrictionContactProblem, NumericsMatrix, SolverOptions};
+use fc3d::types::{FrictionContactProblem, NumericsMatrix, SolverOptions};
 
 extern "C" {
     fn solver_options_create(id: c_int) -> *mut SolverOptions;
@@ -138,7 +138,7 @@ pub fn run_driver_case(data: &[u8]) {
         // Bounded work per input: at most 50 iterations and 5 ms (millions of inputs must run).
         let it = (*o).iparam;
         *it = (*it).clamp(0, 50);
-        *(*o).dparam.add(fc3d::capi::FC3D_DPARAM_TIME_BUDGET as usize) = 0.005;
+        *(*o).dparam.add(fc3d::FC3D_DPARAM_TIME_BUDGET as usize) = 0.005;
         *(*o).iparam.add(1) = -12345;
         *(*o).dparam.add(1) = -12345.0;
         let sentinel = 7.25;

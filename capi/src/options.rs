@@ -1,0 +1,318 @@
+//! `SolverOptions` as Siconos' C API manages it: creation with the defaults of `params`, copy,
+//! deletion, internal solvers, names, printing.
+
+#![allow(non_snake_case)]
+
+use std::ffi::{c_char, CStr};
+use std::os::raw::c_int;
+use std::ptr::null_mut;
+
+use super::alloc::{c_box, c_calloc, c_copy, c_free};
+use super::params::{self, solver_name, Encoded, Params, OPTIONS_PARAM_SIZE};
+use super::types::SolverOptions;
+use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_OPTION};
+
+/// Builds a C-allocated options struct for `id` with its defaults and internal solvers.
+pub(crate) fn create_options(id: c_int) -> CResult<*mut SolverOptions> {
+    allocate(&params::defaults(id)?)
+}
+
+/// Allocates the C structs of `e` (and of its internal solvers) with the C allocator.
+fn allocate(e: &Encoded) -> CResult<*mut SolverOptions> {
+    let internals = c_calloc::<*mut SolverOptions>(e.internal.len())?;
+    for (k, i) in e.internal.iter().enumerate() {
+        // SAFETY: internals has e.internal.len() slots.
+        unsafe { *internals.add(k) = allocate(i)? };
+    }
+    c_box(SolverOptions {
+        solverId: e.id,
+        isSet: 1,
+        iSize: OPTIONS_PARAM_SIZE,
+        iparam: c_copy(&e.iparam)?,
+        dSize: OPTIONS_PARAM_SIZE,
+        dparam: c_copy(&e.dparam)?,
+        filterOn: 1,
+        dWorkSize: 0,
+        dWork: null_mut(),
+        iWorkSize: 0,
+        iWork: null_mut(),
+        numberOfInternalSolvers: e.internal.len(),
+        internalSolvers: internals,
+        callback: null_mut(),
+        solverParameters: null_mut(),
+        solverData: null_mut(),
+    })
+}
+
+/// Releases what `options` owns: parameter and work arrays, internal solvers (recursively,
+/// including their structs). The struct itself is not freed (Siconos 4.4 semantics).
+pub(crate) unsafe fn delete_contents(o: *mut SolverOptions) {
+    if o.is_null() {
+        return;
+    }
+    let o = &mut *o;
+    c_free(o.iparam);
+    c_free(o.dparam);
+    c_free(o.dWork);
+    c_free(o.iWork);
+    if !o.internalSolvers.is_null() {
+        for k in 0..o.numberOfInternalSolvers {
+            let s = *o.internalSolvers.add(k);
+            delete_contents(s);
+            c_free(s);
+        }
+        c_free(o.internalSolvers);
+    }
+    o.iparam = null_mut();
+    o.dparam = null_mut();
+    o.dWork = null_mut();
+    o.iWork = null_mut();
+    o.dWorkSize = 0;
+    o.iWorkSize = 0;
+    o.internalSolvers = null_mut();
+    o.numberOfInternalSolvers = 0;
+    o.iSize = 0;
+    o.dSize = 0;
+}
+
+unsafe fn copy_options(src: &SolverOptions) -> CResult<*mut SolverOptions> {
+    let ip = super::matrix::c_slice(src.iparam, src.iSize.max(0) as usize, "iparam")?;
+    let dp = super::matrix::c_slice(src.dparam, src.dSize.max(0) as usize, "dparam")?;
+    let n = src.numberOfInternalSolvers;
+    let internals = c_calloc::<*mut SolverOptions>(n)?;
+    for k in 0..n {
+        let s = if src.internalSolvers.is_null() {
+            null_mut()
+        } else {
+            *src.internalSolvers.add(k)
+        };
+        *internals.add(k) = if s.is_null() {
+            null_mut()
+        } else {
+            copy_options(&*s)?
+        };
+    }
+    c_box(SolverOptions {
+        solverId: src.solverId,
+        isSet: src.isSet,
+        iSize: src.iSize,
+        iparam: c_copy(ip)?,
+        dSize: src.dSize,
+        dparam: c_copy(dp)?,
+        filterOn: src.filterOn,
+        dWorkSize: 0,
+        dWork: null_mut(),
+        iWorkSize: 0,
+        iWork: null_mut(),
+        numberOfInternalSolvers: n,
+        internalSolvers: internals,
+        callback: src.callback,
+        solverParameters: src.solverParameters,
+        solverData: src.solverData,
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Siconos API.
+
+/// Options for solver `solverId` with Siconos 4.4's defaults (and default internal solvers).
+/// NULL for an id that is not an fc3d solver. Release with `solver_options_delete` then `free`.
+#[no_mangle]
+pub extern "C" fn solver_options_create(solverId: c_int) -> *mut SolverOptions {
+    ffi_guard(
+        "solver_options_create",
+        |_| null_mut(),
+        || create_options(solverId),
+    )
+}
+
+/// Releases everything `options` owns (parameter arrays, work arrays, internal solvers), but not
+/// the struct itself, nor `callback`, `solverParameters`, `solverData` (the caller's).
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_delete(options: *mut SolverOptions) {
+    ffi_guard(
+        "solver_options_delete",
+        |_| (),
+        || {
+            delete_contents(options);
+            Ok(())
+        },
+    )
+}
+
+/// Replaces internal solver number `internal_solver_number` of `parent` by new options for
+/// `solver_id` with their defaults (the old internal solver is released).
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_update_internal(
+    parent: *mut SolverOptions,
+    internal_solver_number: usize,
+    solver_id: c_int,
+) {
+    ffi_guard(
+        "solver_options_update_internal",
+        |_| (),
+        || {
+            if parent.is_null() {
+                return Err(CError::null("parent"));
+            }
+            let p = &mut *parent;
+            if internal_solver_number >= p.numberOfInternalSolvers || p.internalSolvers.is_null() {
+                return Err(CError::new(
+                FC3D_ERR_INVALID_OPTION,
+                format!("internal solver {internal_solver_number} does not exist ({} internal solvers)", p.numberOfInternalSolvers),
+            ));
+            }
+            let fresh = create_options(solver_id)?;
+            let slot = p.internalSolvers.add(internal_solver_number);
+            delete_contents(*slot);
+            c_free(*slot);
+            *slot = fresh;
+            Ok(())
+        },
+    )
+}
+
+/// Sets internal solver `n` of `options` to `NSO`, which `options` then owns (the previous one is
+/// released).
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_set_internal_solver(
+    options: *mut SolverOptions,
+    n: usize,
+    NSO: *mut SolverOptions,
+) {
+    ffi_guard(
+        "solver_options_set_internal_solver",
+        |_| (),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            let o = &mut *options;
+            if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "internal solver {n} does not exist ({} internal solvers)",
+                        o.numberOfInternalSolvers
+                    ),
+                ));
+            }
+            let slot = o.internalSolvers.add(n);
+            if *slot != NSO {
+                delete_contents(*slot);
+                c_free(*slot);
+                *slot = NSO;
+            }
+            Ok(())
+        },
+    )
+}
+
+/// Internal solver `n` of `options` (owned by `options`), or NULL.
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_get_internal_solver(
+    options: *mut SolverOptions,
+    n: usize,
+) -> *mut SolverOptions {
+    ffi_guard(
+        "solver_options_get_internal_solver",
+        |_| null_mut(),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            let o = &*options;
+            if n >= o.numberOfInternalSolvers || o.internalSolvers.is_null() {
+                return Err(CError::new(
+                    FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "internal solver {n} does not exist ({} internal solvers)",
+                        o.numberOfInternalSolvers
+                    ),
+                ));
+            }
+            Ok(*o.internalSolvers.add(n))
+        },
+    )
+}
+
+/// A deep copy of `source` (parameters and internal solvers); `callback`, `solverParameters` and
+/// `solverData` are shared, as in Siconos.
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_copy(source: *mut SolverOptions) -> *mut SolverOptions {
+    ffi_guard(
+        "solver_options_copy",
+        |_| null_mut(),
+        || {
+            if source.is_null() {
+                return Err(CError::null("source"));
+            }
+            copy_options(&*source)
+        },
+    )
+}
+
+/// Siconos' name of a solver id ("NONAME" if unknown); a static string, do not free.
+#[no_mangle]
+pub extern "C" fn solver_options_id_to_name(Id: c_int) -> *const c_char {
+    ffi_guard(
+        "solver_options_id_to_name",
+        |_| c"NONAME".as_ptr(),
+        || Ok(solver_name(Id).as_ptr()),
+    )
+}
+
+/// The id of a Siconos solver name, 0 if unknown.
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_name_to_id(pName: *const c_char) -> c_int {
+    ffi_guard(
+        "solver_options_name_to_id",
+        |_| 0,
+        || {
+            if pName.is_null() {
+                return Err(CError::null("pName"));
+            }
+            let name = CStr::from_ptr(pName);
+            Ok(params::solver_name_to_id(name))
+        },
+    )
+}
+
+/// Prints the options (and internal solvers) to stdout.
+#[no_mangle]
+pub unsafe extern "C" fn solver_options_print(options: *mut SolverOptions) {
+    ffi_guard(
+        "solver_options_print",
+        |_| (),
+        || {
+            if options.is_null() {
+                return Err(CError::null("options"));
+            }
+            print_options(&*options, 0);
+            Ok(())
+        },
+    )
+}
+
+unsafe fn print_options(o: &SolverOptions, depth: usize) {
+    let pad = "  ".repeat(depth);
+    println!(
+        "{pad}solver {} ({})",
+        o.solverId,
+        solver_name(o.solverId).to_string_lossy()
+    );
+    if let Ok(p) = Params::of(o, "") {
+        println!("{pad}  iparam: {:?}", p.iparam);
+        println!("{pad}  dparam: {:?}", p.dparam);
+    }
+    for k in 0..o.numberOfInternalSolvers {
+        if o.internalSolvers.is_null() {
+            break;
+        }
+        let s = *o.internalSolvers.add(k);
+        if !s.is_null() {
+            println!("{pad}  internal solver {k}:");
+            print_options(&*s, depth + 2);
+        }
+    }
+}

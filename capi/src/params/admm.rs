@@ -1,0 +1,83 @@
+//! ADMM (523, Friction_cst.h's SICONOS_FRICTION_3D_ADMM_* slots): iparam[9] rho strategy (0
+//! constant, 2 residual balancing, 3 scaled residual balancing), iparam[10] initial rho (0 given
+//! dparam[3], 1 norm inf, 2 eigenvalues), iparam[11] acceleration (0 none, 1 or 2 accelerated
+//! with restart eta dparam[4]), dparam[5]/[6] balancing tau and phi. fc3d factors W + rho I with
+//! a general sparse LU, exact for any W: the symmetry choices of iparam[12] that keep W as it is
+//! (0 check, 1 forced symmetric, 2 forced asymmetric, 4 assume) all lead there; 3 would
+//! symmetrize W, i.e. solve another problem. iparam[13] (forced sparse storage) is what fc3d
+//! always does: any value is accepted.
+
+use super::{invalid, Encoded, Params, IPARAM_RESCALING};
+use crate::CResult;
+use fc3d_core::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+
+const IPARAM_RHO_STRATEGY: usize = 9;
+const IPARAM_INITIAL_RHO: usize = 10;
+const IPARAM_ACCELERATION: usize = 11;
+const IPARAM_SYMMETRY: usize = 12;
+const IPARAM_GET_PROBLEM_INFO: usize = 14;
+const IPARAM_UPDATE_S: usize = 15;
+const IPARAM_FULL_H: usize = 17;
+const DPARAM_RHO: usize = 3;
+const DPARAM_RESTART_ETA: usize = 4;
+const DPARAM_BALANCING_TAU: usize = 5;
+const DPARAM_BALANCING_PHI: usize = 6;
+
+pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
+    let mut a = AdmmOptions {
+        rho: p.dparam[DPARAM_RHO],
+        restart_eta: p.dparam[DPARAM_RESTART_ETA],
+        balancing_tau: p.dparam[DPARAM_BALANCING_TAU],
+        balancing_phi: p.dparam[DPARAM_BALANCING_PHI],
+        ..AdmmOptions::default()
+    };
+    a.rho_strategy = match p.iparam[IPARAM_RHO_STRATEGY] {
+        0 => AdmmRhoStrategy::Constant,
+        2 => AdmmRhoStrategy::ResidualBalancing,
+        3 => AdmmRhoStrategy::ScaledResidualBalancing,
+        other => return Err(invalid(format!("ADMM: rho strategy (iparam[9]) = {other} is not implemented in fc3d (0 constant, 2 residual balancing, 3 scaled residual balancing)"))),
+    };
+    a.initial_rho = match p.iparam[IPARAM_INITIAL_RHO] {
+        0 => AdmmInitialRho::Given,
+        1 => AdmmInitialRho::NormInf,
+        2 => AdmmInitialRho::Eigenvalues,
+        other => return Err(invalid(format!("ADMM: initial rho (iparam[10]) = {other} is not implemented in fc3d (0 given, 1 norm inf, 2 eigenvalues)"))),
+    };
+    a.acceleration = match p.iparam[IPARAM_ACCELERATION] {
+        0 => AdmmAcceleration::None,
+        1 | 2 => AdmmAcceleration::Accelerated,
+        other => return Err(invalid(format!("ADMM: acceleration (iparam[11]) = {other} is not implemented in fc3d (0 none, 1 or 2 accelerated with restart)"))),
+    };
+    match p.iparam[IPARAM_SYMMETRY] {
+        0 | 1 | 2 | 4 => {}
+        other => return Err(invalid(format!("ADMM: symmetry (iparam[12]) = {other} is not implemented in fc3d (W is never symmetrized; 0, 1, 2, 4 accepted)"))),
+    }
+    p.require(IPARAM_RESCALING, 0, "rescaling")?;
+    p.require(IPARAM_GET_PROBLEM_INFO, 0, "problem info printing")?;
+    p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
+    p.require(IPARAM_FULL_H, 0, "full H")?;
+    Ok(a)
+}
+
+pub(super) fn write(a: &AdmmOptions) -> Encoded {
+    let mut e = Encoded::new(523);
+    e.iparam[IPARAM_RHO_STRATEGY] = match a.rho_strategy {
+        AdmmRhoStrategy::Constant => 0,
+        AdmmRhoStrategy::ResidualBalancing => 2,
+        AdmmRhoStrategy::ScaledResidualBalancing => 3,
+    };
+    e.iparam[IPARAM_INITIAL_RHO] = match a.initial_rho {
+        AdmmInitialRho::Given => 0,
+        AdmmInitialRho::NormInf => 1,
+        AdmmInitialRho::Eigenvalues => 2,
+    };
+    e.iparam[IPARAM_ACCELERATION] = match a.acceleration {
+        AdmmAcceleration::None => 0,
+        AdmmAcceleration::Accelerated => 1,
+    };
+    e.dparam[DPARAM_RHO] = a.rho;
+    e.dparam[DPARAM_RESTART_ETA] = a.restart_eta;
+    e.dparam[DPARAM_BALANCING_TAU] = a.balancing_tau;
+    e.dparam[DPARAM_BALANCING_PHI] = a.balancing_phi;
+    e
+}

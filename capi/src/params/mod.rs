@@ -1,0 +1,303 @@
+//! The only place that knows Siconos' iparam/dparam indices: each family's mapping between its
+//! typed settings in the core and the slots of a `SolverOptions` (reading a host's options, and
+//! writing the defaults `solver_options_create` returns), and the names of the settings' slots
+//! for messages. Ranges are checked by the core (`SolverConfig::validate`); this layer decodes
+//! integers into choices, rejects codes it does not know, and names the slot of a setting the
+//! core rejects.
+
+mod admm;
+mod fixed_point;
+mod local;
+mod nsgs;
+mod nsn;
+mod prox;
+mod siconos;
+mod vi;
+
+pub(crate) use siconos::{solver_name, solver_name_to_id};
+
+use std::os::raw::{c_double, c_int};
+use std::time::Duration;
+
+use super::types::SolverOptions;
+use super::{CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
+use fc3d_core::{Fc3dError, LocalSolverKind, Method, SolverConfig};
+
+pub(crate) use super::OPTIONS_PARAM_SIZE;
+const SIZE: usize = OPTIONS_PARAM_SIZE as usize;
+
+// Option indices (Siconos' SICONOS_IPARAM / SICONOS_DPARAM and Friction_cst.h enums).
+pub(crate) const IPARAM_MAX_ITER: usize = 0;
+pub(crate) const IPARAM_ITER_DONE: usize = 1;
+pub(crate) const IPARAM_INTERNAL_ERROR_STRATEGY: usize = 2;
+pub(crate) const IPARAM_RESCALING: usize = 3;
+pub(crate) const IPARAM_ERROR_EVALUATION: usize = 7;
+pub(crate) const IPARAM_ERROR_EVALUATION_FREQUENCY: usize = 8;
+pub(crate) const DPARAM_TOL: usize = 0;
+pub(crate) const DPARAM_RESIDU: usize = 1;
+pub(crate) const DPARAM_INTERNAL_ERROR_RATIO: usize = 2;
+/// fc3d's wall-clock budget in seconds (0, the default: none), an index Siconos' fc3d solvers
+/// leave unused (`FC3D_DPARAM_TIME_BUDGET`).
+pub(crate) const DPARAM_TIME_BUDGET: usize = super::FC3D_DPARAM_TIME_BUDGET as usize;
+/// Where NSGS writes Dumont's criterion (`FC3D_DPARAM_DUMONT_CRITERION`).
+pub(crate) const DPARAM_DUMONT_CRITERION: usize = super::FC3D_DPARAM_DUMONT_CRITERION as usize;
+
+use super::FC3D_RHO_STRATEGY_DUMONT;
+
+/// The slot each setting the core may reject comes from, for messages.
+const SETTING_SLOTS: &[(&str, &str)] = &[
+    ("tolerance", "dparam[0]"),
+    ("time_budget", "dparam[19]"),
+    ("nsgs.relaxation", "dparam[8]"),
+    ("nsgs.local_tolerance.ratio", "dparam[2]"),
+    ("local.tolerance", "internal solver's dparam[0]"),
+    ("local.rho", "internal solver's dparam[3]"),
+    ("local.regularization", "internal solver's dparam[3]"),
+    ("vi.rho", "dparam[3]"),
+    ("vi.nu", "dparam[4]"),
+    ("vi.increase", "dparam[5]"),
+    ("vi.l", "dparam[6]"),
+    ("vi.l_min", "dparam[7]"),
+    ("vi.max_trials", "iparam[9]"),
+    ("admm.rho", "dparam[3]"),
+    ("admm.restart_eta", "dparam[4]"),
+    ("admm.balancing_tau", "dparam[5]"),
+    ("admm.balancing_phi", "dparam[6]"),
+    ("inner_tolerance.ratio", "dparam[2]"),
+    ("inner_tolerance", "internal solver's dparam[0]"),
+    ("soclcp.relaxation", "dparam[8]"),
+    ("nsn.rho", "dparam[3]"),
+    ("nsn.line_search_max_iter", "iparam[12]"),
+    ("prox.alpha", "dparam[3]"),
+    ("prox.sigma", "dparam[4]"),
+    ("prox.nu", "dparam[5]"),
+];
+
+/// The C error of a core error, naming the iparam/dparam slot of a rejected setting.
+pub(crate) fn annotate(e: Fc3dError) -> CError {
+    if let Fc3dError::InvalidSetting {
+        setting,
+        value,
+        requirement,
+    } = &e
+    {
+        let slot = SETTING_SLOTS
+            .iter()
+            .find(|(s, _)| s == setting)
+            .map_or("", |(_, slot)| slot);
+        return CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            format!("{setting} ({slot}) = {value} must be {requirement}"),
+        );
+    }
+    e.into()
+}
+
+pub(crate) fn invalid(msg: impl Into<String>) -> CError {
+    CError::new(FC3D_ERR_INVALID_OPTION, msg)
+}
+
+pub(crate) fn unsupported_solver(id: c_int) -> CError {
+    CError::new(
+        FC3D_ERR_UNSUPPORTED_SOLVER,
+        format!(
+            "solver id {id} ({}) is not implemented in fc3d",
+            solver_name(id).to_string_lossy()
+        ),
+    )
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading.
+
+/// Typed view of a host's parameter arrays.
+pub(crate) struct Params<'a> {
+    pub iparam: &'a [c_int],
+    pub dparam: &'a [c_double],
+}
+
+impl<'a> Params<'a> {
+    pub unsafe fn of(o: &'a SolverOptions, what: &str) -> CResult<Self> {
+        if o.iparam.is_null() || o.dparam.is_null() {
+            return Err(invalid(format!("{what}: iparam or dparam is NULL")));
+        }
+        if o.iSize < OPTIONS_PARAM_SIZE || o.dSize < OPTIONS_PARAM_SIZE {
+            return Err(invalid(format!(
+                "{what}: iSize = {} and dSize = {} must be at least {OPTIONS_PARAM_SIZE}",
+                o.iSize, o.dSize
+            )));
+        }
+        Ok(Params {
+            iparam: std::slice::from_raw_parts(o.iparam, o.iSize as usize),
+            dparam: std::slice::from_raw_parts(o.dparam, o.dSize as usize),
+        })
+    }
+
+    /// `iparam[k]` as a count (>= 0).
+    pub fn count(&self, k: usize, what: &str) -> CResult<usize> {
+        usize::try_from(self.iparam[k]).map_err(|_| {
+            invalid(format!(
+                "{what} (iparam[{k}]) = {} is negative",
+                self.iparam[k]
+            ))
+        })
+    }
+
+    /// fc3d's wall-clock budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`, seconds, 0 = none; a budget
+    /// too large for the clock is no budget).
+    pub fn time_budget(&self) -> CResult<Option<Duration>> {
+        let b = self.dparam[DPARAM_TIME_BUDGET];
+        if b == 0.0 {
+            Ok(None)
+        } else if b > 0.0 && !b.is_nan() {
+            Ok(Duration::try_from_secs_f64(b).ok())
+        } else {
+            Err(invalid(format!(
+                "time budget (dparam[{DPARAM_TIME_BUDGET}]) = {b} must be 0 (none) or a positive number of seconds"
+            )))
+        }
+    }
+
+    /// Rejects a non-default value of an option fc3d does not implement (never ignore it
+    /// silently: the host asked for a behaviour).
+    pub fn require(&self, k: usize, expected: c_int, name: &str) -> CResult<()> {
+        if self.iparam[k] == expected {
+            Ok(())
+        } else {
+            Err(invalid(format!(
+                "{name} (iparam[{k}]) = {} is not implemented in fc3d (only {expected})",
+                self.iparam[k]
+            )))
+        }
+    }
+}
+
+/// The first internal solver's options, if any.
+pub(crate) unsafe fn first_internal(o: &SolverOptions) -> Option<&SolverOptions> {
+    if o.numberOfInternalSolvers >= 1 && !o.internalSolvers.is_null() {
+        (*o.internalSolvers).as_ref()
+    } else {
+        None
+    }
+}
+
+/// The typed solver configuration described by Siconos options, checked by the core. Rejects
+/// unimplemented solver ids and options with a message naming them.
+pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
+    let id = o.solverId;
+    let what = solver_name(id).to_string_lossy();
+    let p = Params::of(o, &format!("{what} options"))?;
+    let internal = first_internal(o);
+    let method = match id {
+        500 => Method::Nsgs(nsgs::read(&p, internal)?),
+        505 | 506 | 507 | 511 | 512 => Method::Vi(vi::read(id, &p)?),
+        504 | 513 | 520 => Method::Nsn(nsn::read(id, &p)?),
+        502 => Method::Prox(prox::read(&p, internal)?),
+        503 => Method::Tresca(fixed_point::read_tfp(&p, internal)?),
+        522 => Method::Pfp(fixed_point::read_pfp(&p, internal)?),
+        516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
+        517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
+        523 => Method::Admm(admm::read(&p)?),
+        _ => return Err(unsupported_solver(id)),
+    };
+    let mut config = SolverConfig::new(method);
+    config.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
+    config.tolerance = p.dparam[DPARAM_TOL];
+    config.time_budget = p.time_budget()?;
+    if id == 500 {
+        config.rescaling = nsgs::read_rescaling(&p)?;
+    }
+    config.validate().map_err(annotate)?;
+    Ok(config)
+}
+
+/// Writes the outputs Siconos hosts read: iterations done and final error (and Dumont's
+/// criterion where it was measured).
+pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, report: &fc3d_core::SolveReport) {
+    *o.iparam.add(IPARAM_ITER_DONE) = c_int::try_from(report.iterations).unwrap_or(c_int::MAX);
+    *o.dparam.add(DPARAM_RESIDU) = report.error;
+    if let Some(d) = report.dumont_criterion {
+        *o.dparam.add(DPARAM_DUMONT_CRITERION) = d;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing the defaults.
+
+/// The content of a `SolverOptions` before it is allocated for C: id, parameters, internal
+/// solvers.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Encoded {
+    pub id: c_int,
+    pub iparam: [c_int; SIZE],
+    pub dparam: [c_double; SIZE],
+    pub internal: Vec<Encoded>,
+}
+
+impl Encoded {
+    fn new(id: c_int) -> Self {
+        let mut dparam = [0.0; SIZE];
+        // The residual is +inf until a solve writes it, as in Siconos.
+        dparam[DPARAM_RESIDU] = f64::INFINITY;
+        Encoded {
+            id,
+            iparam: [0; SIZE],
+            dparam,
+            internal: Vec::new(),
+        }
+    }
+
+    /// The common limits.
+    fn write_limits(&mut self, config: &SolverConfig) {
+        self.iparam[IPARAM_MAX_ITER] = c_int::try_from(config.max_iter).unwrap_or(c_int::MAX);
+        self.dparam[DPARAM_TOL] = config.tolerance;
+        self.dparam[DPARAM_TIME_BUDGET] = config.time_budget.map_or(0.0, |b| b.as_secs_f64());
+    }
+}
+
+/// The options `solver_options_create(id)` returns: for an id fc3d implements, its typed
+/// defaults (the core's `SolverConfig::new` of the id's preset, or the local solver's
+/// `LocalSolverOptions::new`) written into the slots, then the values Siconos sets in slots that
+/// carry no fc3d setting; for an id fc3d only names, Siconos' defaults as data.
+pub(crate) fn defaults(id: c_int) -> CResult<Encoded> {
+    let mut e = if let Some(kind) = LocalSolverKind::from_siconos_id(id) {
+        local::write(&fc3d_core::LocalSolverOptions::new(kind))
+    } else if let Some(method) = fc3d_core::Method::preset(&id.to_string()) {
+        write_config(&SolverConfig::new(method))?
+    } else if siconos::has_defaults(id) {
+        Encoded::new(id)
+    } else {
+        return Err(CError::new(
+            FC3D_ERR_UNSUPPORTED_SOLVER,
+            format!(
+                "unknown fc3d solver id {id} ({})",
+                solver_name(id).to_string_lossy()
+            ),
+        ));
+    };
+    siconos::apply_defaults(&mut e);
+    Ok(e)
+}
+
+/// The slots of a configuration (and its internal solvers').
+pub(crate) fn write_config(config: &SolverConfig) -> CResult<Encoded> {
+    let mut e = match &config.method {
+        Method::Nsgs(o) => nsgs::write(o),
+        Method::Vi(o) => vi::write(o),
+        Method::Nsn(o) => nsn::write(o),
+        Method::Prox(o) => prox::write(o)?,
+        Method::Tresca(o) => fixed_point::write_tfp(o)?,
+        Method::Pfp(o) => fixed_point::write_pfp(o)?,
+        Method::Aclm(o) => fixed_point::write_aclm(o),
+        Method::Soclcp(o) => fixed_point::write_soclcp(o),
+        Method::Admm(o) => admm::write(o),
+    };
+    e.write_limits(config);
+    if let Method::Nsgs(_) = config.method {
+        nsgs::write_rescaling(config.rescaling, &mut e);
+    }
+    Ok(e)
+}
+
+#[cfg(test)]
+mod tests;

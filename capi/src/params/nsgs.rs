@@ -1,0 +1,150 @@
+//! NSGS (500): iparam[7] error evaluation (0 full, 1 light, 2 light with full final,
+//! `FC3D_ERROR_EVALUATION_DUMONT`), iparam[2] local tolerance strategy with its ratio dparam[2],
+//! iparam[3] rescaling, iparam[4] relaxation with omega dparam[8], iparam[5]/[6] shuffling and
+//! its seed, iparam[8] evaluation frequency, iparam[19] freezing; internal solver 0 is the local
+//! solver.
+
+use std::os::raw::c_int;
+
+use super::{
+    invalid, local, Encoded, Params, DPARAM_INTERNAL_ERROR_RATIO, IPARAM_ERROR_EVALUATION,
+    IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_RESCALING,
+};
+use crate::types::SolverOptions;
+use crate::{CResult, FC3D_ERROR_EVALUATION_DUMONT};
+use fc3d_core::{ContactOrder, ErrorEvaluation, LocalTolerance, NsgsOptions, Rescaling};
+
+const IPARAM_RELAXATION: usize = 4;
+const IPARAM_SHUFFLE: usize = 5;
+const IPARAM_SHUFFLE_SEED: usize = 6;
+const IPARAM_FREEZING_CONTACT: usize = 19;
+const DPARAM_RELAXATION_VALUE: usize = 8;
+
+pub(super) unsafe fn read(
+    p: &Params<'_>,
+    internal: Option<&SolverOptions>,
+) -> CResult<NsgsOptions> {
+    let error_evaluation = match p.iparam[IPARAM_ERROR_EVALUATION] {
+        0 => ErrorEvaluation::Full,
+        1 => ErrorEvaluation::Light,
+        2 => ErrorEvaluation::LightWithFullFinal,
+        FC3D_ERROR_EVALUATION_DUMONT => ErrorEvaluation::DumontCriterion,
+        other => return Err(invalid(format!("error evaluation (iparam[7]) = {other} is not implemented in fc3d (0 full, 1 light, 2 light with full final, {FC3D_ERROR_EVALUATION_DUMONT} Dumont's criterion)"))),
+    };
+    let ratio = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
+    let local_tolerance = match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
+        0 => LocalTolerance::Adaptive { ratio },
+        1 => LocalTolerance::Given,
+        2 => LocalTolerance::AdaptivePerContact { ratio },
+        other => return Err(invalid(format!("local tolerance strategy (iparam[2]) = {other} is not one of 0 (adaptive), 1 (given value), 2 (adaptive per contact)"))),
+    };
+    let relaxation = match p.iparam[IPARAM_RELAXATION] {
+        0 => None,
+        1 => Some(p.dparam[DPARAM_RELAXATION_VALUE]),
+        other => {
+            return Err(invalid(format!(
+                "relaxation (iparam[4]) = {other} is not 0 (off) or 1 (on, omega in dparam[8])"
+            )))
+        }
+    };
+    // The seed is an int in C; every value, negative included, is a valid seed.
+    let seed = p.iparam[IPARAM_SHUFFLE_SEED] as i64 as u64;
+    let order = match p.iparam[IPARAM_SHUFFLE] {
+        0 => ContactOrder::Natural,
+        1 => ContactOrder::ShuffledOnce { seed },
+        2 => ContactOrder::ShuffledEachSweep { seed },
+        other => {
+            return Err(invalid(format!(
+                "shuffle (iparam[5]) = {other} is not 0 (off), 1 (once) or 2 (each sweep)"
+            )))
+        }
+    };
+    // 0 and 1 both mean every sweep.
+    let evaluation_frequency = p
+        .count(
+            IPARAM_ERROR_EVALUATION_FREQUENCY,
+            "error evaluation frequency",
+        )?
+        .max(1);
+    let freezing = match p.count(IPARAM_FREEZING_CONTACT, "contact freezing sweeps")? {
+        0 => None,
+        k => Some(k),
+    };
+    let local = match internal {
+        Some(i) => local::read(i)?,
+        None => NsgsOptions::default().local,
+    };
+    Ok(NsgsOptions {
+        error_evaluation,
+        evaluation_frequency,
+        local,
+        local_tolerance,
+        relaxation,
+        order,
+        freezing,
+    })
+}
+
+/// Only NSGS gives `iparam[3]` this meaning (other families use index 3 for their own options):
+/// 0 none, 1 scalar; Siconos' balancing values 2-4 scale the global formulation (M, H) and are
+/// rejected for the reduced problem.
+pub(super) fn read_rescaling(p: &Params<'_>) -> CResult<Rescaling> {
+    match p.iparam[IPARAM_RESCALING] {
+        0 => Ok(Rescaling::None),
+        1 => Ok(Rescaling::Scalar),
+        other => Err(invalid(format!("rescaling (iparam[3]) = {other} is not 0 (none) or 1 (scalar); balancing (2-4) applies to the global formulation only"))),
+    }
+}
+
+pub(super) fn write_rescaling(rescaling: Rescaling, e: &mut Encoded) {
+    e.iparam[IPARAM_RESCALING] = match rescaling {
+        Rescaling::None => 0,
+        Rescaling::Scalar => 1,
+    };
+}
+
+pub(super) fn write(n: &NsgsOptions) -> Encoded {
+    let mut e = Encoded::new(500);
+    e.iparam[IPARAM_ERROR_EVALUATION] = match n.error_evaluation {
+        ErrorEvaluation::Full => 0,
+        ErrorEvaluation::Light => 1,
+        ErrorEvaluation::LightWithFullFinal => 2,
+        ErrorEvaluation::DumontCriterion => FC3D_ERROR_EVALUATION_DUMONT,
+    };
+    e.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] = match n.local_tolerance {
+        LocalTolerance::Adaptive { ratio } => {
+            e.dparam[DPARAM_INTERNAL_ERROR_RATIO] = ratio;
+            0
+        }
+        LocalTolerance::Given => 1,
+        LocalTolerance::AdaptivePerContact { ratio } => {
+            e.dparam[DPARAM_INTERNAL_ERROR_RATIO] = ratio;
+            2
+        }
+    };
+    if let Some(omega) = n.relaxation {
+        e.iparam[IPARAM_RELAXATION] = 1;
+        e.dparam[DPARAM_RELAXATION_VALUE] = omega;
+    }
+    match n.order {
+        ContactOrder::Natural => {}
+        ContactOrder::ShuffledOnce { seed } | ContactOrder::ShuffledEachSweep { seed } => {
+            e.iparam[IPARAM_SHUFFLE] = if matches!(n.order, ContactOrder::ShuffledOnce { .. }) {
+                1
+            } else {
+                2
+            };
+            e.iparam[IPARAM_SHUFFLE_SEED] = seed as i64 as c_int;
+        }
+    }
+    // Siconos writes 0 for "every sweep".
+    if n.evaluation_frequency > 1 {
+        e.iparam[IPARAM_ERROR_EVALUATION_FREQUENCY] =
+            c_int::try_from(n.evaluation_frequency).unwrap_or(c_int::MAX);
+    }
+    e.iparam[IPARAM_FREEZING_CONTACT] = n
+        .freezing
+        .map_or(0, |k| c_int::try_from(k).unwrap_or(c_int::MAX));
+    e.internal.push(local::write(&n.local));
+    e
+}

@@ -1,0 +1,265 @@
+//! `FrictionContactProblem` functions: creation, release, files, display, and the conversion
+//! to the core problem type.
+//!
+//! Ownership (as in Siconos): `frictionContactProblem_new_with_data` keeps the given pointers
+//! (no copy); `frictionContactProblem_free` releases `M` (with `NM_free`), `q`, `mu` (with `free`)
+//! and the struct. Problems read from files are allocated the same way.
+
+#![allow(non_snake_case)]
+
+use std::borrow::Cow;
+use std::ffi::c_char;
+use std::os::raw::{c_double, c_int};
+use std::ptr::null_mut;
+
+use super::alloc::{c_box, c_copy, c_free};
+use super::matrix::{c_slice, delassus_from_c, matrix_to_c, nm_clear_impl};
+use super::stream::{c_filename, read_rest, write_all};
+use super::types::{FrictionContactProblem, NumericsMatrix};
+use super::{
+    ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_IO,
+};
+use fc3d_core::matrix::{Delassus, DenseMatrix};
+use fc3d_core::problem::FrictionProblem;
+
+/// The core view of a C problem; dense W, q and mu are borrowed, not copied.
+pub(crate) unsafe fn problem_from_c<'a>(
+    p: &'a FrictionContactProblem,
+) -> CResult<FrictionProblem<'a>> {
+    if p.dimension != 3 {
+        return Err(CError::new(
+            FC3D_ERR_INVALID_PROBLEM,
+            format!(
+                "dimension {} is not supported (fc3d solves dimension 3 only)",
+                p.dimension
+            ),
+        ));
+    }
+    let nc = usize::try_from(p.numberOfContacts).map_err(|_| {
+        CError::new(
+            FC3D_ERR_INVALID_SIZE,
+            format!("numberOfContacts = {} is negative", p.numberOfContacts),
+        )
+    })?;
+    let n = 3 * nc;
+    let w = if p.M.is_null() {
+        if nc > 0 {
+            return Err(CError::null("problem->M"));
+        }
+        Delassus::Dense(DenseMatrix::new(0, 0, Vec::new())?)
+    } else {
+        let m = &*p.M;
+        if m.size0 != n as c_int || m.size1 != n as c_int {
+            return Err(CError::new(
+                FC3D_ERR_INVALID_SIZE,
+                format!(
+                    "M is {}x{} but {nc} contacts need {n}x{n}",
+                    m.size0, m.size1
+                ),
+            ));
+        }
+        delassus_from_c(m)?
+    };
+    let q = c_slice(p.q as *const c_double, n, "problem->q")?;
+    let mu = c_slice(p.mu as *const c_double, nc, "problem->mu")?;
+    Ok(FrictionProblem::new(
+        w,
+        Cow::Borrowed(q),
+        Cow::Borrowed(mu),
+    )?)
+}
+
+/// A C-allocated problem holding a copy of `p` (W in the same storage).
+pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionContactProblem> {
+    let nc = c_int::try_from(p.n_contacts())
+        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
+    let m = matrix_to_c(p.w())?;
+    let q = c_copy(p.q())?;
+    let mu = c_copy(p.mu())?;
+    c_box(FrictionContactProblem {
+        dimension: 3,
+        numberOfContacts: nc,
+        M: m,
+        q,
+        mu,
+    })
+}
+
+/// Reads everything left in a C stream as text.
+unsafe fn read_stream(file: *mut libc::FILE) -> CResult<String> {
+    String::from_utf8(read_rest(file)?)
+        .map_err(|_| CError::new(FC3D_ERR_IO, "the stream is not text"))
+}
+
+/// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
+#[no_mangle]
+pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContactProblem_new",
+        |_| null_mut(),
+        || {
+            c_box(FrictionContactProblem {
+                dimension: 0,
+                numberOfContacts: 0,
+                M: null_mut(),
+                q: null_mut(),
+                mu: null_mut(),
+            })
+        },
+    )
+}
+
+/// A problem that takes `M`, `q` and `mu` as they are (no copy): they then belong to the
+/// problem and are released by `frictionContactProblem_free`.
+#[no_mangle]
+pub extern "C" fn frictionContactProblem_new_with_data(
+    dim: c_int,
+    nc: c_int,
+    M: *mut NumericsMatrix,
+    q: *mut c_double,
+    mu: *mut c_double,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContactProblem_new_with_data",
+        |_| null_mut(),
+        || {
+            c_box(FrictionContactProblem {
+                dimension: dim,
+                numberOfContacts: nc,
+                M,
+                q,
+                mu,
+            })
+        },
+    )
+}
+
+/// Releases `M` (storage and struct), `q`, `mu` and the problem struct. NULL is a no-op.
+#[no_mangle]
+pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionContactProblem) {
+    ffi_guard(
+        "frictionContactProblem_free",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Ok(());
+            }
+            let p = &mut *problem;
+            nm_clear_impl(p.M);
+            c_free(p.M);
+            c_free(p.q);
+            c_free(p.mu);
+            c_free(problem);
+            Ok(())
+        },
+    )
+}
+
+/// Reads a problem from a Siconos .dat file. NULL on failure (see `fc3d_last_error_message`).
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_new_from_filename(
+    filename: *const c_char,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContact_new_from_filename",
+        |_| null_mut(),
+        || {
+            let path = c_filename(filename)?;
+            let p = fc3d_core::io::dat::read_dat_file(std::path::Path::new(path))?;
+            problem_to_c(&p)
+        },
+    )
+}
+
+/// Reads a problem from an open stream (up to its end). NULL on failure.
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_newFromFile(
+    file: *mut libc::FILE,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContact_newFromFile",
+        |_| null_mut(),
+        || {
+            let text = read_stream(file)?;
+            let p = fc3d_core::io::dat::parse_dat(&text, "<FILE stream>")?;
+            problem_to_c(&p)
+        },
+    )
+}
+
+fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
+    let mut out = Vec::new();
+    fc3d_core::io::dat::write_dat(p, &mut out)
+        .map_err(|e| CError::new(FC3D_ERR_IO, e.to_string()))?;
+    Ok(out)
+}
+
+/// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
+/// Returns 0 on success.
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_printInFile(
+    problem: *mut FrictionContactProblem,
+    file: *mut libc::FILE,
+) -> c_int {
+    ffi_guard(
+        "frictionContact_printInFile",
+        |c| c,
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            write_all(file, &dat_text(&p)?)?;
+            Ok(0)
+        },
+    )
+}
+
+/// Writes `problem` to the file `filename` (created or truncated). Returns 0 on success.
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_printInFilename(
+    problem: *mut FrictionContactProblem,
+    filename: *mut c_char,
+) -> c_int {
+    ffi_guard(
+        "frictionContact_printInFilename",
+        |c| c,
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            let path = c_filename(filename)?;
+            let text = dat_text(&p)?;
+            std::fs::write(path, text)
+                .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: {e}")))?;
+            Ok(0)
+        },
+    )
+}
+
+/// Prints a summary of the problem (sizes, storage, mu, q) to stdout.
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactProblem) {
+    ffi_guard(
+        "frictionContact_display",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let p = problem_from_c(&*problem)?;
+            println!(
+                "FrictionContactProblem: dimension 3, {} contacts, W {}x{} ({}), ||q|| = {:e}",
+                p.n_contacts(),
+                p.w().nrows(),
+                p.w().ncols(),
+                p.w().storage_name(),
+                fc3d_core::math::linalg::norm(p.q())
+            );
+            println!("  mu = {:?}", p.mu());
+            println!("  q = {:?}", p.q());
+            Ok(())
+        },
+    )
+}

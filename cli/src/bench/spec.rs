@@ -1,0 +1,344 @@
+//! Solver specs of `fc3d bench --solvers`: what the user writes, and the one function that turns a
+//! spec into a [`SolverConfig`]. The names come from the core: the families' presets
+//! ([`Method::presets`]) and the local solvers' registry ([`LocalSolverKind::names`]), so a new
+//! family or local solver needs no edit here.
+//!
+//! Grammar (case-insensitive, specs separated by commas):
+//!
+//! * `all` — NSGS with each local solver of [`LocalSolverKind::ALL`];
+//! * `SOLVER` — a solver by Siconos id or name with its defaults: `500` or `NSGS` (= `500/565`),
+//!   `DSFP`, `VI-FPP`, `NSN-AC`, `PROX-NSGS`, `TFP`, ... ([`solvers_help`] lists them);
+//! * `NSGS/LOCAL` (or `500/LOCAL`) — NSGS with a local solver given by Siconos id or name.
+
+use std::time::Duration;
+
+use fc3d_core::{LocalSolverKind, Method, NsgsOptions, SolverConfig};
+
+/// One solver to benchmark: a family with its defaults and, for NSGS, its local solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSpec {
+    pub method: Method,
+}
+
+impl SolverSpec {
+    /// NSGS with the local solver `local`.
+    pub fn nsgs(local: LocalSolverKind) -> Self {
+        SolverSpec {
+            method: Method::Nsgs(NsgsOptions::with_local(local)),
+        }
+    }
+
+    /// The local solver, for NSGS.
+    pub fn local(&self) -> Option<LocalSolverKind> {
+        match self.method {
+            Method::Nsgs(o) => Some(o.local.kind),
+            _ => None,
+        }
+    }
+
+    /// The label of the CSV and the tables, e.g. `NSGS/552` (the CLI's `SolverConfig::label`).
+    pub fn label(&self) -> String {
+        self.method.label()
+    }
+
+    /// The label with the local solver's short name, for legends: `NSGS/552 PROJ` (families
+    /// without a local solver: the label).
+    pub fn legend(&self) -> String {
+        match self.local() {
+            Some(kind) => format!("{} {}", self.label(), local_short_name(kind)),
+            None => self.label(),
+        }
+    }
+}
+
+/// The one place where a spec becomes a solver configuration: the family's defaults for
+/// everything else, from r given by the caller.
+pub fn solver_config(
+    spec: &SolverSpec,
+    tolerance: f64,
+    max_iter: usize,
+    time_budget: Option<Duration>,
+) -> SolverConfig {
+    SolverConfig::new(spec.method)
+        .with_tolerance(tolerance)
+        .with_max_iter(max_iter)
+        .with_time_budget(time_budget)
+}
+
+/// Every implemented combination (what `all` stands for).
+pub fn all_specs() -> Vec<SolverSpec> {
+    LocalSolverKind::ALL.map(SolverSpec::nsgs).to_vec()
+}
+
+/// Short name of a local solver (`PROJ`, `HYBRID`, ...).
+pub fn local_short_name(kind: LocalSolverKind) -> &'static str {
+    kind.names()[0]
+}
+
+/// The `--solvers` help: the grammar and every name the core offers.
+pub fn solvers_help() -> String {
+    let locals: Vec<String> = LocalSolverKind::ALL
+        .iter()
+        .map(|k| format!("{} {}", k.siconos_id(), k.names().join("|")))
+        .collect();
+    let families: Vec<String> = Method::presets()
+        .iter()
+        .map(|m| format!("{} {}", m.siconos_id(), m.name()))
+        .collect();
+    format!(
+        "Solvers, comma-separated: `all` (NSGS with every local solver), `500` or `NSGS` (NSGS \
+         with its default local solver 565), `500/552`, `NSGS/SBP`, ... Local solvers by Siconos \
+         id or name: {}. Families by id or name, with their Siconos defaults: {}",
+        locals.join(", "),
+        families.join(", ")
+    )
+}
+
+fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
+    if let Ok(id) = s.parse::<i32>() {
+        return LocalSolverKind::from_siconos_id(id).ok_or_else(|| {
+            format!(
+                "unknown local solver id {id} (one of {})",
+                LocalSolverKind::ALL
+                    .iter()
+                    .map(|k| k.siconos_id().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        });
+    }
+    let upper = s.to_ascii_uppercase().replace('_', "-");
+    LocalSolverKind::ALL
+        .into_iter()
+        .find(|k| k.names().contains(&upper.as_str()))
+        .ok_or_else(|| {
+            let names: Vec<&str> = LocalSolverKind::ALL
+                .iter()
+                .flat_map(|k| k.names().iter().copied())
+                .collect();
+            format!(
+                "unknown local solver '{s}' (a Siconos id or one of {})",
+                names.join(", ")
+            )
+        })
+}
+
+/// Parses one spec (not `all`).
+pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
+    let s = s.trim();
+    let (solver, local) = match s.split_once('/') {
+        Some((a, b)) => (a.trim(), Some(b.trim())),
+        None => (s, None),
+    };
+    let method = Method::preset(solver)
+        .filter(|_| !solver.is_empty())
+        .ok_or_else(|| {
+            format!(
+                "unknown solver '{solver}' in '{s}' (implemented: {}; or `all`)",
+                Method::presets()
+                    .iter()
+                    .map(|m| format!("{} = {}", m.siconos_id(), m.name()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })?;
+    match (method, local) {
+        (Method::Nsgs(_), None) => Ok(SolverSpec::nsgs(LocalSolverKind::NewtonHybrid)),
+        (Method::Nsgs(_), Some(l)) => Ok(SolverSpec::nsgs(parse_local(l)?)),
+        (method, None) => Ok(SolverSpec { method }),
+        (_, Some(_)) => Err(format!(
+            "solver '{solver}' takes no local solver (in '{s}')"
+        )),
+    }
+}
+
+/// Parses the `--solvers` list: comma-separated specs, `all` anywhere stands for every
+/// combination; duplicates are dropped, the order of first appearance is kept.
+pub fn parse_spec_list(s: &str) -> Result<Vec<SolverSpec>, String> {
+    let mut specs: Vec<SolverSpec> = Vec::new();
+    for item in s.split(',').map(str::trim) {
+        if item.is_empty() {
+            return Err(format!("empty solver spec in '{s}'"));
+        }
+        let new = if item.eq_ignore_ascii_case("all") {
+            all_specs()
+        } else {
+            vec![parse_spec(item)?]
+        };
+        for spec in new {
+            if !specs.contains(&spec) {
+                specs.push(spec);
+            }
+        }
+    }
+    Ok(specs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn nsgs(local: LocalSolverKind) -> SolverSpec {
+        SolverSpec::nsgs(local)
+    }
+
+    #[test]
+    fn ids_names_and_defaults() {
+        assert_eq!(parse_spec("500"), Ok(nsgs(LocalSolverKind::NewtonHybrid)));
+        assert_eq!(parse_spec("nsgs"), Ok(nsgs(LocalSolverKind::NewtonHybrid)));
+        assert_eq!(
+            parse_spec("500/552"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCone))
+        );
+        assert_eq!(
+            parse_spec(" NSGS/SBP "),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCone))
+        );
+        assert_eq!(
+            parse_spec("NSGS/sal"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnCylinder))
+        );
+        assert_eq!(
+            parse_spec("500/nsn_gp"),
+            Ok(nsgs(LocalSolverKind::NewtonAlartCurnierGp))
+        );
+        assert_eq!(
+            parse_spec("NSGS/proj-iter"),
+            Ok(nsgs(LocalSolverKind::ProjectionOnConeWithLocalIteration))
+        );
+        assert_eq!(
+            parse_spec("NSGS/550"),
+            Ok(nsgs(LocalSolverKind::NewtonAlartCurnier))
+        );
+        // Every local solver is reachable by id and by each of its names.
+        for kind in LocalSolverKind::ALL {
+            assert_eq!(
+                parse_spec(&format!("500/{}", kind.siconos_id())),
+                Ok(nsgs(kind))
+            );
+            for n in kind.names() {
+                assert_eq!(parse_spec(&format!("NSGS/{n}")), Ok(nsgs(kind)));
+            }
+        }
+    }
+
+    #[test]
+    fn bad_specs_are_errors() {
+        for bad in [
+            "",
+            "501",
+            "NSGS/500",
+            "NSGS/xyz",
+            "PSOR",
+            "500/",
+            "/552",
+            "500/552/1",
+        ] {
+            assert!(parse_spec(bad).is_err(), "{bad:?}");
+        }
+        assert!(parse_spec_list("500,,552").is_err());
+        assert!(parse_spec_list("500,foo").is_err());
+        assert!(parse_spec("TFP/552").is_err());
+    }
+
+    #[test]
+    fn lists_and_all() {
+        let all = parse_spec_list("all").unwrap();
+        assert_eq!(all.len(), LocalSolverKind::ALL.len());
+        assert_eq!(
+            all.iter().map(|s| s.local().unwrap()).collect::<Vec<_>>(),
+            LocalSolverKind::ALL.to_vec()
+        );
+        // Duplicates are dropped, first appearance kept.
+        let l = parse_spec_list("500/552, NSGS, 500/565, NSGS/SBP").unwrap();
+        assert_eq!(
+            l,
+            vec![
+                nsgs(LocalSolverKind::ProjectionOnCone),
+                nsgs(LocalSolverKind::NewtonHybrid)
+            ]
+        );
+        assert!(parse_spec_list("552x").is_err());
+        let l = parse_spec_list("500/557,ALL").unwrap();
+        assert_eq!(l[0], nsgs(LocalSolverKind::ProjectionOnCylinder));
+        assert_eq!(l.len(), LocalSolverKind::ALL.len());
+    }
+
+    #[test]
+    fn optimization_families() {
+        for (spec, id, label) in [
+            ("TFP", 503, "TFP/500"),
+            ("503", 503, "TFP/500"),
+            ("pfp", 522, "PFP/566"),
+            ("ACLMFP", 516, "ACLMFP"),
+            ("517", 517, "SOCLCP"),
+        ] {
+            let s = parse_spec(spec).unwrap();
+            let c = solver_config(&s, 1e-7, 12, None);
+            assert_eq!(c.siconos_id(), id);
+            assert_eq!((c.tolerance, c.max_iter), (1e-7, 12));
+            assert_eq!(s.label(), label);
+            assert_eq!(s.legend(), label);
+        }
+    }
+
+    #[test]
+    fn config_and_labels() {
+        let spec = nsgs(LocalSolverKind::ProjectionOnCone);
+        let c = solver_config(&spec, 1e-6, 77, Some(Duration::from_millis(5)));
+        assert_eq!(c.tolerance, 1e-6);
+        assert_eq!(c.max_iter, 77);
+        assert_eq!(c.time_budget, Some(Duration::from_millis(5)));
+        assert_eq!(c.siconos_id(), 500);
+        let Method::Nsgs(o) = c.method else {
+            panic!("expected NSGS")
+        };
+        assert_eq!(o.local.kind, LocalSolverKind::ProjectionOnCone);
+        assert_eq!(spec.label(), "NSGS/552");
+        assert_eq!(spec.legend(), "NSGS/552 PROJ");
+    }
+
+    #[test]
+    fn vi_and_admm_families() {
+        for (name, id, label) in [
+            ("DSFP", 505, "DSFP"),
+            ("vi-fpp", 506, "VI-FPP"),
+            ("507", 507, "VI-EG"),
+            ("FPP", 511, "FPP"),
+            ("eg", 512, "EG"),
+            ("ADMM", 523, "ADMM"),
+        ] {
+            let spec = parse_spec(name).unwrap();
+            let c = solver_config(&spec, 1e-8, 33, None);
+            assert_eq!(c.siconos_id(), id);
+            assert_eq!(c.tolerance, 1e-8);
+            assert_eq!(c.max_iter, 33);
+            assert_eq!(spec.label(), label);
+            assert_eq!(spec.legend(), label);
+        }
+        assert!(parse_spec("DSFP/552").is_err());
+        assert!(parse_spec("ADMM/HYBRID").is_err());
+    }
+
+    #[test]
+    fn newton_and_proximal_families() {
+        for (text, id, label) in [
+            ("504", 504, "NSN-AC/GP"),
+            ("nsn-ac", 504, "NSN-AC/GP"),
+            ("NSN-JM", 504, "NSN-JM/GP"),
+            ("513", 513, "NSN-FB/GP"),
+            ("nsn-nm", 520, "NSN-NM/GP"),
+            ("502", 502, "PROX/NSN-AC"),
+            ("PROX-NSGS", 502, "PROX/NSGS"),
+        ] {
+            let spec = parse_spec(text).unwrap();
+            let c = solver_config(&spec, 1e-8, 50, None);
+            assert_eq!(c.siconos_id(), id, "{text}");
+            assert_eq!(c.tolerance, 1e-8);
+            assert_eq!(c.max_iter, 50);
+            assert_eq!(spec.label(), label);
+            assert_eq!(spec.legend(), label);
+        }
+        assert!(parse_spec("504/552").is_err());
+    }
+}

@@ -1,0 +1,534 @@
+//! The `fc3d` command.
+//!
+//! * `fc3d` solves every built-in scene ([`fc3d_core::scenes::default_scenes`]) with NSGS and prints a
+//!   table: problem, contacts, storage, solver, iterations, error, status, time.
+//! * `fc3d FILE.dat [MORE FILES OR DIRECTORIES]` solves Siconos `.dat` problem files instead; a
+//!   directory stands for the `*.dat` files directly in it (sorted by name; files that hold a problem
+//!   fc3d does not handle, e.g. a 2D one, are skipped with a note on stderr).
+//! * `fc3d solve ...` is the same as `fc3d ...`.
+//! * `fc3d bench [FILES]` measures the speed–accuracy trade of the solvers: CSV, summary,
+//!   performance profiles and work–precision pictures (see the `bench` module).
+//!
+//! Defaults: NSGS with the hybrid Alart-Curnier local solver (565, Siconos' default), tolerance
+//! 1e-8 on the natural-map error, at most 100000 sweeps. The tolerance is tighter than Siconos'
+//! 1e-4 default so that the table shows how accurate the solvers can be; the sweep limit leaves the
+//! slow-converging problems of the Siconos collection room without letting one run for minutes.
+//! The error column is the one measured on the returned `(r, u)`, not the solver's own test.
+//!
+//! Exit status: 0 when every problem was read and solved (converged or not: the status column
+//! says), 1 when an input could not be read or solved (a message names it, the others are still
+//! solved), 2 on a command-line error.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use clap::{Args, Parser, Subcommand};
+
+mod bench;
+use fc3d_core::{
+    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolveStatus,
+    SolverConfig,
+};
+
+/// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
+///
+/// Without FILES, solves the built-in scenes. A file name that is also a subcommand's name
+/// (`solve`, `bench`) must be written with a path, e.g. `./solve`.
+#[derive(Parser, Debug)]
+#[command(name = "fc3d", version, args_conflicts_with_subcommands = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+    #[command(flatten)]
+    solve: SolveArgs,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Solve the built-in scenes or the given .dat files (what `fc3d` does without a subcommand).
+    Solve(SolveArgs),
+    /// Benchmark solvers: CSV, summary, performance profiles, work–precision curves.
+    Bench(bench::BenchArgs),
+}
+
+#[derive(Args, Debug, Clone, PartialEq)]
+struct SolveArgs {
+    /// Siconos .dat problem files, or directories whose *.dat files are solved. None: the
+    /// built-in scenes.
+    #[arg(value_name = "FILES")]
+    paths: Vec<PathBuf>,
+    /// Tolerance on the relative natural-map error.
+    #[arg(long, value_name = "X", default_value = "1e-8", value_parser = parse_tolerance)]
+    tol: f64,
+    /// Maximum number of NSGS sweeps.
+    #[arg(long, value_name = "N", default_value_t = 100_000)]
+    max_iter: usize,
+    /// Local solver, by Siconos id: 550 (Alart-Curnier Newton), 551 (Newton with Goldstein-Price
+    /// line search), 552 (one projection on the cone), 553 (projection on the cone with local
+    /// iterations), 557 (one projection on the cylinder), 565 (hybrid Newton, the default),
+    /// 554 (projection with regularization), 555 (projection with diagonalization), 558
+    /// (projection in velocity), 561 (Fischer-Burmeister Newton), 562 (QUARTIC, exact), 564
+    /// (cylinder with local iterations), 570 (FP-VI-UPK), 571 (Dumont's EBP), 572 (Dumont's EAL).
+    #[arg(long, value_name = "ID", default_value = "565", value_parser = parse_local)]
+    local: LocalSolverKind,
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    let x: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{s}' is not a number"))?;
+    if x.is_finite() && x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(format!("the tolerance must be finite and >= 0, got {s}"))
+    }
+}
+
+fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
+    let ids: Vec<String> = LocalSolverKind::ALL
+        .iter()
+        .map(|k| k.siconos_id().to_string())
+        .collect();
+    s.trim()
+        .parse::<i32>()
+        .ok()
+        .and_then(LocalSolverKind::from_siconos_id)
+        .ok_or_else(|| format!("unknown local solver '{s}' (one of {})", ids.join(", ")))
+}
+
+/// One problem to solve: a built-in scene or a file.
+enum Input {
+    Scene(fc3d_core::scenes::Scene),
+    File { path: PathBuf, from_directory: bool },
+}
+
+/// A row of the result table.
+struct Row {
+    problem: String,
+    contacts: usize,
+    storage: &'static str,
+    solver: String,
+    report: SolveReport,
+    time: Duration,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Prints help/version (exit 0) or the usage error (exit 2).
+        Err(e) => e.exit(),
+    };
+    let args = match cli.command {
+        Some(Command::Solve(args)) => args,
+        Some(Command::Bench(args)) => return bench::run(&args),
+        None => cli.solve,
+    };
+    run_solve(&args)
+}
+
+fn run_solve(args: &SolveArgs) -> ExitCode {
+    let mut failed = false;
+    let inputs = if args.paths.is_empty() {
+        fc3d_core::scenes::default_scenes()
+            .into_iter()
+            .map(Input::Scene)
+            .collect()
+    } else {
+        let (inputs, errors) = expand_paths(&args.paths);
+        for message in &errors {
+            eprintln!("fc3d: {message}");
+        }
+        failed |= !errors.is_empty();
+        inputs
+    };
+
+    let config = SolverConfig::new(NsgsOptions::with_local(args.local))
+        .with_tolerance(args.tol)
+        .with_max_iter(args.max_iter);
+
+    let mut stdout = std::io::stdout().lock();
+    // A closed stdout (e.g. `fc3d | head`) ends the program quietly, never with a panic.
+    let mut out = |line: String| writeln!(stdout, "{line}").is_ok();
+    if !out(format!(
+        "# NSGS, local solver {} ({:?}), tolerance {:e}, at most {} sweeps; error = relative \
+         natural-map error of the returned (r, u)",
+        args.local.siconos_id(),
+        args.local,
+        args.tol,
+        args.max_iter
+    )) {
+        return ExitCode::SUCCESS;
+    }
+
+    let mut table = Table::new();
+    for input in inputs {
+        let (name, problem) = match load_input(input) {
+            Loaded::Problem(name, problem) => (name, problem),
+            Loaded::Skipped => continue,
+            Loaded::Failed => {
+                failed = true;
+                continue;
+            }
+        };
+        match solve_one(&problem, &config) {
+            Ok((report, time)) => {
+                let row = Row {
+                    problem: name,
+                    contacts: problem.n_contacts(),
+                    storage: problem.w().storage_name(),
+                    solver: config.label(),
+                    report,
+                    time,
+                };
+                // Rows are printed as they come (a long run shows progress) with the widths
+                // the table has settled on; the header comes first.
+                for line in table.push(row) {
+                    if !out(line) {
+                        return ExitCode::SUCCESS;
+                    }
+                }
+            }
+            Err(e) => {
+                eprintln!("fc3d: {name}: {e}");
+                failed = true;
+            }
+        }
+    }
+    if failed {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+/// What reading one input gave.
+enum Loaded {
+    Problem(String, FrictionProblem<'static>),
+    /// Found by a folder scan but not a problem fc3d handles (a note was printed).
+    Skipped,
+    /// Could not be read (a message naming it was printed).
+    Failed,
+}
+
+/// Reads one input; messages go to stderr.
+fn load_input(input: Input) -> Loaded {
+    match input {
+        Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
+        Input::File {
+            path,
+            from_directory,
+        } => match read_problem(&path) {
+            Ok(p) => Loaded::Problem(display_name(&path), p),
+            // The reader's messages name the file.
+            Err(Fc3dError::Unsupported(why)) if from_directory => {
+                eprintln!("fc3d: skipping {why}");
+                Loaded::Skipped
+            }
+            // A folder of Siconos test data holds other inputs too (global problems,
+            // unit-test tables): they are not counted as failures when found by a scan.
+            Err(e) if from_directory => {
+                eprintln!("fc3d: skipping (not a local fc3d problem) {e}");
+                Loaded::Skipped
+            }
+            Err(e) => {
+                eprintln!("fc3d: {e}");
+                Loaded::Failed
+            }
+        },
+    }
+}
+
+/// Solves from r = 0 and times the solve call alone.
+fn solve_one(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+) -> Result<(SolveReport, Duration), Fc3dError> {
+    let n = problem.size();
+    let mut r = vec![0.0; n];
+    let mut u = vec![0.0; n];
+    let start = Instant::now();
+    let report = solve(problem, config, &mut r, &mut u)?;
+    Ok((report, start.elapsed()))
+}
+
+fn display_name(path: &Path) -> String {
+    path.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
+}
+
+/// Files as given, directories replaced by their `*.dat` files sorted by name; paths that cannot
+/// be used are returned as messages (the others are still solved).
+fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
+    let mut inputs = Vec::new();
+    let mut errors = Vec::new();
+    for path in paths {
+        match std::fs::metadata(path) {
+            Err(e) => errors.push(format!("{}: {e}", path.display())),
+            Ok(meta) if meta.is_dir() => match dat_files_in(path) {
+                Ok(files) if files.is_empty() => errors.push(format!(
+                    "{}: no .dat file in this directory",
+                    path.display()
+                )),
+                Ok(files) => inputs.extend(files.into_iter().map(|path| Input::File {
+                    path,
+                    from_directory: true,
+                })),
+                Err(e) => errors.push(format!("{}: {e}", path.display())),
+            },
+            Ok(_) => inputs.push(Input::File {
+                path: path.clone(),
+                from_directory: false,
+            }),
+        }
+    }
+    (inputs, errors)
+}
+
+/// `.hdf5`/`.h5` files are FCLIB problems (read when built with the `fclib` feature, refused
+/// with a clear message otherwise); any other path is read as a Siconos `.dat` file.
+fn read_problem(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError> {
+    if is_fclib(path) {
+        fc3d_core::io::read_problem_file(path)
+    } else {
+        fc3d_core::io::dat::read_dat_file(path)
+    }
+}
+
+fn is_fclib(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("hdf5") || e.eq_ignore_ascii_case("h5"))
+}
+
+fn dat_files_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let path = entry?.path();
+        if !path.is_file() || !(path.extension().is_some_and(|e| e == "dat") || is_fclib(&path)) {
+            continue;
+        }
+        // Siconos names global problems (M, H, q, b, mu) GFC3D_/gfc3d_/gfc2d_: their text
+        // happens to parse as a (wrong) local problem, so a folder scan leaves them out.
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_lowercase())
+            .unwrap_or_default();
+        if name.starts_with("gfc3d_") || name.starts_with("gfc2d_") {
+            eprintln!(
+                "fc3d: skipping {}: a global (M, H) problem, not an fc3d input",
+                path.display()
+            );
+            continue;
+        }
+        files.push(path);
+    }
+    files.sort();
+    Ok(files)
+}
+
+/// Fixed-width table printed row by row.
+struct Table {
+    header_done: bool,
+}
+
+const HEADERS: [&str; 8] = [
+    "problem",
+    "contacts",
+    "storage",
+    "solver",
+    "iterations",
+    "error",
+    "status",
+    "time",
+];
+const WIDTHS: [usize; 8] = [36, 8, 12, 9, 10, 9, 9, 10];
+
+impl Table {
+    fn new() -> Self {
+        Table { header_done: false }
+    }
+
+    fn push(&mut self, row: Row) -> Vec<String> {
+        let mut lines = Vec::new();
+        if !self.header_done {
+            self.header_done = true;
+            lines.push(format_cells(&HEADERS.map(String::from)));
+            lines.push(format_cells(&WIDTHS.map(|w| "-".repeat(w))));
+        }
+        let status = match row.report.status {
+            SolveStatus::Converged => "converged",
+            SolveStatus::MaxIterationsReached => "max-iter",
+            SolveStatus::TimeBudgetExhausted => "out-of-time",
+            SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
+        };
+        lines.push(format_cells(&[
+            row.problem,
+            row.contacts.to_string(),
+            row.storage.to_string(),
+            row.solver,
+            row.report.iterations.to_string(),
+            scientific(row.report.error),
+            status.to_string(),
+            format_time(row.time),
+        ]));
+        lines
+    }
+}
+
+/// Text columns left-aligned, the others right-aligned; a cell wider than its column widens it.
+fn format_cells(cells: &[String; 8]) -> String {
+    let mut s = String::new();
+    for (k, (cell, &w)) in cells.iter().zip(WIDTHS.iter()).enumerate() {
+        if k > 0 {
+            s.push_str("  ");
+        }
+        let left = matches!(k, 0 | 2 | 3 | 6);
+        if left {
+            s.push_str(&format!("{cell:<w$}"));
+        } else {
+            s.push_str(&format!("{cell:>w$}"));
+        }
+    }
+    s.trim_end().to_string()
+}
+
+/// `x` as `d.dde±XX`, like C's `%.2e`.
+fn scientific(x: f64) -> String {
+    if !x.is_finite() {
+        return x.to_string();
+    }
+    let s = format!("{x:.2e}");
+    match s.split_once('e') {
+        Some((mantissa, exp)) => {
+            let (sign, digits) = match exp.strip_prefix('-') {
+                Some(d) => ('-', d),
+                None => ('+', exp),
+            };
+            format!("{mantissa}e{sign}{digits:0>2}")
+        }
+        None => s,
+    }
+}
+
+fn format_time(t: Duration) -> String {
+    let us = t.as_secs_f64() * 1e6;
+    if us < 1e3 {
+        format!("{us:.1} µs")
+    } else if us < 1e6 {
+        format!("{:.2} ms", us / 1e3)
+    } else {
+        format!("{:.3} s", us / 1e6)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn cli_is_well_formed() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn defaults_and_flags() {
+        let cli = Cli::try_parse_from(["fc3d"]).unwrap();
+        assert!(cli.command.is_none());
+        assert!(cli.solve.paths.is_empty());
+        assert_eq!(cli.solve.tol, 1e-8);
+        assert_eq!(cli.solve.max_iter, 100_000);
+        assert_eq!(cli.solve.local, LocalSolverKind::NewtonHybrid);
+
+        let cli = Cli::try_parse_from([
+            "fc3d",
+            "a.dat",
+            "dir",
+            "--tol",
+            "1e-6",
+            "--max-iter",
+            "50",
+            "--local",
+            "552",
+        ])
+        .unwrap();
+        assert_eq!(
+            cli.solve.paths,
+            vec![PathBuf::from("a.dat"), PathBuf::from("dir")]
+        );
+        assert_eq!(cli.solve.tol, 1e-6);
+        assert_eq!(cli.solve.max_iter, 50);
+        assert_eq!(cli.solve.local, LocalSolverKind::ProjectionOnCone);
+
+        let cli = Cli::try_parse_from(["fc3d", "solve", "x.dat", "--local", "557"]).unwrap();
+        match cli.command {
+            Some(Command::Solve(a)) => {
+                assert_eq!(a.paths, vec![PathBuf::from("x.dat")]);
+                assert_eq!(a.local, LocalSolverKind::ProjectionOnCylinder);
+            }
+            _ => panic!("expected the solve subcommand"),
+        }
+
+        // `bench` is a subcommand; its flags do not leak into `fc3d` / `fc3d solve`.
+        let cli = Cli::try_parse_from(["fc3d", "bench", "x.dat", "--reps", "1"]).unwrap();
+        match cli.command {
+            Some(Command::Bench(a)) => {
+                assert_eq!(a.paths, vec![PathBuf::from("x.dat")]);
+                assert_eq!(a.reps, 1);
+            }
+            _ => panic!("expected the bench subcommand"),
+        }
+        assert!(Cli::try_parse_from(["fc3d", "--reps", "1"]).is_err());
+        assert!(Cli::try_parse_from(["fc3d", "solve", "--budget", "1ms"]).is_err());
+        // A file named like the subcommand, written with a path, is still a file.
+        let cli = Cli::try_parse_from(["fc3d", "./bench"]).unwrap();
+        assert!(cli.command.is_none());
+        assert_eq!(cli.solve.paths, vec![PathBuf::from("./bench")]);
+    }
+
+    #[test]
+    fn bad_flags_are_errors() {
+        for bad in [
+            vec!["fc3d", "--local", "500"],
+            vec!["fc3d", "--local", "x"],
+            vec!["fc3d", "--tol", "-1"],
+            vec!["fc3d", "--tol", "nan"],
+            vec!["fc3d", "--tol", "inf"],
+            vec!["fc3d", "--max-iter", "-3"],
+            vec!["fc3d", "--frobnicate"],
+        ] {
+            assert!(Cli::try_parse_from(&bad).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn scientific_format() {
+        assert_eq!(scientific(2.5912e-9), "2.59e-09");
+        assert_eq!(scientific(0.0), "0.00e+00");
+        assert_eq!(scientific(1.27e-6), "1.27e-06");
+        assert_eq!(scientific(3.0e120), "3.00e+120");
+        assert_eq!(scientific(f64::NAN), "NaN");
+    }
+
+    #[test]
+    fn paths_that_cannot_be_used_are_reported() {
+        let (inputs, errors) = expand_paths(&[
+            PathBuf::from("/nonexistent/fc3d/a.dat"),
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"),
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml"),
+        ]);
+        assert_eq!(inputs.len(), 1);
+        assert_eq!(errors.len(), 2, "{errors:?}");
+        assert!(errors[1].contains("no .dat file"));
+    }
+
+    #[test]
+    fn time_format() {
+        assert_eq!(format_time(Duration::from_nanos(12_345)), "12.3 µs");
+        assert_eq!(format_time(Duration::from_micros(12_345)), "12.35 ms");
+        assert_eq!(format_time(Duration::from_millis(12_345)), "12.345 s");
+    }
+}

@@ -1,0 +1,115 @@
+//! The limits a host sets on every solve, and the helpers that keep them in every loop.
+
+use std::time::{Duration, Instant};
+
+use super::SolverOutcome;
+
+/// The limits every family honours. Their defaults depend on the family (Siconos' defaults):
+/// [`crate::SolverConfig::new`] fills them in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Tolerance on the relative natural-map error of the returned `(r, u)`.
+    pub tolerance: f64,
+    /// Iteration limit: sweeps (NSGS, SOCLCP), Newton steps (NSN), outer iterations (TFP, PFP,
+    /// ACLMFP, PROX), projection steps (VI), ADMM iterations.
+    pub max_iter: usize,
+    /// Wall-clock budget: `None` (default) runs until convergence or the iteration limit.
+    pub time_budget: Option<Duration>,
+}
+
+impl Limits {
+    /// Starts a run: the deadline is fixed now.
+    pub(crate) fn start(&self) -> Run {
+        Run {
+            tolerance: self.tolerance,
+            max_iter: self.max_iter,
+            deadline: self.time_budget.and_then(|b| Instant::now().checked_add(b)),
+        }
+    }
+}
+
+/// One run of a family's main loop against its [`Limits`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Run {
+    pub tolerance: f64,
+    pub max_iter: usize,
+    deadline: Option<Instant>,
+}
+
+impl Run {
+    /// A run of an inner solve with its own tolerance and iteration limit under the same
+    /// deadline.
+    pub fn inner(&self, tolerance: f64, max_iter: usize) -> Run {
+        Run {
+            tolerance,
+            max_iter,
+            deadline: self.deadline,
+        }
+    }
+
+    /// The instant the budget runs out, if there is a budget.
+    pub fn deadline(&self) -> Option<Instant> {
+        self.deadline
+    }
+
+    pub fn out_of_time(&self) -> bool {
+        self.deadline.is_some_and(|d| Instant::now() >= d)
+    }
+
+    /// The end-of-iteration test every main loop runs after iteration `iteration`: stop when
+    /// converged, else when the budget is spent; `None` goes on.
+    pub fn end_of_iteration(&self, iteration: usize, converged: bool) -> Option<SolverOutcome> {
+        if converged {
+            Some(SolverOutcome::stopped(iteration, false))
+        } else if self.out_of_time() {
+            Some(SolverOutcome::stopped(iteration, true))
+        } else {
+            None
+        }
+    }
+
+    /// The outcome of a loop that used all its iterations.
+    pub fn exhausted(&self) -> SolverOutcome {
+        SolverOutcome::stopped(self.max_iter, false)
+    }
+}
+
+/// The best iterate seen by its error (allocated once, before the loop), for the families that
+/// return the best iterate rather than the last one when they stop short.
+pub(crate) struct BestIterate {
+    r: Vec<f64>,
+    error: f64,
+}
+
+impl BestIterate {
+    /// Starts from `r` with its `error` (use infinity when it was not measured).
+    pub fn new(r: &[f64], error: f64) -> Self {
+        BestIterate {
+            r: r.to_vec(),
+            error,
+        }
+    }
+
+    /// Keeps `r` if its error is below the best so far.
+    pub fn offer(&mut self, r: &[f64], error: f64) {
+        if error < self.error {
+            self.error = error;
+            self.r.copy_from_slice(r);
+        }
+    }
+
+    /// Writes the best iterate into `r`.
+    pub fn restore(&self, r: &mut [f64]) {
+        r.copy_from_slice(&self.r);
+    }
+
+    /// Writes the best iterate into `r` when it beats `current_error` (or that is not finite);
+    /// returns whether it did.
+    pub fn restore_if_better(&self, r: &mut [f64], current_error: f64) -> bool {
+        let better = self.error < current_error || !current_error.is_finite();
+        if better {
+            self.restore(r);
+        }
+        better
+    }
+}

@@ -1,0 +1,73 @@
+//! The solver contract: the bottom floor every solver family builds on and that imports no
+//! family. What a family receives ([`Limits`]), what it tells the observer ([`IterationEvent`]),
+//! what it returns ([`SolverOutcome`]), and the loop helpers they share: the end-of-iteration test
+//! ([`Run`]), the best iterate kept under a time budget ([`BestIterate`]), the error-evaluation
+//! schedule of the sweeping families ([`ErrorSchedule`]) and the outer loop of the fixed-point
+//! families ([`OuterLoop`]).
+
+mod family;
+mod limits;
+mod outer;
+mod report;
+mod schedule;
+
+pub(crate) use family::Family;
+pub use limits::Limits;
+pub(crate) use limits::{BestIterate, Run};
+pub use outer::InnerTolerance;
+pub(crate) use outer::OuterLoop;
+pub use report::{SolveReport, SolveStatus};
+pub use schedule::ErrorEvaluation;
+pub(crate) use schedule::{ErrorSchedule, Measure};
+
+/// Progress of an iterative solver, handed to an observer after every iteration.
+#[derive(Debug, Clone, Copy)]
+pub struct IterationEvent<'a> {
+    pub iteration: usize,
+    pub reaction: &'a [f64],
+    /// The error the solver tested at this iteration (cheap or full, as configured).
+    pub error: f64,
+}
+
+/// What a solve reports after every iteration (the C `Callback`).
+pub type Observer<'o> = dyn FnMut(&IterationEvent<'_>) + 'o;
+
+/// How a solver family's run ended. The caller ([`crate::solve`]) then measures the error of the
+/// returned `(r, u)` and sets the status from it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SolverOutcome {
+    /// Iterations done (sweeps for NSGS, Newton steps for NSN, outer iterations, ...).
+    pub iterations: usize,
+    /// The run stopped because its time budget was spent.
+    pub out_of_time: bool,
+    /// The natural-map error of the returned reaction when the family's last step measured it
+    /// with [`crate::measure::natural_map_error`] on the host's storage, leaving `u = W r + q`;
+    /// `None` when the caller must measure it (always safe).
+    pub final_error: Option<f64>,
+    /// Dumont's criterion (37) at the last test, when NSGS stopped on it.
+    pub dumont_criterion: Option<f64>,
+    /// A solver of a relaxed problem (SOCLCP) solved its relaxation to the tolerance: whether the
+    /// result is a Coulomb solution is then decided by the Coulomb error.
+    pub relaxation_converged: bool,
+}
+
+impl SolverOutcome {
+    /// A run that did `iterations` and stopped, out of time or not, with nothing measured.
+    pub fn stopped(iterations: usize, out_of_time: bool) -> Self {
+        SolverOutcome {
+            iterations,
+            out_of_time,
+            final_error: None,
+            dumont_criterion: None,
+            relaxation_converged: false,
+        }
+    }
+
+    /// The same outcome with the final error the family measured on the returned `(r, u)`.
+    pub fn with_final_error(self, final_error: Option<f64>) -> Self {
+        SolverOutcome {
+            final_error,
+            ..self
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Typed errors of the core. The C layer maps each variant to a return code and a message.
+
+use thiserror::Error;
+
+/// Everything that can be wrong with the input of a solve or a file, as a typed value.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum Fc3dError {
+    /// Two sizes that must agree do not.
+    #[error("dimension mismatch: {what}: expected {expected}, got {got}")]
+    DimensionMismatch {
+        what: String,
+        expected: usize,
+        got: usize,
+    },
+    /// A NaN or an infinity in the data.
+    #[error("non-finite value in {what} at index {index}")]
+    NonFinite { what: String, index: usize },
+    /// Friction coefficients must be >= 0.
+    #[error("negative friction coefficient mu[{contact}] = {value}")]
+    NegativeFriction { contact: usize, value: f64 },
+    /// A sparse-block W lacks the 3x3 diagonal block of a contact.
+    #[error("the diagonal 3x3 block of contact {contact} is missing from W")]
+    MissingDiagonalBlock { contact: usize },
+    /// Index arrays that do not describe a valid matrix.
+    #[error("invalid matrix structure: {0}")]
+    InvalidStructure(String),
+    /// A storage or problem shape the library does not handle.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+    /// A solver id that is not implemented.
+    #[error("solver id {id} ({name}) is not implemented in fc3d")]
+    UnsupportedSolver { id: i32, name: String },
+    /// An option value out of its documented range.
+    #[error("invalid option: {0}")]
+    InvalidOption(String),
+    /// A setting outside its documented range. `setting` names it as a path into the
+    /// configuration (`tolerance`, `nsgs.relaxation`, `local.tolerance`, ...), so that the C
+    /// layer can name the iparam/dparam index it came from.
+    #[error("invalid option: {setting} = {value} must be {requirement}")]
+    InvalidSetting {
+        setting: &'static str,
+        value: String,
+        requirement: &'static str,
+    },
+    /// A malformed problem file.
+    #[error("{file}: {message} (token {token_index}: '{token}')")]
+    Parse {
+        file: String,
+        token_index: usize,
+        token: String,
+        message: String,
+    },
+    /// An operating-system level I/O failure.
+    #[error("{file}: {message}")]
+    Io { file: String, message: String },
+}
+
+impl Fc3dError {
+    /// An option or setting out of range ([`Fc3dError::InvalidOption`] or
+    /// [`Fc3dError::InvalidSetting`]).
+    pub fn is_invalid_option(&self) -> bool {
+        matches!(
+            self,
+            Fc3dError::InvalidOption(_) | Fc3dError::InvalidSetting { .. }
+        )
+    }
+
+    pub(crate) fn dims(what: impl Into<String>, expected: usize, got: usize) -> Self {
+        Fc3dError::DimensionMismatch {
+            what: what.into(),
+            expected,
+            got,
+        }
+    }
+}
+
+/// `Ok` when `holds`, else the [`Fc3dError::InvalidSetting`] naming `setting`, its `value` and
+/// the `requirement` it breaks.
+pub(crate) fn require_setting(
+    holds: bool,
+    setting: &'static str,
+    value: impl std::fmt::Display,
+    requirement: &'static str,
+) -> Result<(), Fc3dError> {
+    if holds {
+        Ok(())
+    } else {
+        Err(Fc3dError::InvalidSetting {
+            setting,
+            value: value.to_string(),
+            requirement,
+        })
+    }
+}
+
+/// Checks that every value is finite, naming the first offender.
+pub fn check_finite(what: &str, values: &[f64]) -> Result<(), Fc3dError> {
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(index) => Err(Fc3dError::NonFinite {
+            what: what.to_string(),
+            index,
+        }),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,67 @@
+//! The Siconos Numerics `.dat` text format of a `FrictionContactProblem` (reduced form).
+//!
+//! The file is a sequence of whitespace-separated tokens (0-based indices everywhere):
+//!
+//! ```text
+//! dim nc
+//! storageType size0 size1   matrix body (see below)
+//! q[0] ... q[size0-1]
+//! mu[0] ... mu[nc-1]
+//! anything (ignored)
+//! ```
+//!
+//! Matrix bodies, as written by Siconos 4.4 (`NM_write_in_file`) and read by `NM_new_from_file`:
+//!
+//! * dense (0): `size0 size1` again, then `size0 * size1` values, column-major;
+//! * sparse-block (1): `nbblocks`, `blocknumber0 blocknumber1`, the cumulative row then column
+//!   block sizes, `filled1 filled2`, `index1_data` (block-row pointers, `filled1` of them),
+//!   `index2_data` (block columns, `filled2` of them), then for each block row and each of its
+//!   blocks the block number and its values column-major. A lone `0` (no block) ends the body;
+//! * sparse (2): an origin (`1` triplet, `2` CSC, `3` CSR), then the CSparse dump of
+//!   `CSparseMatrix_print_in_file`: a banner line `CSparse Version ...`, then either
+//!   `m-by-n, nzmax: Z nnz: N, 1-norm: X` followed by `col j : locations a to b` and `i : value`
+//!   lines, or `triplet: m-by-n, nzmax: Z nnz: N` followed by `N` lines `row col : value`.
+//!
+//! Siconos prints sparse values with `%g` (6 significant digits), so its own sparse files are lossy;
+//! [`write_dat`] prints every value in the shortest form that reads back to the same `f64`
+//! (Rust's `{:e}`, which C's `strtod` reads too), so our files round-trip bit for bit in all three
+//! storages.
+//!
+//! Only dimension 3 is supported, sparse-block matrices must be made of 3x3 blocks, and every error
+//! in the text is an [`Fc3dError::Parse`] naming the token at fault (or `<end of file>`). Declared
+//! sizes are checked against the number of tokens left before anything is allocated, so a corrupt
+//! header cannot make the reader allocate more than the file could describe.
+//!
+//! The matrix part alone (`storageType size0 size1` and the body, any shape) is what Siconos'
+//! `NM_write_in_file` writes and `NM_new_from_file` reads: [`parse_matrix`] and [`write_matrix`].
+//! The sparse-block body without that header is what `SBM_write_in_file` writes and
+//! `SBM_new_from_file` reads: [`parse_sbm`] and [`write_sbm`]. The `_prefix` variants also say
+//! where the matrix text ends, for readers that continue after it.
+
+mod csparse;
+mod parse;
+mod storage;
+#[cfg(test)]
+mod tests;
+mod tokens;
+mod write;
+
+pub use parse::{
+    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat_file,
+};
+pub use write::{write_dat, write_dat_file, write_matrix, write_sbm};
+
+#[cfg(doc)]
+use crate::error::Fc3dError;
+
+/// Siconos `NM_types` codes of the matrix storage.
+const STORAGE_DENSE: usize = 0;
+const STORAGE_SPARSE_BLOCK: usize = 1;
+const STORAGE_SPARSE: usize = 2;
+
+/// Siconos 4.4 `NumericsSparseOrigin` codes (`NSM_UNKNOWN, NSM_TRIPLET, NSM_CSC, NSM_CSR,
+/// NSM_HALF_TRIPLET`).
+const ORIGIN_TRIPLET: usize = 1;
+const ORIGIN_CSC: usize = 2;
+const ORIGIN_CSR: usize = 3;
+const ORIGIN_HALF_TRIPLET: usize = 4;

@@ -1,0 +1,252 @@
+//! The matrix-storage readers: the dispatch on the storage code, the dense body and the
+//! sparse-block body (the sparse storage, a CSparse dump, is in `csparse`).
+
+use super::csparse::parse_sparse;
+use super::tokens::{token_count, Reader};
+use super::{STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
+use crate::error::Fc3dError;
+use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
+use crate::problem::DIMENSION;
+
+/// Tokens of a 3x3 block in the sparse-block body: its number and 9 values.
+const TOKENS_PER_BLOCK: usize = 1 + 9;
+
+/// The body of a `rows x cols` matrix of the given storage code (read at token `storage_index`).
+/// `require_diagonal`: a sparse-block matrix must store every diagonal block (a problem's W).
+pub(super) fn parse_matrix_body(
+    r: &mut Reader<'_>,
+    storage_index: usize,
+    storage: usize,
+    rows: usize,
+    cols: usize,
+    require_diagonal: bool,
+) -> Result<Delassus<'static>, Fc3dError> {
+    match storage {
+        STORAGE_DENSE => parse_dense(r, rows, cols),
+        STORAGE_SPARSE_BLOCK => {
+            parse_sparse_block(r, Some((rows, cols)), require_diagonal).map(Delassus::SparseBlock)
+        }
+        STORAGE_SPARSE => parse_sparse(r, rows, cols),
+        _ => Err(r.error_at(
+            storage_index,
+            format!(
+                "unknown storage type of {} (0 dense, 1 sparse-block, 2 sparse)",
+                r.name
+            ),
+        )),
+    }
+}
+
+fn parse_dense(
+    r: &mut Reader<'_>,
+    rows: usize,
+    cols: usize,
+) -> Result<Delassus<'static>, Fc3dError> {
+    let name = r.name;
+    // The dense body repeats the sizes (Siconos reads them again and trusts the second pair).
+    for (what, n) in [("rows", rows), ("columns", cols)] {
+        let (index, size) = r.usize(&format!("the number of {what} of the dense {name}"))?;
+        if size != n {
+            return Err(r.error_at(
+                index,
+                format!("the dense {name} must have {n} {what} as declared, not {size}"),
+            ));
+        }
+    }
+    let start = r.pos;
+    let len = rows
+        .checked_mul(cols)
+        .ok_or_else(|| r.error_at(start, format!("the dense {name} is too large")))?;
+    let values = r.reals(len, &format!("the dense {name}"))?;
+    DenseMatrix::new(rows, cols, values)
+        .map(Delassus::Dense)
+        .map_err(|e| r.error_at(start, e.to_string()))
+}
+
+/// Reads `count` cumulative block sizes that must be 3, 6, 9, ..., up to `n` when it is given;
+/// returns the last one (the number of rows or columns the blocks cover).
+fn parse_block_sizes(
+    r: &mut Reader<'_>,
+    count: usize,
+    count_index: usize,
+    n: Option<usize>,
+    what: &str,
+) -> Result<usize, Fc3dError> {
+    r.ensure_remaining(count, &format!("the cumulative {what} block sizes"))?;
+    let mut previous = 0;
+    let mut last_index = count_index;
+    for k in 0..count {
+        let (index, size) = r.usize(&format!("a cumulative {what} block size"))?;
+        if size <= previous {
+            return Err(r.error_at(
+                index,
+                format!("cumulative {what} block sizes must increase ({size} after {previous})"),
+            ));
+        }
+        if size - previous != DIMENSION {
+            return Err(Fc3dError::Unsupported(format!(
+                "{}: sparse-block {} with a block {what} of size {} (block {what} {k}, token {index}); \
+                 fc3d handles 3x3 blocks only",
+                r.file,
+                r.name,
+                size - previous
+            )));
+        }
+        previous = size;
+        last_index = index;
+    }
+    match n {
+        Some(n) if previous != n => Err(r.error_at(
+            last_index,
+            format!(
+                "the {what} blocks cover {previous} {what}s but {} has {n}",
+                r.name
+            ),
+        )),
+        _ => Ok(previous),
+    }
+}
+
+/// A sparse-block body. `shape`: the declared `(rows, cols)` (None: the block sizes tell).
+/// `require_diagonal`: every diagonal block must be stored (the W of a problem).
+pub(super) fn parse_sparse_block(
+    r: &mut Reader<'_>,
+    shape: Option<(usize, usize)>,
+    require_diagonal: bool,
+) -> Result<BlockSparseMatrix, Fc3dError> {
+    let name = r.name;
+    let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
+    if nbblocks == 0 {
+        // Siconos writes a lone 0 for a matrix without blocks and stops there.
+        let (rows, cols) = shape.unwrap_or((0, 0));
+        if require_diagonal && rows > 0 {
+            return Err(r.error_at(
+                nbblocks_index,
+                format!(
+                    "a sparse-block {name} without blocks lacks the diagonal blocks of {} contacts",
+                    rows / DIMENSION
+                ),
+            ));
+        }
+        if rows % DIMENSION != 0 || cols % DIMENSION != 0 {
+            return Err(Fc3dError::Unsupported(format!(
+                "{}: a sparse-block {name} of size {rows}x{cols} cannot be made of 3x3 blocks \
+                 (fc3d handles 3x3 blocks only)",
+                r.file
+            )));
+        }
+        let empty = BlockSparseMatrix::new(
+            rows / DIMENSION,
+            cols / DIMENSION,
+            vec![0; rows / DIMENSION + 1],
+            Vec::new(),
+            Vec::new(),
+        )
+        .map_err(|e| r.error_at(nbblocks_index, e.to_string()))?;
+        return Ok(empty);
+    }
+    let (rows_index, block_rows) = r.usize("the number of block rows")?;
+    let (cols_index, block_cols) = r.usize("the number of block columns")?;
+    parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row")?;
+    parse_block_sizes(r, block_cols, cols_index, shape.map(|s| s.1), "column")?;
+    // From here on the matrix is block_rows x block_cols blocks of 3x3 (and block_rows tokens
+    // have been read, so allocating per block row is bounded by the text).
+
+    let (filled1_index, filled1) = r.usize("filled1 (the length of index1_data)")?;
+    if filled1 == 0 || filled1 > block_rows + 1 {
+        return Err(r.error_at(
+            filled1_index,
+            format!(
+                "filled1 must be between 1 and {} (block rows + 1)",
+                block_rows + 1
+            ),
+        ));
+    }
+    let (filled2_index, filled2) = r.usize("filled2 (the number of stored blocks)")?;
+    if filled2 != nbblocks {
+        return Err(r.error_at(
+            filled2_index,
+            format!("filled2 must equal the number of blocks {nbblocks}"),
+        ));
+    }
+    r.ensure_remaining(
+        filled1.saturating_add(filled2),
+        "index1_data and index2_data",
+    )?;
+
+    let index1_start = r.pos;
+    let mut row_ptr = Vec::with_capacity(block_rows + 1);
+    for k in 0..filled1 {
+        let (index, p) = r.usize("a block-row pointer (index1_data)")?;
+        let previous = row_ptr.last().copied().unwrap_or(0);
+        if (k == 0 && p != 0) || p < previous || p > filled2 {
+            return Err(r.error_at(
+                index,
+                format!("index1_data must start at 0 and not decrease up to the {filled2} blocks"),
+            ));
+        }
+        row_ptr.push(p);
+    }
+    if row_ptr.last() != Some(&filled2) {
+        return Err(r.error_at(
+            index1_start + filled1 - 1,
+            format!("index1_data must end at the number of blocks {filled2}"),
+        ));
+    }
+    // Siconos may stop index1_data after the last non-empty block row; the rows after it are empty.
+    row_ptr.resize(block_rows + 1, filled2);
+
+    let mut col_idx = Vec::with_capacity(filled2);
+    for _ in 0..filled2 {
+        let (index, c) = r.usize("a block column (index2_data)")?;
+        if c >= block_cols {
+            return Err(r.error_at(
+                index,
+                format!("block column {c} is out of range ({name} has {block_cols} block columns)"),
+            ));
+        }
+        col_idx.push(c);
+    }
+    if require_diagonal {
+        // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
+        for c in 0..block_rows {
+            if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
+                let index = if c < filled1 {
+                    index1_start + c
+                } else {
+                    filled1_index
+                };
+                return Err(r.error_at(
+                    index,
+                    format!("the diagonal 3x3 block of contact {c} is missing from {name}"),
+                ));
+            }
+        }
+    }
+
+    r.ensure_remaining(
+        token_count(filled2, TOKENS_PER_BLOCK),
+        &format!("the blocks of {name}"),
+    )?;
+    let mut blocks = Vec::with_capacity(filled2);
+    for row in 0..block_rows {
+        for k in row_ptr[row]..row_ptr[row + 1] {
+            let (index, number) = r.usize("a block number")?;
+            // Siconos only warns about a wrong number (it stores blocks in file order anyway); a
+            // wrong number means the file is corrupt, so it is an error here.
+            if number != k {
+                return Err(r.error_at(
+                    index,
+                    format!("block number {number} where block {k} is expected"),
+                ));
+            }
+            let mut block = [0.0; 9];
+            for v in block.iter_mut() {
+                *v = r.real("a block value")?.1;
+            }
+            blocks.push(block);
+        }
+    }
+    BlockSparseMatrix::new(block_rows, block_cols, row_ptr, col_idx, blocks)
+        .map_err(|e| r.error_at(nbblocks_index, e.to_string()))
+}

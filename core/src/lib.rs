@@ -1,0 +1,54 @@
+//! fc3d-core: solvers for the discrete 3D frictional contact problem FC(W, q, mu) in Delassus
+//! form: find `r, u` in R^{3 nc} with `u = W r + q` and, for every contact `c`,
+//! `K*_c ∋ u_c + mu_c ||u_{T,c}|| e_N ⟂ r_c ∈ K_c` (Signorini contact with exact Coulomb friction),
+//! where `K_c = { r : ||r_T|| <= mu_c r_N }` is the Coulomb cone.
+//!
+//! This crate is the pure-Rust core: no FFI types, no CLI dependencies. The C ABI (Siconos
+//! Numerics 4.4 compatible) is the `fc3d` crate; the `fc3d` command is `fc3d-cli`.
+//!
+//! Entry points: build a [`FrictionProblem`] from a [`Delassus`] operator, `q` and `mu`, pick a
+//! [`SolverConfig`] (limits plus a [`Method`]), call [`solve`]. Every [`SolveReport`] carries the
+//! error measured on the returned `(r, u)` with [`natural_map_error`], never the tolerance that
+//! was asked for.
+//!
+//! Layers, bottom to top (no module imports one above it; `tests/architecture.rs` checks it):
+//! `error`, `math` → `matrix` → `problem` → `measure` → `contract` → `local` → `solvers` →
+//! `config` → `solve`; `io` and `scenes` build problems. See `docs/architecture.md`.
+
+pub mod config;
+pub mod contract;
+pub mod error;
+pub mod io;
+pub mod local;
+pub mod math;
+pub mod matrix;
+pub mod measure;
+pub mod problem;
+pub mod scenes;
+pub mod solve;
+pub mod solvers;
+
+pub use config::{Method, Rescaling, SolverConfig};
+pub use contract::{
+    ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
+};
+pub use error::Fc3dError;
+pub use local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule};
+pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
+pub use measure::natural_map_error;
+pub use problem::FrictionProblem;
+pub use solve::{solve, solve_with_observer};
+pub use solvers::aclm::AclmOptions;
+pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
+pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
+pub use solvers::pfp::PfpOptions;
+pub use solvers::prox::{ProxInternal, ProxOptions};
+pub use solvers::soclcp::SoclcpOptions;
+pub use solvers::tresca::{TrescaInnerSolver, TrescaOptions};
+pub use solvers::vi::{SelfAdaptiveStep, StepRatio, StepSize, ViOptions, ViSolver};
+
+/// The README's Rust examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+struct ReadmeDoctests;

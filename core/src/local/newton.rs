@@ -1,0 +1,322 @@
+//! Alart-Curnier nonsmooth Newton for one contact (formulation (61), Jacobian of appendix B.2,
+//! re-derived below), with an optional Goldstein-Price line search and the hybrid fallback to
+//! projection steps that Siconos uses by default.
+//!
+//! With `u = w r + q`, `s_N = r_N - rho_N u_N`, `s_T = r_T - rho_T u_T` and `R = mu (s_N)_+`:
+//!
+//! `F_N = r_N - (s_N)_+`,  `F_T = r_T - P_{B(0,R)}(s_T)`.
+//!
+//! `F(r) = 0` is exactly the Coulomb law. An element of the generalized Jacobian is
+//! `J = A + B w` with `A = dF/dr`, `B = dF/du` taken branch by branch:
+//! * `s_N > 0`: `F_N = rho_N u_N` (A_N = 0, B_N = rho_N e_N); else `F_N = r_N` (A_N = e_N, B_N = 0);
+//! * stick `||s_T|| <= R`: `F_T = rho_T u_T` (A_T = 0, B_T = rho_T [0 I]);
+//! * slide: `F_T = r_T - R e`, `e = s_T/||s_T||`, `G = (I - e e^T)/||s_T||`:
+//!   `A_T = [-mu [s_N>0] e, I - R G]`, `B_T = [mu rho_N [s_N>0] e, R rho_T G]`.
+//!
+//! Jean-Moreau (59) ("NSN-JM" of Table 3, Siconos formulation 1) only changes the radius to
+//! `R = mu (r_N)_+`: in the slide branch `A_T[., 0] = -mu [r_N > 0] e` and `B_T[., 0] = 0`.
+
+use super::{
+    local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
+};
+use crate::local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
+use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
+
+/// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
+pub fn alart_curnier_function(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
+    ac_eval::<true, false>(p, rho_n, rho_t, r)
+}
+
+/// The Jean-Moreau function (59) and one element of its generalized Jacobian at `r`.
+pub fn jean_moreau_function(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
+    ac_eval::<true, true>(p, rho_n, rho_t, r)
+}
+
+/// The Alart-Curnier function alone (the Jacobian is not formed): convergence tests and
+/// line-search trials need only F.
+#[inline]
+fn alart_curnier_residual(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+    ac_eval::<false, false>(p, rho_n, rho_t, r).0
+}
+
+/// F and, when `JAC`, the Jacobian `A + B w` (otherwise a zero matrix); one branch logic for both.
+#[inline(always)]
+fn ac_eval<const JAC: bool, const JEAN_MOREAU: bool>(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
+    let u = p.velocity(r);
+    let mu = p.mu;
+    let mut f = [0.0; 3];
+    let mut a: Mat3 = [[0.0; 3]; 3];
+    let mut b: Mat3 = [[0.0; 3]; 3];
+
+    let s_n = r[0] - rho_n * u[0];
+    let active = s_n > 0.0;
+    if active {
+        f[0] = rho_n * u[0];
+        b[0][0] = rho_n;
+    } else {
+        f[0] = r[0];
+        a[0][0] = 1.0;
+    }
+
+    // Jean-Moreau's disk follows r_N itself; Alart-Curnier's follows s_N.
+    let radius_active = if JEAN_MOREAU { r[0] > 0.0 } else { active };
+    let radius = match (JEAN_MOREAU, radius_active) {
+        (_, false) => 0.0,
+        (true, true) => mu * r[0],
+        (false, true) => mu * s_n,
+    };
+    let s_t = [r[1] - rho_t * u[1], r[2] - rho_t * u[2]];
+    let ns = norm2(s_t[0], s_t[1]);
+    if ns <= radius {
+        // Stick (includes s_T = 0 with R = 0).
+        f[1] = rho_t * u[1];
+        f[2] = rho_t * u[2];
+        b[1][1] = rho_t;
+        b[2][2] = rho_t;
+    } else {
+        let e = [s_t[0] / ns, s_t[1] / ns];
+        f[1] = r[1] - radius * e[0];
+        f[2] = r[2] - radius * e[1];
+        if JAC {
+            let k = radius / ns;
+            let g = [
+                [k * (1.0 - e[0] * e[0]), -k * e[0] * e[1]],
+                [-k * e[1] * e[0], k * (1.0 - e[1] * e[1])],
+            ];
+            let dn = if radius_active { mu } else { 0.0 };
+            for i in 0..2 {
+                a[1 + i][0] = -dn * e[i];
+                b[1 + i][0] = if JEAN_MOREAU { 0.0 } else { dn * rho_n * e[i] };
+                for j in 0..2 {
+                    a[1 + i][1 + j] = if i == j { 1.0 } else { 0.0 } - g[i][j];
+                    b[1 + i][1 + j] = rho_t * g[i][j];
+                }
+            }
+        }
+    }
+    if !JAC {
+        return (f, [[0.0; 3]; 3]);
+    }
+    let bw = mat3_mul(&b, p.w);
+    let mut jac = a;
+    for i in 0..3 {
+        for j in 0..3 {
+            jac[i][j] += bw[i][j];
+        }
+    }
+    (f, jac)
+}
+
+/// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
+pub struct AlartCurnierNewton {
+    options: LocalSolverOptions,
+    line_search: bool,
+    hybrid: bool,
+    jean_moreau: bool,
+    projection: ProjectionOnConeWithLocalIteration,
+}
+
+/// Goldstein-Price acceptance bounds on `(psi(r + a d) - psi(r)) / (a * slope)`.
+const GP_M1: f64 = 0.1;
+const GP_M2: f64 = 0.9;
+
+impl AlartCurnierNewton {
+    pub fn new(options: &LocalSolverOptions) -> Self {
+        let line_search = matches!(
+            options.kind,
+            LocalSolverKind::NewtonAlartCurnierGp | LocalSolverKind::NewtonHybrid
+        );
+        let hybrid = options.kind == LocalSolverKind::NewtonHybrid;
+        let mut proj = *options;
+        proj.max_iter = options.hybrid_max_iter;
+        AlartCurnierNewton {
+            options: *options,
+            line_search,
+            hybrid,
+            jean_moreau: options.formulation == NewtonFormulation::JeanMoreau,
+            projection: ProjectionOnConeWithLocalIteration::new(&proj),
+        }
+    }
+
+    #[inline]
+    fn residual(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+        if self.jean_moreau {
+            ac_eval::<false, true>(p, rho_n, rho_t, r).0
+        } else {
+            alart_curnier_residual(p, rho_n, rho_t, r)
+        }
+    }
+
+    #[inline]
+    fn jacobian(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Mat3 {
+        if self.jean_moreau {
+            jean_moreau_function(p, rho_n, rho_t, r).1
+        } else {
+            alart_curnier_function(p, rho_n, rho_t, r).1
+        }
+    }
+
+    /// Newton iterations from `r`; returns (converged, iterations).
+    fn newton(&self, p: &LocalProblem<'_>, rho: (f64, f64), r: &mut Vec3) -> (bool, usize) {
+        let (rho_n, rho_t) = rho;
+        let tol = self.options.tolerance;
+        // F has the units of a reaction; compare it with the reaction scale.
+        let scale = norm3(r).max(rho_n * norm3(&p.q)).max(f64::MIN_POSITIVE);
+        // The Jacobian is formed only where a step is taken: the last F of a converging run
+        // (most local solves late in NSGS) needs none.
+        let mut f = self.residual(p, rho_n, rho_t, r);
+        for it in 0..self.options.max_iter {
+            let nf = norm3(&f);
+            if nf <= tol * scale {
+                return (true, it);
+            }
+            let jac = self.jacobian(p, rho_n, rho_t, r);
+            let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
+                return (false, it);
+            };
+            let (r_new, f_new) = if self.line_search {
+                match self.goldstein_price(p, rho, r, &d, nf * nf) {
+                    Some(x) => x,
+                    None => return (false, it),
+                }
+            } else {
+                let rn = [r[0] + d[0], r[1] + d[1], r[2] + d[2]];
+                (rn, self.residual(p, rho_n, rho_t, &rn))
+            };
+            if !r_new.iter().all(|v| v.is_finite()) {
+                return (false, it);
+            }
+            *r = r_new;
+            f = f_new;
+        }
+        (norm3(&f) <= tol * scale, self.options.max_iter)
+    }
+
+    /// Goldstein-Price search along the Newton direction `d` on `psi = ||F||^2 / 2`, whose slope
+    /// along `d` is `-||F||^2`. Returns the accepted point with its F, or the best point that
+    /// decreased psi, or `None` when no trial step decreased it.
+    fn goldstein_price(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &Vec3,
+        d: &Vec3,
+        f_sq: f64,
+    ) -> Option<(Vec3, Vec3)> {
+        let psi0 = 0.5 * f_sq;
+        let slope = -f_sq;
+        let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
+        let mut alpha = 1.0;
+        let mut best: Option<(f64, Vec3, Vec3)> = None;
+        for _ in 0..self.options.line_search_max_iter.max(1) {
+            let rt = [
+                r[0] + alpha * d[0],
+                r[1] + alpha * d[1],
+                r[2] + alpha * d[2],
+            ];
+            let ft = self.residual(p, rho.0, rho.1, &rt);
+            let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+            if psi < best.as_ref().map_or(psi0, |b| b.0) {
+                best = Some((psi, rt, ft));
+            }
+            let ratio = (psi - psi0) / (alpha * slope);
+            if ratio < GP_M1 {
+                hi = alpha; // too long: not enough decrease
+            } else if ratio > GP_M2 {
+                lo = alpha; // too short: decrease almost linear, try longer
+            } else {
+                return Some((rt, ft));
+            }
+            alpha = if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else {
+                2.0 * alpha
+            };
+        }
+        best.map(|(_, rt, ft)| (rt, ft))
+    }
+}
+
+impl LocalSolver for AlartCurnierNewton {
+    fn rho(&self, w: &Mat3) -> (f64, f64) {
+        local_rho(w, self.options.rho_rule)
+    }
+
+    fn solve_with_rho(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        let start = *r;
+        let (converged, mut iterations) = self.newton(p, rho, r);
+        if converged || !self.hybrid {
+            return LocalOutcome {
+                converged,
+                iterations,
+            };
+        }
+        // Hybrid: keep the best of Newton and of (projection, Newton) rounds, judged by the
+        // natural-map residual that the global error uses.
+        let mut best = *r;
+        let mut best_res = p.residual(r);
+        let start_res = p.residual(&start);
+        if start_res < best_res {
+            best = start;
+            best_res = start_res;
+        }
+        // Each round continues the projection iterations from where the previous round left
+        // them (not from `best`, which would make every round after a failed one an exact
+        // repeat), then tries Newton from the projected point. Both points are candidates.
+        let mut projected = best;
+        for _ in 0..self.options.hybrid_max_loop {
+            let pr = self.projection.solve(p, &mut projected);
+            iterations += pr.iterations;
+            let res = p.residual(&projected);
+            if res <= best_res {
+                best = projected;
+                best_res = res;
+            }
+            let mut x = projected;
+            let (ok, it) = self.newton(p, rho, &mut x);
+            iterations += it;
+            let res = p.residual(&x);
+            if res <= best_res {
+                best = x;
+                best_res = res;
+            }
+            if ok {
+                *r = x;
+                return LocalOutcome {
+                    converged: true,
+                    iterations,
+                };
+            }
+            if pr.converged {
+                // The projection itself reached the local tolerance.
+                break;
+            }
+        }
+        *r = best;
+        let converged = best_res <= self.options.tolerance * p.scale(r);
+        LocalOutcome {
+            converged,
+            iterations,
+        }
+    }
+}

@@ -1,0 +1,7 @@
+//! Fixed-size kernels every layer above uses: 3-vectors and 3x3 matrices written by hand, the
+//! projections on the Coulomb cone, its dual, disks and cylinders, and the constants of the
+//! self-adaptive step rule.
+
+pub mod cone;
+pub mod linalg;
+pub mod step;

@@ -1,0 +1,161 @@
+use crate::error::{check_finite, Fc3dError};
+use crate::math::linalg::{mat3_from_col_major, Mat3};
+
+/// Square 3x3-block sparse matrix in block-CSR order, blocks stored column-major as in Siconos'
+/// `SparseBlockStructuredMatrix` (restricted to the uniform 3x3 blocks of fc3d).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockSparseMatrix {
+    n_block_rows: usize,
+    n_block_cols: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    /// 9 values per block, column-major.
+    blocks: Vec<[f64; 9]>,
+}
+
+impl BlockSparseMatrix {
+    /// `row_ptr` has `n_block_rows + 1` entries; block `k` sits at block row `i` for
+    /// `row_ptr[i] <= k < row_ptr[i+1]`, block column `col_idx[k]`.
+    pub fn new(
+        n_block_rows: usize,
+        n_block_cols: usize,
+        row_ptr: Vec<usize>,
+        col_idx: Vec<usize>,
+        blocks: Vec<[f64; 9]>,
+    ) -> Result<Self, Fc3dError> {
+        if row_ptr.len() != n_block_rows + 1 {
+            return Err(Fc3dError::dims(
+                "block row pointers",
+                n_block_rows + 1,
+                row_ptr.len(),
+            ));
+        }
+        if row_ptr[0] != 0 || row_ptr.windows(2).any(|w| w[0] > w[1]) {
+            return Err(Fc3dError::InvalidStructure(
+                "block row pointers must start at 0 and be non-decreasing".into(),
+            ));
+        }
+        let nb = row_ptr[n_block_rows];
+        if col_idx.len() != nb {
+            return Err(Fc3dError::dims("block column indices", nb, col_idx.len()));
+        }
+        if blocks.len() != nb {
+            return Err(Fc3dError::dims("blocks", nb, blocks.len()));
+        }
+        if let Some(k) = col_idx.iter().position(|&c| c >= n_block_cols) {
+            return Err(Fc3dError::InvalidStructure(format!(
+                "block {k} has column {} >= {n_block_cols}",
+                col_idx[k]
+            )));
+        }
+        for (k, b) in blocks.iter().enumerate() {
+            check_finite("W", b).map_err(|_| Fc3dError::NonFinite {
+                what: format!("W (block {k})"),
+                index: b.iter().position(|v| !v.is_finite()).unwrap_or(0),
+            })?;
+        }
+        Ok(BlockSparseMatrix {
+            n_block_rows,
+            n_block_cols,
+            row_ptr,
+            col_idx,
+            blocks,
+        })
+    }
+
+    /// `alpha * self`, same block structure.
+    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix {
+        let mut m = self.clone();
+        for b in &mut m.blocks {
+            b.iter_mut().for_each(|v| *v *= alpha);
+        }
+        m
+    }
+
+    pub fn nrows(&self) -> usize {
+        3 * self.n_block_rows
+    }
+    pub fn ncols(&self) -> usize {
+        3 * self.n_block_cols
+    }
+    pub fn n_block_rows(&self) -> usize {
+        self.n_block_rows
+    }
+    pub fn n_block_cols(&self) -> usize {
+        self.n_block_cols
+    }
+    pub fn n_blocks(&self) -> usize {
+        self.blocks.len()
+    }
+    pub fn row_ptr(&self) -> &[usize] {
+        &self.row_ptr
+    }
+    pub fn col_idx(&self) -> &[usize] {
+        &self.col_idx
+    }
+    /// Column-major 3x3 blocks in storage order.
+    pub fn blocks(&self) -> &[[f64; 9]] {
+        &self.blocks
+    }
+
+    /// Iterates `(block_row, block_col, column-major block)`.
+    pub fn iter_blocks(&self) -> impl Iterator<Item = (usize, usize, &[f64; 9])> + '_ {
+        (0..self.n_block_rows).flat_map(move |i| {
+            (self.row_ptr[i]..self.row_ptr[i + 1])
+                .map(move |k| (i, self.col_idx[k], &self.blocks[k]))
+        })
+    }
+
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        let (bi, bj) = (i / 3, j / 3);
+        (self.row_ptr[bi]..self.row_ptr[bi + 1])
+            .filter(|&k| self.col_idx[k] == bj)
+            .map(|k| self.blocks[k][(i % 3) + 3 * (j % 3)])
+            .sum()
+    }
+
+    /// Sum of the stored blocks at (c, c) as a row-major matrix, `None` if there is none.
+    pub fn diagonal_block(&self, c: usize) -> Option<Mat3> {
+        let mut found = None::<Mat3>;
+        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
+            if self.col_idx[k] == c {
+                let b = mat3_from_col_major(&self.blocks[k]);
+                found = Some(match found {
+                    None => b,
+                    Some(a) => {
+                        let mut s = a;
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                s[i][j] += b[i][j];
+                            }
+                        }
+                        s
+                    }
+                });
+            }
+        }
+        found
+    }
+
+    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+        for (bi, bj, b) in self.iter_blocks() {
+            let xs = &x[3 * bj..3 * bj + 3];
+            let ys = &mut y[3 * bi..3 * bi + 3];
+            for (c, &xc) in xs.iter().enumerate() {
+                ys[0] += b[3 * c] * xc;
+                ys[1] += b[3 * c + 1] * xc;
+                ys[2] += b[3 * c + 2] * xc;
+            }
+        }
+    }
+
+    pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
+        for (bi, bj, b) in self.iter_blocks() {
+            for c in 0..3 {
+                for r in 0..3 {
+                    f(3 * bi + r, 3 * bj + c, b[r + 3 * c]);
+                }
+            }
+        }
+    }
+}

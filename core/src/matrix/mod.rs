@@ -1,0 +1,196 @@
+//! The Delassus operator W in the three storages a host may hand us, and the block-row form the
+//! Gauss-Seidel sweep works on.
+//!
+//! * [`DenseMatrix`]: column-major, borrowed from the host without a copy when it can be.
+//! * [`BlockSparseMatrix`]: 3x3 blocks in block-CSR order (Siconos' sparse-block storage).
+//! * [`CsrMatrix`]: general sparse; CSC and triplets are converted to it once (sorted, duplicates summed).
+//!
+//! Whatever the storage, [`Delassus::block_rows`] builds the [`BlockRows`] view once per solve:
+//! per contact its diagonal block and the list of non-zero off-diagonal blocks. Zero blocks of a dense
+//! W are dropped there, so a scene that couples few contacts costs what it couples.
+
+mod block_rows;
+mod block_sparse;
+mod csr;
+mod dense;
+
+pub use block_rows::BlockRows;
+pub use block_sparse::BlockSparseMatrix;
+pub use csr::CsrMatrix;
+pub use dense::DenseMatrix;
+
+use crate::error::Fc3dError;
+use crate::math::linalg::Mat3;
+
+/// The Delassus operator W of a problem, in the storage the host gave.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Delassus<'a> {
+    Dense(DenseMatrix<'a>),
+    SparseBlock(BlockSparseMatrix),
+    Sparse(CsrMatrix),
+}
+
+impl<'a> Delassus<'a> {
+    pub fn nrows(&self) -> usize {
+        match self {
+            Delassus::Dense(m) => m.nrows(),
+            Delassus::SparseBlock(m) => m.nrows(),
+            Delassus::Sparse(m) => m.nrows(),
+        }
+    }
+
+    pub fn ncols(&self) -> usize {
+        match self {
+            Delassus::Dense(m) => m.ncols(),
+            Delassus::SparseBlock(m) => m.ncols(),
+            Delassus::Sparse(m) => m.ncols(),
+        }
+    }
+
+    /// `y <- y + W x`.
+    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+        match self {
+            Delassus::Dense(m) => m.mul_add(x, y),
+            Delassus::SparseBlock(m) => m.mul_add(x, y),
+            Delassus::Sparse(m) => m.mul_add(x, y),
+        }
+    }
+
+    /// `u <- W r + q`.
+    pub fn velocity(&self, r: &[f64], q: &[f64], u: &mut [f64]) {
+        u.copy_from_slice(q);
+        self.mul_add(r, u);
+    }
+
+    /// `alpha W` in the same storage (owned).
+    pub fn scaled(&self, alpha: f64) -> Delassus<'static> {
+        match self {
+            Delassus::Dense(m) => Delassus::Dense(m.scaled(alpha)),
+            Delassus::SparseBlock(m) => Delassus::SparseBlock(m.scaled(alpha)),
+            Delassus::Sparse(m) => Delassus::Sparse(m.scaled(alpha)),
+        }
+    }
+
+    /// Entry (i, j), zero where nothing is stored.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        match self {
+            Delassus::Dense(m) => m.get(i, j),
+            Delassus::SparseBlock(m) => m.get(i, j),
+            Delassus::Sparse(m) => m.get(i, j),
+        }
+    }
+
+    /// Calls `f(i, j, value)` for every stored entry (structural zeros of sparse storages skipped,
+    /// every entry of a dense one visited).
+    pub fn for_each_entry(&self, f: impl FnMut(usize, usize, f64)) {
+        match self {
+            Delassus::Dense(m) => m.for_each_entry(f),
+            Delassus::SparseBlock(m) => m.for_each_entry(f),
+            Delassus::Sparse(m) => m.for_each_entry(f),
+        }
+    }
+
+    /// The 3x3 diagonal block of contact `c` (row-major), `None` if a sparse-block W lacks it.
+    pub fn diagonal_block(&self, c: usize) -> Option<Mat3> {
+        match self {
+            Delassus::SparseBlock(m) => m.diagonal_block(c),
+            _ => {
+                let mut b = [[0.0; 3]; 3];
+                for (i, row) in b.iter_mut().enumerate() {
+                    for (j, v) in row.iter_mut().enumerate() {
+                        *v = self.get(3 * c + i, 3 * c + j);
+                    }
+                }
+                Some(b)
+            }
+        }
+    }
+
+    /// The block-row form used by Gauss-Seidel sweeps (built once per solve).
+    pub fn block_rows(&self) -> Result<BlockRows, Fc3dError> {
+        BlockRows::from_delassus(self)
+    }
+
+    /// A dense, owned copy (column-major).
+    pub fn to_dense(&self) -> DenseMatrix<'static> {
+        let (m, n) = (self.nrows(), self.ncols());
+        let mut data = vec![0.0; m * n];
+        self.for_each_entry(|i, j, v| data[i + j * m] += v);
+        DenseMatrix::new(m, n, data).expect("sizes agree by construction")
+    }
+
+    /// A CSR copy (sorted, no duplicates; exact zeros of a dense W are not stored).
+    pub fn to_csr(&self) -> CsrMatrix {
+        let mut triplets = Vec::new();
+        self.for_each_entry(|i, j, v| {
+            if v != 0.0 {
+                triplets.push((i, j, v))
+            }
+        });
+        CsrMatrix::from_triplets(self.nrows(), self.ncols(), &triplets)
+            .expect("indices in range by construction")
+    }
+
+    /// A sparse-block copy (3x3 blocks) holding every block with a non-zero entry and every
+    /// diagonal block. W must be square with a size divisible by 3.
+    pub fn to_block_sparse(&self) -> Result<BlockSparseMatrix, Fc3dError> {
+        let n = self.nrows();
+        if n != self.ncols() || n % 3 != 0 {
+            return Err(Fc3dError::InvalidStructure(format!(
+                "a 3x3-block copy needs a square W with a size divisible by 3, got {}x{}",
+                self.nrows(),
+                self.ncols()
+            )));
+        }
+        let nc = n / 3;
+        let mut map = std::collections::BTreeMap::<(usize, usize), [f64; 9]>::new();
+        for c in 0..nc {
+            map.insert((c, c), [0.0; 9]);
+        }
+        self.for_each_entry(|i, j, v| {
+            if v != 0.0 {
+                map.entry((i / 3, j / 3)).or_insert([0.0; 9])[i % 3 + 3 * (j % 3)] += v;
+            }
+        });
+        let mut row_ptr = vec![0usize; nc + 1];
+        let mut col_idx = Vec::with_capacity(map.len());
+        let mut blocks = Vec::with_capacity(map.len());
+        for ((bi, bj), b) in map {
+            row_ptr[bi + 1] += 1;
+            col_idx.push(bj);
+            blocks.push(b);
+        }
+        for i in 0..nc {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
+    }
+
+    /// max |W - W^T| / max |W| (0 for a zero matrix): how far W is from symmetric.
+    pub fn relative_asymmetry(&self) -> f64 {
+        let mut amax = 0.0_f64;
+        let mut dmax = 0.0_f64;
+        self.for_each_entry(|i, j, v| {
+            amax = amax.max(v.abs());
+            if i < j {
+                dmax = dmax.max((v - self.get(j, i)).abs());
+            } else if i > j && self.get(j, i) == 0.0 {
+                dmax = dmax.max(v.abs());
+            }
+        });
+        if amax == 0.0 {
+            0.0
+        } else {
+            dmax / amax
+        }
+    }
+
+    /// Short storage name for tables and messages.
+    pub fn storage_name(&self) -> &'static str {
+        match self {
+            Delassus::Dense(_) => "dense",
+            Delassus::SparseBlock(_) => "sparse-block",
+            Delassus::Sparse(_) => "csr",
+        }
+    }
+}

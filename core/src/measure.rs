@@ -1,0 +1,141 @@
+//! Error measures. The one every result is judged by is [`natural_map_error`], Siconos'
+//! `fc3d_compute_error`: with `u = W r + q` and the De Saxcé velocity `ũ_c = (u_N + mu ||u_T||, u_T)`,
+//!
+//! `error = sqrt( sum_c || r_c - P_K(mu_c)(r_c - ũ_c) ||^2 ) / max(||q||, ||r||, ||u||)`
+//!
+//! (the normalisation falls back to 1 when all three norms are zero).
+
+use crate::math::cone::{modified_velocity, project_on_cone};
+use crate::math::linalg::{norm, Vec3};
+use crate::matrix::BlockRows;
+use crate::problem::FrictionProblem;
+
+/// Squared natural-map residual of one contact, `|| r - P_K(r - ũ) ||^2`.
+#[inline]
+pub fn contact_residual_sq(r: &Vec3, u: &Vec3, mu: f64) -> f64 {
+    let ut = modified_velocity(u, mu);
+    let p = project_on_cone(&[r[0] - ut[0], r[1] - ut[1], r[2] - ut[2]], mu);
+    let d = [r[0] - p[0], r[1] - p[1], r[2] - p[2]];
+    d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+}
+
+/// Absolute natural-map residual `sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2)` for given `r, u`.
+pub fn absolute_natural_map_residual(r: &[f64], u: &[f64], mu: &[f64]) -> f64 {
+    let mut s = 0.0;
+    for (c, &m) in mu.iter().enumerate() {
+        let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+        let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
+        s += contact_residual_sq(&rc, &uc, m);
+    }
+    s.sqrt()
+}
+
+/// Siconos' normalisation `max(||q||, ||r||, ||u||)`, or 1 when that is zero.
+pub fn relative_scale(norm_q: f64, r: &[f64], u: &[f64]) -> f64 {
+    let s = norm_q.max(norm(r)).max(norm(u));
+    if s > 0.0 {
+        s
+    } else {
+        1.0
+    }
+}
+
+/// The relative natural-map error of `r` for `problem`: computes `u = W r + q` into `u` (as
+/// Siconos' `fc3d_compute_error` does) and returns the error.
+pub fn natural_map_error(problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
+    problem.velocity(r, u);
+    natural_map_error_of(problem, r, u)
+}
+
+/// [`natural_map_error`] with `u = W r + q` computed through the block rows of W (cheaper than
+/// the host's storage when W is dense but sparsely coupled).
+pub fn natural_map_error_by_rows(
+    problem: &FrictionProblem<'_>,
+    rows: &BlockRows,
+    r: &[f64],
+    u: &mut [f64],
+) -> f64 {
+    rows.velocity(problem.q(), r, u);
+    natural_map_error_of(problem, r, u)
+}
+
+/// Relative natural-map error of a pair `(r, u)` taken as given (u is not recomputed).
+pub fn natural_map_error_of(problem: &FrictionProblem<'_>, r: &[f64], u: &[f64]) -> f64 {
+    let abs = absolute_natural_map_residual(r, u, problem.mu());
+    abs / relative_scale(norm(problem.q()), r, u)
+}
+
+/// Cheap error (134) from the accumulated squared increment of a sweep.
+pub fn cheap_error(increment_sq: f64, r: &[f64]) -> f64 {
+    let nr = norm(r);
+    if nr > 0.0 {
+        increment_sq.sqrt() / nr
+    } else {
+        increment_sq.sqrt()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix::{Delassus, DenseMatrix};
+    use approx::assert_relative_eq;
+
+    fn one_contact(w: [f64; 9], q: [f64; 3], mu: f64) -> FrictionProblem<'static> {
+        let d = DenseMatrix::new(3, 3, w.to_vec()).unwrap();
+        FrictionProblem::new(Delassus::Dense(d), q.to_vec(), vec![mu]).unwrap()
+    }
+
+    #[test]
+    fn exact_solutions_have_zero_error() {
+        // Identity W, q = (-1, 0, 0): stick solution r = (1, 0, 0), u = 0.
+        let p = one_contact([1., 0., 0., 0., 1., 0., 0., 0., 1.], [-1., 0., 0.], 0.5);
+        let mut u = [0.0; 3];
+        assert_eq!(natural_map_error(&p, &[1.0, 0.0, 0.0], &mut u), 0.0);
+        // Take-off: q_N > 0, r = 0.
+        let p = one_contact([1., 0., 0., 0., 1., 0., 0., 0., 1.], [1., 2., 0.], 0.5);
+        assert_eq!(natural_map_error(&p, &[0.0; 3], &mut u), 0.0);
+    }
+
+    #[test]
+    fn error_of_zero_reaction_on_penetrating_contact() {
+        // r = 0, u = q = (-1, 0, 0): r - ũ = (1, 0, 0) is in K, so the residual is 1 and
+        // the scale max(||q||, 0, ||u||) = 1.
+        let p = one_contact([1., 0., 0., 0., 1., 0., 0., 0., 1.], [-1., 0., 0.], 0.5);
+        let mut u = [0.0; 3];
+        assert_relative_eq!(
+            natural_map_error(&p, &[0.0; 3], &mut u),
+            1.0,
+            epsilon = 1e-15
+        );
+        assert_eq!(u, [-1.0, 0.0, 0.0]);
+    }
+}
+
+/// Dumont's global criterion (37) of `(r, u)`, `u = W r + q`, with `u_solved` the velocities the
+/// contacts were solved with during the sweep:
+/// `(1/nc) sum_c ( ||u_solved_c - u_c|| + ||r_c - P_K(r_c)|| + |u_c·r_c + mu r_N ||u_T||| + max(0, -u_N) )`.
+///
+/// The paper's `ũ` is the velocity the contact law acts on, our `u` (not the De Saxcé velocity,
+/// with which the friction work would be counted twice): `u·r + mu r_N ||u_T||` vanishes exactly
+/// on the three branches of Coulomb's law for an `r` in its cone. Absolute, not normalised.
+pub fn dumont_criterion(r: &[f64], u: &[f64], u_solved: &[f64], mu: &[f64]) -> f64 {
+    let nc = mu.len();
+    if nc == 0 {
+        return 0.0;
+    }
+    let mut sum = 0.0;
+    for (c, &m) in mu.iter().enumerate() {
+        let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+        let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
+        let us = [u_solved[3 * c], u_solved[3 * c + 1], u_solved[3 * c + 2]];
+        let motion = crate::math::linalg::norm3(&crate::math::linalg::sub3(&us, &uc));
+        let p = project_on_cone(&rc, m);
+        let proj = crate::math::linalg::norm3(&crate::math::linalg::sub3(&rc, &p));
+        let ut_norm = crate::math::linalg::norm2(uc[1], uc[2]);
+        let bipotential = (crate::math::linalg::dot3(&uc, &rc) + m * rc[0] * ut_norm).abs();
+        let penetration = (-uc[0]).max(0.0);
+        sum += motion + proj + bipotential + penetration;
+    }
+    sum / nc as f64
+}

@@ -1,0 +1,139 @@
+//! The entry point of every solve: the input checks shared by all families, the rescaling, the
+//! trivial-case shortcut, the dispatch, and the one post-processing path that measures the error
+//! of the returned `(r, u)` and sets the status from it.
+
+use crate::config::{scalar_factors, Rescaling, SolverConfig};
+use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
+use crate::error::{check_finite, Fc3dError};
+use crate::measure::natural_map_error;
+use crate::problem::FrictionProblem;
+
+/// Solves `problem` from the initial guess in `r`; on success `r` and `u = W r + q` hold the
+/// result and the report holds the error measured on them.
+///
+/// On `Err`, `r` and `u` are left untouched.
+pub fn solve(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+) -> Result<SolveReport, Fc3dError> {
+    solve_with_observer(problem, config, r, u, &mut |_| {})
+}
+
+/// [`solve`] with an observer called after every iteration (the C `Callback`). Under a
+/// rescaling the observer sees iterates mapped back to the host's units.
+pub fn solve_with_observer(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolveReport, Fc3dError> {
+    let n = problem.size();
+    if r.len() != n {
+        return Err(Fc3dError::dims("reaction", n, r.len()));
+    }
+    if u.len() != n {
+        return Err(Fc3dError::dims("velocity", n, u.len()));
+    }
+    check_finite("initial reaction", r)?;
+    config.validate()?;
+    let outcome = match config.rescaling {
+        Rescaling::None => run(problem, config, r, u, observer)?,
+        Rescaling::Scalar => run_rescaled(problem, config, r, observer)?,
+    };
+    Ok(finish(problem, config, outcome, r, u))
+}
+
+/// Runs the configured family on `problem`, after the trivial case (Siconos): when no contact is
+/// pushed into penetration by q, the answer is r = 0, u = q.
+fn run(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    if problem.q().chunks_exact(3).all(|qc| qc[0] >= -f64::EPSILON) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        return Ok(SolverOutcome::stopped(0, false));
+    }
+    config
+        .method
+        .family()
+        .run(problem, &config.limits(), r, u, observer)
+}
+
+/// [`run`] on FC(s W, t q, mu) with the factors of [`scalar_factors`]; `r` is mapped to and from
+/// the rescaled units, and nothing measured in those units is passed on as the host's error.
+fn run_rescaled(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    let n = problem.size();
+    let (s, t) = scalar_factors(problem);
+    let scaled_q: Vec<f64> = problem.q().iter().map(|v| t * v).collect();
+    let scaled = FrictionProblem::new(problem.w().scaled(s), scaled_q, problem.mu().to_vec())?;
+    let to_host = s / t;
+    let mut r_s: Vec<f64> = r.iter().map(|v| v / to_host).collect();
+    let mut u_s = vec![0.0; n];
+    let mut host_r = vec![0.0; n];
+    let mut mapped = |ev: &IterationEvent<'_>| {
+        for (h, v) in host_r.iter_mut().zip(ev.reaction) {
+            *h = to_host * v;
+        }
+        observer(&IterationEvent {
+            iteration: ev.iteration,
+            reaction: &host_r,
+            error: ev.error,
+        });
+    };
+    let outcome = run(&scaled, config, &mut r_s, &mut u_s, &mut mapped)?;
+    for (h, v) in r.iter_mut().zip(&r_s) {
+        *h = to_host * v;
+    }
+    // Dumont's criterion is absolute: it stays in the rescaled units, where the run measured it.
+    Ok(outcome.with_final_error(None))
+}
+
+/// The post-processing every solve ends with. The reported error is always the natural-map error
+/// of the returned `(r, u)` on the host's problem and storage, whatever the solver's own stopping
+/// test was: measured here unless the family's last step measured exactly that (same function,
+/// same `r`, `u = W r + q`). The status follows from that error.
+fn finish(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    outcome: SolverOutcome,
+    r: &mut [f64],
+    u: &mut [f64],
+) -> SolveReport {
+    let mut error = match outcome.final_error {
+        Some(e) => e,
+        None => natural_map_error(problem, r, u),
+    };
+    // Last line of defence of the contract "r and u are finite": a finite r can still give an
+    // infinite W r + q (entries near the overflow threshold). Then the host gets r = 0, u = q,
+    // with the error of that pair, rather than infinities.
+    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        error = natural_map_error(problem, r, u);
+    }
+    let status = if error <= config.tolerance {
+        SolveStatus::Converged
+    } else if outcome.relaxation_converged {
+        SolveStatus::RelaxationNotCoulomb
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    SolveReport {
+        status,
+        iterations: outcome.iterations,
+        error,
+        dumont_criterion: outcome.dumont_criterion,
+    }
+}

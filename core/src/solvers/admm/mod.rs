@@ -1,0 +1,396 @@
+//! ADMM on the local formulation (Siconos' `fc3d_admm`, id 523).
+//!
+//! With De Saxcé's term `s(u)_c = (mu_c ||u_{T,c}||, 0, 0)` frozen at the last velocity, r solves
+//! FC(W, q, mu) iff `0 ∈ W r + q + s + N_K(r)`. ADMM splits `r = z`, `z ∈ K` (scaled dual `ξ`):
+//!
+//! * `x = (W + rho I)^{-1} (rho (ẑ - ξ̂) - q - s)` (the resolvent of the affine part: valid for
+//!   a non-symmetric W, which is never symmetrized);
+//! * `z = P_K(x + ξ̂)`;
+//! * `ξ = ξ̂ + x - z`;
+//! * `u = W z + q`, `s = s(u)` (Siconos' UPDATE_S = yes); the returned reaction is `z`.
+//!
+//! At a fixed point `rho ξ = -(W z + q + s) ∈ N_K(z)`, which is the frictional contact law.
+//! `(ẑ, ξ̂)` are the previous iterates, or their Nesterov extrapolation when accelerated (fast ADMM
+//! of Goldstein-O'Donoghue-Setzer-Baraniuk, with the optional restart on the combined residual).
+//! The penalty rho starts from a given value, `||W||_inf`, or `sqrt(lambda_max lambda_min)` of W,
+//! and may follow residual balancing (Boyd et al. §3.4.1). `W + rho I` is factored with faer's
+//! sparse LU once per rho value (symbolic analysis once per solve).
+
+mod settings;
+
+pub use settings::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, MatMut, Par};
+
+use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::error::Fc3dError;
+use crate::math::cone::{modified_velocity, project_on_cone};
+use crate::math::linalg::{bounded, distance_sq, norm};
+use crate::measure::natural_map_error_of;
+use crate::problem::FrictionProblem;
+
+impl Family for AdmmOptions {
+    fn name(&self) -> &'static str {
+        "ADMM"
+    }
+
+    fn label(&self) -> String {
+        "ADMM".to_string()
+    }
+
+    fn siconos_id(&self) -> i32 {
+        523
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-6, 20000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        AdmmOptions::validate(self)
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        admm(problem, self, limits, r, u, observer)
+    }
+}
+
+/// `W + rho I` in CSC with its LU; the diagonal positions let a new rho be set without rebuilding.
+struct ShiftedSystem {
+    matrix: SparseColMat<usize, f64>,
+    diagonal_positions: Vec<usize>,
+    shift: f64,
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+    factor_scratch: MemBuffer,
+    solve_scratch: MemBuffer,
+    factored: bool,
+}
+
+impl ShiftedSystem {
+    fn new(problem: &FrictionProblem<'_>) -> Result<Self, Fc3dError> {
+        let n = problem.size();
+        let mut triplets = Vec::new();
+        problem.w().for_each_entry(|i, j, v| {
+            if v != 0.0 {
+                triplets.push(Triplet::new(i, j, v));
+            }
+        });
+        // Structural diagonal, so that every shift has the same pattern.
+        triplets.extend((0..n).map(|i| Triplet::new(i, i, 0.0)));
+        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: W + rho I: {e:?}")))?;
+        let sym = matrix.symbolic();
+        let mut diagonal_positions = vec![0; n];
+        for (j, pos) in diagonal_positions.iter_mut().enumerate() {
+            let range = sym.col_ptr()[j]..sym.col_ptr()[j + 1];
+            *pos = range
+                .clone()
+                .find(|&k| sym.row_idx()[k] == j)
+                .expect("the diagonal was inserted");
+        }
+        let symbolic = factorize_symbolic_lu(sym, Default::default())
+            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: symbolic LU: {e:?}")))?;
+        let factor_scratch = MemBuffer::try_new(
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: LU scratch: {e:?}")))?;
+        let solve_scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: LU scratch: {e:?}")))?;
+        Ok(ShiftedSystem {
+            matrix,
+            diagonal_positions,
+            shift: 0.0,
+            symbolic,
+            numeric: NumericLu::new(),
+            factor_scratch,
+            solve_scratch,
+            factored: false,
+        })
+    }
+
+    /// Factors `W + shift I`; false when the LU fails (singular matrix).
+    fn factor(&mut self, shift: f64) -> bool {
+        let delta = shift - self.shift;
+        let values = self.matrix.val_mut();
+        for &p in &self.diagonal_positions {
+            values[p] += delta;
+        }
+        self.shift = shift;
+        self.factored = self
+            .symbolic
+            .factorize_numeric_lu(
+                &mut self.numeric,
+                self.matrix.as_ref(),
+                Par::Seq,
+                MemStack::new(&mut self.factor_scratch),
+                Default::default(),
+            )
+            .is_ok();
+        self.factored
+    }
+
+    /// `x <- (W + shift I)^{-1} x`.
+    fn solve_in_place(&mut self, x: &mut [f64]) {
+        let n = x.len();
+        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
+        let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
+        lu.solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut self.solve_scratch),
+        );
+    }
+}
+
+/// Modulus of the dominant eigenvalue of `apply` by power iterations from `x` (overwritten).
+fn power_iteration(x: &mut [f64], y: &mut [f64], mut apply: impl FnMut(&[f64], &mut [f64])) -> f64 {
+    let n = x.len() as f64;
+    x.iter_mut().for_each(|v| *v = 1.0 / n.sqrt());
+    let mut lambda = 0.0;
+    for _ in 0..100 {
+        apply(x, y);
+        let ny = norm(y);
+        if !(ny > 0.0 && ny.is_finite()) {
+            return ny;
+        }
+        x.iter_mut().zip(y.iter()).for_each(|(a, b)| *a = b / ny);
+        let converged = (ny - lambda).abs() <= 1e-8 * ny;
+        lambda = ny;
+        if converged {
+            break;
+        }
+    }
+    lambda
+}
+
+/// See [`AdmmInitialRho::Eigenvalues`].
+const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
+
+fn initial_rho(
+    problem: &FrictionProblem<'_>,
+    options: &AdmmOptions,
+    system: &mut ShiftedSystem,
+    work: (&mut [f64], &mut [f64]),
+) -> f64 {
+    let (x, y) = work;
+    match options.initial_rho {
+        AdmmInitialRho::Given => options.rho,
+        AdmmInitialRho::NormInf => {
+            let mut row_sums = vec![0.0; problem.size()];
+            problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
+            let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
+            if norm_inf > 0.0 && norm_inf.is_finite() {
+                norm_inf
+            } else {
+                options.rho
+            }
+        }
+        AdmmInitialRho::Eigenvalues => {
+            let w = problem.w();
+            let lambda_max = power_iteration(x, y, |a, b| {
+                b.iter_mut().for_each(|v| *v = 0.0);
+                w.mul_add(a, b);
+            });
+            if !(lambda_max > 0.0 && lambda_max.is_finite()) {
+                return options.rho;
+            }
+            let floor = EIGENVALUE_RATIO_FLOOR * lambda_max;
+            let lambda_min = if system.factor(0.0) {
+                let inverse_max = power_iteration(x, y, |a, b| {
+                    b.copy_from_slice(a);
+                    system.solve_in_place(b);
+                });
+                if inverse_max.is_finite() && inverse_max > 0.0 {
+                    (1.0 / inverse_max).max(floor)
+                } else {
+                    floor
+                }
+            } else {
+                floor
+            };
+            (lambda_max * lambda_min).sqrt()
+        }
+    }
+}
+
+/// `s_c = (mu_c ||u_{T,c}||, 0, 0)`.
+fn de_saxce_term(mu: &[f64], u: &[f64], s: &mut [f64]) {
+    for (c, &m) in mu.iter().enumerate() {
+        let k = 3 * c;
+        let ut = modified_velocity(&[u[k], u[k + 1], u[k + 2]], m);
+        s[k] = ut[0] - u[k];
+        s[k + 1] = 0.0;
+        s[k + 2] = 0.0;
+    }
+}
+
+/// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`.
+fn admm(
+    problem: &FrictionProblem<'_>,
+    options: &AdmmOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    options.validate()?;
+    let n = problem.size();
+    let (q, mu) = (problem.q(), problem.mu());
+    let run = limits.start();
+    let mut system = ShiftedSystem::new(problem)?;
+
+    // Work vectors, allocated once.
+    let mut x = vec![0.0; n];
+    let mut xi = vec![0.0; n];
+    let mut z_prev = vec![0.0; n];
+    let mut xi_prev = vec![0.0; n];
+    let mut z_hat = vec![0.0; n];
+    let mut xi_hat = vec![0.0; n];
+    let mut s = vec![0.0; n];
+    let mut scratch = vec![0.0; n];
+
+    let mut rho = initial_rho(problem, options, &mut system, (&mut x, &mut scratch));
+    if !(rho > 0.0 && rho.is_finite()) {
+        rho = 1.0;
+    }
+    if !system.factor(rho) {
+        return Err(Fc3dError::InvalidStructure(format!(
+            "ADMM: W + rho I is singular for rho = {rho}"
+        )));
+    }
+
+    // Start from the given reaction, projected on K (z must be feasible).
+    for (c, &m) in mu.iter().enumerate() {
+        let k = 3 * c;
+        let p = project_on_cone(&[r[k], r[k + 1], r[k + 2]], m);
+        r[k..k + 3].copy_from_slice(&p);
+    }
+    problem.velocity(r, u);
+    de_saxce_term(mu, u, &mut s);
+    z_prev.copy_from_slice(r);
+    z_hat.copy_from_slice(r);
+
+    let mut alpha = 1.0_f64;
+    let mut combined_prev = f64::INFINITY;
+
+    for iteration in 1..=run.max_iter {
+        // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s.
+        for i in 0..n {
+            x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - s[i];
+        }
+        system.solve_in_place(&mut x);
+        if !bounded(&x) {
+            // Diverging, or the factorization lost all accuracy: keep the last z (r and
+            // u = W r + q are still those of the previous iteration) and stop.
+            return Ok(SolverOutcome::stopped(iteration, false));
+        }
+        // z- and dual updates; r holds z.
+        for (c, &m) in mu.iter().enumerate() {
+            let k = 3 * c;
+            let v = [
+                x[k] + xi_hat[k],
+                x[k + 1] + xi_hat[k + 1],
+                x[k + 2] + xi_hat[k + 2],
+            ];
+            r[k..k + 3].copy_from_slice(&project_on_cone(&v, m));
+        }
+        for i in 0..n {
+            xi[i] = xi_hat[i] + x[i] - r[i];
+        }
+        problem.velocity(r, u);
+        de_saxce_term(mu, u, &mut s);
+        let error = natural_map_error_of(problem, r, u);
+        observer(&IterationEvent {
+            iteration,
+            reaction: r,
+            error,
+        });
+        if let Some(outcome) = run.end_of_iteration(iteration, error <= run.tolerance) {
+            return Ok(outcome);
+        }
+
+        let primal = distance_sq(&x, r).sqrt();
+        let dual = rho * distance_sq(r, &z_hat).sqrt();
+
+        // Next extrapolation point.
+        let combined = primal * primal + dual * dual;
+        match options.acceleration {
+            AdmmAcceleration::None => {
+                z_hat.copy_from_slice(r);
+                xi_hat.copy_from_slice(&xi);
+            }
+            AdmmAcceleration::Accelerated if combined < options.restart_eta * combined_prev => {
+                let alpha_next = 0.5 * (1.0 + (1.0 + 4.0 * alpha * alpha).sqrt());
+                let beta = (alpha - 1.0) / alpha_next;
+                for i in 0..n {
+                    z_hat[i] = r[i] + beta * (r[i] - z_prev[i]);
+                    xi_hat[i] = xi[i] + beta * (xi[i] - xi_prev[i]);
+                }
+                alpha = alpha_next;
+                combined_prev = combined;
+            }
+            AdmmAcceleration::Accelerated => {
+                // Restart from the previous iterate.
+                alpha = 1.0;
+                z_hat.copy_from_slice(&z_prev);
+                xi_hat.copy_from_slice(&xi_prev);
+                combined_prev /= options.restart_eta;
+            }
+        }
+        z_prev.copy_from_slice(r);
+        xi_prev.copy_from_slice(&xi);
+
+        // Penalty update (residual balancing); the scaled dual follows rho so that rho ξ is kept.
+        let (p, d) = match options.rho_strategy {
+            AdmmRhoStrategy::Constant => continue,
+            AdmmRhoStrategy::ResidualBalancing => (primal, dual),
+            AdmmRhoStrategy::ScaledResidualBalancing => {
+                let scale_p = norm(&x).max(norm(r));
+                let scale_d = rho * norm(&xi);
+                (
+                    if scale_p > 0.0 {
+                        primal / scale_p
+                    } else {
+                        primal
+                    },
+                    if scale_d > 0.0 { dual / scale_d } else { dual },
+                )
+            }
+        };
+        let factor = if p > options.balancing_phi * d {
+            options.balancing_tau
+        } else if d > options.balancing_phi * p {
+            1.0 / options.balancing_tau
+        } else {
+            continue;
+        };
+        let new_rho = rho * factor;
+        if !(new_rho.is_finite() && new_rho > 0.0 && system.factor(new_rho)) {
+            // Keep the current factorization.
+            system.factor(rho);
+            continue;
+        }
+        rho = new_rho;
+        for v in [&mut xi, &mut xi_hat, &mut xi_prev] {
+            v.iter_mut().for_each(|e| *e /= factor);
+        }
+        // Momentum does not carry over a change of metric.
+        alpha = 1.0;
+        combined_prev = f64::INFINITY;
+        z_hat.copy_from_slice(r);
+        xi_hat.copy_from_slice(&xi);
+    }
+    Ok(run.exhausted())
+}

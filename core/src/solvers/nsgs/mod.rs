@@ -1,0 +1,152 @@
+//! Nonsmooth Gauss-Seidel (NSGS, Algorithm 7): sweep over contacts, solve each one-contact problem
+//! FC(W_cc, q_c + sum_{b != c} W_cb r_b, mu_c) with the chosen local solver, and write its
+//! reaction back (relaxed by omega when asked) before moving to the next contact.
+//!
+//! Sweep options, all off by default: over-relaxation (PSOR), shuffled contact order, freezing of
+//! contacts that stopped moving, adaptive local tolerance, a stopping test every k sweeps, and
+//! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
+//! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
+
+mod settings;
+mod sweeper;
+
+pub use settings::{ContactOrder, LocalTolerance, NsgsOptions};
+pub use sweeper::Sweeper;
+
+use crate::contract::{
+    BestIterate, ErrorSchedule, Family, IterationEvent, Limits, Measure, Observer, SolverOutcome,
+};
+use crate::error::Fc3dError;
+use crate::measure::natural_map_error;
+use crate::problem::FrictionProblem;
+
+impl Family for NsgsOptions {
+    fn name(&self) -> &'static str {
+        "NSGS"
+    }
+
+    fn label(&self) -> String {
+        format!("NSGS/{}", self.local.kind.siconos_id())
+    }
+
+    fn siconos_id(&self) -> i32 {
+        500
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-4, 1000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        NsgsOptions::validate(self)
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        nsgs(problem, self, limits, r, u, observer)
+    }
+}
+
+/// Runs NSGS from the reaction in `r`. `u` is used as work space; the caller recomputes
+/// `u = W r + q` and the final error.
+pub(crate) fn nsgs(
+    problem: &FrictionProblem<'_>,
+    options: &NsgsOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    // Everything that can fail happens before r is touched.
+    let mut sweeper = Sweeper::with_options(problem, options, limits.tolerance)?;
+    let (q, mu) = (problem.q(), problem.mu());
+    let nc = problem.n_contacts().max(1) as f64;
+    let run = limits.start();
+    let tol = run.tolerance;
+    let mut schedule = ErrorSchedule::new(
+        options.error_evaluation,
+        tol,
+        options.evaluation_frequency,
+        run.max_iter,
+    );
+    // Under a time budget the run may be cut at any sweep: the best iterate measured is kept
+    // (its copy allocated once, here).
+    let mut best = run.deadline().map(|_| BestIterate::new(r, f64::INFINITY));
+
+    let mut last_measured = None;
+    let mut dumont = None;
+    for iteration in 1..=run.max_iter {
+        let increment_sq = sweeper.sweep(q, mu, r);
+        let test = schedule.test(iteration, increment_sq, r, |measure| match measure {
+            Measure::NaturalMap => natural_map_error(problem, r, u),
+            Measure::DumontCriterion => {
+                let e = sweeper.dumont_criterion(problem, r, u);
+                dumont = Some(e);
+                e
+            }
+        });
+        let (error, full) = (test.error, test.full);
+        let mut converged = test.converged;
+        if converged && !full && sweeper.any_frozen() {
+            // A cheap test cannot see frozen contacts (they did not move because they were not
+            // visited): visit everything again before believing it.
+            sweeper.thaw();
+            converged = false;
+        }
+        if test.tested {
+            match options.local_tolerance {
+                LocalTolerance::Given => {}
+                LocalTolerance::Adaptive { ratio } => {
+                    sweeper.set_local_tolerance((error / ratio).max(tol / nc))
+                }
+                LocalTolerance::AdaptivePerContact { ratio } => {
+                    sweeper.set_local_tolerance(error / (ratio * nc))
+                }
+            }
+        }
+        if let Some(b) = best.as_mut() {
+            // Measure every iterate so the one returned is the best seen, not merely the last
+            // one measured.
+            let e = if full {
+                error
+            } else {
+                sweeper.natural_map_error(problem, r, u)
+            };
+            b.offer(r, e);
+        }
+        observer(&IterationEvent {
+            iteration,
+            reaction: r,
+            error,
+        });
+        let measured = full.then_some(error);
+        if test.tested {
+            last_measured = measured;
+        }
+        if let Some(outcome) = run.end_of_iteration(iteration, converged) {
+            let outcome = if outcome.out_of_time {
+                if let Some(b) = &best {
+                    // b holds the best measured iterate, the current one included.
+                    b.restore(r);
+                }
+                outcome
+            } else {
+                outcome.with_final_error(measured)
+            };
+            return Ok(SolverOutcome {
+                dumont_criterion: dumont,
+                ..outcome
+            });
+        }
+    }
+    Ok(SolverOutcome {
+        dumont_criterion: dumont,
+        ..run.exhausted().with_final_error(last_measured)
+    })
+}

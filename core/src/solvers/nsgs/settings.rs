@@ -1,0 +1,101 @@
+//! Settings of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500) beyond the common
+//! limits, with Siconos' defaults.
+
+use crate::contract::ErrorEvaluation;
+use crate::error::{require_setting, Fc3dError};
+use crate::local::{LocalSolverKind, LocalSolverOptions};
+
+/// How the local solver's tolerance is set during NSGS (Siconos iparam[2], ratio in dparam[2]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LocalTolerance {
+    /// The local solver's own tolerance, fixed (Siconos' default, "given value").
+    Given,
+    /// After each measured sweep: `max(error / ratio, tolerance / n_contacts)` ("adaptive").
+    Adaptive { ratio: f64 },
+    /// After each measured sweep: `error / (ratio * n_contacts)` ("adaptive per contact").
+    AdaptivePerContact { ratio: f64 },
+}
+
+/// Order in which a sweep visits the contacts (Siconos iparam[5], seed iparam[6]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactOrder {
+    /// Contacts in index order (default).
+    Natural,
+    /// One random permutation drawn from `seed` before the first sweep.
+    ShuffledOnce { seed: u64 },
+    /// A new random permutation before every sweep, drawn from a generator seeded with `seed`.
+    ShuffledEachSweep { seed: u64 },
+}
+
+/// Settings of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500). Its limits default to
+/// 1000 sweeps and a tolerance of 1e-4. Under a time budget NSGS stops after the sweep that
+/// spends it and returns the best iterate it measured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NsgsOptions {
+    /// Error evaluation strategy (default [`ErrorEvaluation::LightWithFullFinal`]).
+    pub error_evaluation: ErrorEvaluation,
+    /// The stopping test runs every `evaluation_frequency` sweeps (default 1; Siconos iparam[8],
+    /// where 0 also means every sweep). The last allowed sweep is always tested.
+    pub evaluation_frequency: usize,
+    /// The one-contact solver and its options (default [`LocalSolverKind::NewtonHybrid`]).
+    pub local: LocalSolverOptions,
+    /// How the local tolerance evolves (default [`LocalTolerance::Given`]).
+    pub local_tolerance: LocalTolerance,
+    /// Over-relaxation (PSOR): each contact takes `omega r_new + (1 - omega) r_old`, projected on
+    /// its cone when `omega > 1` would leave it. `None` (default) is plain Gauss-Seidel. `omega`
+    /// must lie in (0, 2).
+    pub relaxation: Option<f64>,
+    /// Contact visiting order (default [`ContactOrder::Natural`]).
+    pub order: ContactOrder,
+    /// Freezing: a contact whose reaction moved by less than `tolerance * ||r_c||` in a sweep is
+    /// skipped for this many following sweeps (default `None`: never frozen). Convergence is
+    /// always confirmed on all contacts.
+    pub freezing: Option<usize>,
+}
+
+impl Default for NsgsOptions {
+    fn default() -> Self {
+        NsgsOptions {
+            error_evaluation: ErrorEvaluation::LightWithFullFinal,
+            evaluation_frequency: 1,
+            local: LocalSolverOptions::default(),
+            local_tolerance: LocalTolerance::Given,
+            relaxation: None,
+            order: ContactOrder::Natural,
+            freezing: None,
+        }
+    }
+}
+
+impl NsgsOptions {
+    /// Default options with another local solver.
+    pub fn with_local(kind: LocalSolverKind) -> Self {
+        NsgsOptions {
+            local: LocalSolverOptions::new(kind),
+            ..Default::default()
+        }
+    }
+
+    pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
+        self.local.validate()?;
+        if let Some(omega) = self.relaxation {
+            require_setting(
+                omega > 0.0 && omega < 2.0,
+                "nsgs.relaxation",
+                omega,
+                "in (0, 2)",
+            )?;
+        }
+        match self.local_tolerance {
+            LocalTolerance::Given => Ok(()),
+            LocalTolerance::Adaptive { ratio } | LocalTolerance::AdaptivePerContact { ratio } => {
+                require_setting(
+                    ratio > 0.0 && ratio.is_finite(),
+                    "nsgs.local_tolerance.ratio",
+                    ratio,
+                    "finite and > 0",
+                )
+            }
+        }
+    }
+}

@@ -1,0 +1,348 @@
+//! Nonsmooth Newton methods (Algorithm 4, Table 2 of Acary-Brémond-Huber): Newton on
+//! `F(r) = 0` for the Alart-Curnier, Jean-Moreau, Fischer-Burmeister or natural-map function,
+//! with `J = A + B W` assembled on W's fixed block pattern and solved with faer's sparse LU
+//! (symbolic factorization reused), globalised by a line search on `||F||^2 / 2`.
+//!
+//! A failed factorization or a non-finite step is retried with a growing diagonal shift, then
+//! replaced by the fixed-point direction `-F` (for the natural map `r - F(r)` is the projected
+//! step); a step is only taken if its merit is finite, so r stays finite. A run that does not
+//! converge returns the best iterate it measured.
+
+mod jacobian;
+mod linesearch;
+mod settings;
+mod sparse;
+
+pub use settings::{NsnFormulation, NsnLineSearch, NsnOptions, NONMONOTONE_MEMORY};
+
+use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
+use crate::error::Fc3dError;
+use crate::math::linalg::{norm, Mat3, Vec3};
+use crate::matrix::BlockSparseMatrix;
+use crate::measure::{absolute_natural_map_residual, relative_scale};
+use crate::problem::FrictionProblem;
+use jacobian::{residual, ContactData};
+use sparse::NewtonMatrix;
+
+/// Diagonal shifts tried, relative to the largest diagonal entry of W, when the Newton matrix
+/// cannot be factored or gives a non-finite step.
+const REGULARIZATION_SHIFTS: [f64; 4] = [1e-12, 1e-9, 1e-6, 1e-3];
+
+/// How a [`NewtonSolver::run`] ended.
+pub(crate) struct RunOutcome {
+    pub iterations: usize,
+    pub converged: bool,
+    pub out_of_time: bool,
+    /// Relative natural-map error of the returned r (for the problem that was solved).
+    pub error: f64,
+}
+
+/// Everything a Newton solve needs, allocated once: W's block copy, the Newton matrix with its
+/// symbolic factorization, and the work vectors. Reusable for problems `(W + shift I, q', mu)`
+/// with the same W (the proximal point method solves a sequence of them).
+pub(crate) struct NewtonSolver {
+    options: NsnOptions,
+    w: BlockSparseMatrix,
+    matrix: NewtonMatrix,
+    data: Vec<ContactData>,
+    a: Vec<Mat3>,
+    b: Vec<Mat3>,
+    f: Vec<f64>,
+    d: Vec<f64>,
+    wd: Vec<f64>,
+    best_r: Vec<f64>,
+    /// max_c max_i |W_cc[i][i]|: the scale of the regularization shifts.
+    diagonal_scale: f64,
+}
+
+impl NewtonSolver {
+    pub fn new(problem: &FrictionProblem<'_>, options: &NsnOptions) -> Result<Self, Fc3dError> {
+        options.validate()?;
+        let w = problem.w().to_block_sparse()?;
+        let matrix = NewtonMatrix::new(&w)?;
+        let n = problem.size();
+        let nc = problem.n_contacts();
+        let mut diagonal_scale = 0.0_f64;
+        for c in 0..nc {
+            let blk = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
+            for (i, row) in blk.iter().enumerate() {
+                diagonal_scale = diagonal_scale.max(row[i].abs());
+            }
+        }
+        Ok(NewtonSolver {
+            options: *options,
+            w,
+            matrix,
+            data: vec![
+                ContactData {
+                    mu: 0.0,
+                    rho_n: 1.0,
+                    rho_t: 1.0
+                };
+                nc
+            ],
+            a: vec![[[0.0; 3]; 3]; nc],
+            b: vec![[[0.0; 3]; 3]; nc],
+            f: vec![0.0; n],
+            d: vec![0.0; n],
+            wd: vec![0.0; n],
+            best_r: vec![0.0; n],
+            diagonal_scale: if diagonal_scale > 0.0 {
+                diagonal_scale
+            } else {
+                1.0
+            },
+        })
+    }
+
+    /// `u <- (W + shift I) r + q`.
+    fn velocity(&self, q: &[f64], shift: f64, r: &[f64], u: &mut [f64]) {
+        u.copy_from_slice(q);
+        self.w.mul_add(r, u);
+        if shift != 0.0 {
+            u.iter_mut().zip(r).for_each(|(ui, ri)| *ui += shift * ri);
+        }
+    }
+
+    /// F, A, B at (r, u); returns the merit `||F||^2 / 2`.
+    fn evaluate(&mut self, r: &[f64], u: &[f64]) -> f64 {
+        let form = self.options.formulation;
+        let mut sum = 0.0;
+        for (c, d) in self.data.iter().enumerate() {
+            let (f, a, b) = residual(form, &take3(r, c), &take3(u, c), d);
+            self.f[3 * c..3 * c + 3].copy_from_slice(&f);
+            self.a[c] = a;
+            self.b[c] = b;
+            sum += f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+        }
+        0.5 * sum
+    }
+
+    /// Solves FC(W + shift I, q, mu) from `r` by Newton, within the limits of `run` (its
+    /// tolerance on the relative natural-map error normalised by `||q||` of this q). `u`
+    /// receives `(W + shift I) r + q`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn run(
+        &mut self,
+        q: &[f64],
+        mu: &[f64],
+        shift: f64,
+        run: &Run,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> RunOutcome {
+        let form = self.options.formulation;
+        for (c, d) in self.data.iter_mut().enumerate() {
+            let mut wcc = self.w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
+            for (i, row) in wcc.iter_mut().enumerate() {
+                row[i] += shift;
+            }
+            let (rho_n, rho_t) = crate::local::local_rho(&wcc, self.options.rho_rule);
+            *d = ContactData {
+                mu: mu[c],
+                rho_n,
+                rho_t,
+            };
+        }
+        let norm_q = norm(q);
+        let error_of = |r: &[f64], u: &[f64]| {
+            absolute_natural_map_residual(r, u, mu) / relative_scale(norm_q, r, u)
+        };
+
+        self.velocity(q, shift, r, u);
+        let mut merit = self.evaluate(r, u);
+        let mut error = error_of(r, u);
+        let mut best_error = error;
+        self.best_r.copy_from_slice(r);
+        let mut history = [merit; NONMONOTONE_MEMORY];
+        let mut outcome = RunOutcome {
+            iterations: 0,
+            converged: error <= run.tolerance,
+            out_of_time: false,
+            error,
+        };
+        if outcome.converged {
+            return outcome;
+        }
+        for iteration in 1..=run.max_iter {
+            // Newton direction J d = -F, regularised if needed, else the fixed-point direction.
+            let mut found = false;
+            for shift_try in std::iter::once(0.0).chain(REGULARIZATION_SHIFTS) {
+                self.matrix.fill(
+                    &self.w,
+                    &self.a,
+                    &self.b,
+                    shift,
+                    shift_try * self.diagonal_scale,
+                );
+                self.d
+                    .iter_mut()
+                    .zip(&self.f)
+                    .for_each(|(di, fi)| *di = -fi);
+                if self.matrix.solve(&mut self.d) {
+                    found = true;
+                    break;
+                }
+            }
+            if !found {
+                self.d
+                    .iter_mut()
+                    .zip(&self.f)
+                    .for_each(|(di, fi)| *di = -fi);
+            }
+            self.wd.iter_mut().for_each(|v| *v = 0.0);
+            self.w.mul_add(&self.d, &mut self.wd);
+            if shift != 0.0 {
+                let d = &self.d;
+                self.wd
+                    .iter_mut()
+                    .zip(d)
+                    .for_each(|(w, di)| *w += shift * di);
+            }
+            // q'(0) = F . J d with J d = A d + B W d, contact by contact.
+            let mut slope = 0.0;
+            for c in 0..self.data.len() {
+                let jd = add3m(
+                    &self.a[c],
+                    &take3(&self.d, c),
+                    &self.b[c],
+                    &take3(&self.wd, c),
+                );
+                let fc = take3(&self.f, c);
+                slope += fc[0] * jd[0] + fc[1] * jd[1] + fc[2] * jd[2];
+            }
+            let reference = history.iter().copied().fold(merit, f64::max);
+            let (data, d, wd) = (&self.data, &self.d, &self.wd);
+            let mut trial_merit = |t: f64| {
+                let mut sum = 0.0;
+                for (c, dc) in data.iter().enumerate() {
+                    let rc = axpy(t, &take3(d, c), &take3(r, c));
+                    let uc = axpy(t, &take3(wd, c), &take3(u, c));
+                    let (f, _, _) = residual(form, &rc, &uc, dc);
+                    sum += f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+                }
+                0.5 * sum
+            };
+            let step = linesearch::search(
+                self.options.line_search,
+                merit,
+                slope,
+                reference,
+                self.options.line_search_max_iter,
+                &mut trial_merit,
+            );
+            outcome.iterations = iteration;
+            let Some(step) = step else {
+                // No finite trial point: keep r and stop.
+                break;
+            };
+            r.iter_mut()
+                .zip(&self.d)
+                .for_each(|(ri, di)| *ri += step.t * di);
+            self.velocity(q, shift, r, u);
+            merit = self.evaluate(r, u);
+            history[iteration % NONMONOTONE_MEMORY] = merit;
+            error = error_of(r, u);
+            if error < best_error {
+                best_error = error;
+                self.best_r.copy_from_slice(r);
+            }
+            observer(&IterationEvent {
+                iteration,
+                reaction: r,
+                error,
+            });
+            if let Some(stop) = run.end_of_iteration(iteration, error <= run.tolerance) {
+                if !stop.out_of_time {
+                    outcome.converged = true;
+                    outcome.error = error;
+                    return outcome;
+                }
+                outcome.out_of_time = true;
+                break;
+            }
+        }
+        if best_error < error || !error.is_finite() {
+            r.copy_from_slice(&self.best_r);
+            self.velocity(q, shift, r, u);
+            error = best_error;
+        }
+        outcome.error = error;
+        outcome
+    }
+}
+
+#[inline]
+fn take3(x: &[f64], c: usize) -> Vec3 {
+    [x[3 * c], x[3 * c + 1], x[3 * c + 2]]
+}
+
+#[inline]
+fn axpy(t: f64, x: &Vec3, y: &Vec3) -> Vec3 {
+    [y[0] + t * x[0], y[1] + t * x[1], y[2] + t * x[2]]
+}
+
+/// `a x + b y`.
+#[inline]
+fn add3m(a: &Mat3, x: &Vec3, b: &Mat3, y: &Vec3) -> Vec3 {
+    let mut out = [0.0; 3];
+    for i in 0..3 {
+        out[i] = a[i][0] * x[0]
+            + a[i][1] * x[1]
+            + a[i][2] * x[2]
+            + b[i][0] * y[0]
+            + b[i][1] * y[1]
+            + b[i][2] * y[2];
+    }
+    out
+}
+
+impl Family for NsnOptions {
+    fn presets() -> Vec<Self> {
+        [
+            NsnFormulation::AlartCurnier,
+            NsnFormulation::JeanMoreau,
+            NsnFormulation::FischerBurmeister,
+            NsnFormulation::NaturalMap,
+        ]
+        .into_iter()
+        .map(NsnOptions::new)
+        .collect()
+    }
+
+    fn name(&self) -> &'static str {
+        self.formulation.short_name()
+    }
+
+    fn label(&self) -> String {
+        NsnOptions::label(self)
+    }
+
+    fn siconos_id(&self) -> i32 {
+        self.formulation.siconos_id()
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-3, 200)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        NsnOptions::validate(self)
+    }
+
+    /// A nonsmooth Newton solve of `problem` from the reaction in `r`.
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        let mut solver = NewtonSolver::new(problem, self)?;
+        let run = limits.start();
+        let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
+        Ok(SolverOutcome::stopped(out.iterations, out.out_of_time))
+    }
+}

@@ -1,0 +1,214 @@
+//! The Newton matrix `J = A + B W` on a pattern fixed for the whole solve: W's 3x3 block pattern
+//! plus the diagonal blocks, stored column-compressed for faer's sparse LU. The symbolic
+//! factorization (fill-reducing ordering and elimination structure) is computed once; every
+//! iteration refills the values through a slot map and refactors numerically.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par};
+
+use crate::error::Fc3dError;
+use crate::math::linalg::Mat3;
+use crate::matrix::BlockSparseMatrix;
+
+pub(crate) struct NewtonMatrix {
+    n: usize,
+    pattern: SymbolicSparseColMat<usize>,
+    /// For stored block k of W (block-CSR order), the value slot of its entry (i, j) at
+    /// `slots[9 k + 3 i + j]`.
+    slots: Vec<usize>,
+    /// For each contact, the index of its diagonal block in W's block list.
+    diagonal_block: Vec<usize>,
+    values: Vec<f64>,
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+    workspace: MemBuffer,
+}
+
+impl NewtonMatrix {
+    /// The pattern of `A + B W` for block-diagonal A, B. `w` must hold every diagonal block.
+    pub fn new(w: &BlockSparseMatrix) -> Result<Self, Fc3dError> {
+        let nc = w.n_block_rows();
+        let n = 3 * nc;
+        let (row_ptr, col_idx) = (w.row_ptr(), w.col_idx());
+        let n_blocks = col_idx.len();
+        // Transpose the block structure: blocks of each block column, in increasing block row.
+        let mut col_count = vec![0usize; nc + 1];
+        for &b in col_idx {
+            col_count[b + 1] += 1;
+        }
+        for b in 0..nc {
+            col_count[b + 1] += col_count[b];
+        }
+        let mut next = col_count.clone();
+        let mut by_column = vec![(0usize, 0usize); n_blocks]; // (block row, block index)
+        let mut diagonal_block = vec![usize::MAX; nc];
+        for c in 0..nc {
+            for (k, &b) in col_idx
+                .iter()
+                .enumerate()
+                .take(row_ptr[c + 1])
+                .skip(row_ptr[c])
+            {
+                by_column[next[b]] = (c, k);
+                next[b] += 1;
+                if b == c {
+                    diagonal_block[c] = k;
+                }
+            }
+        }
+        if let Some(c) = diagonal_block.iter().position(|&k| k == usize::MAX) {
+            return Err(Fc3dError::MissingDiagonalBlock { contact: c });
+        }
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(9 * n_blocks);
+        let mut slots = vec![0usize; 9 * n_blocks];
+        col_ptr.push(0);
+        for b in 0..nc {
+            let blocks = &by_column[col_count[b]..col_count[b + 1]];
+            for j in 0..3 {
+                for &(c, k) in blocks {
+                    for i in 0..3 {
+                        slots[9 * k + 3 * i + j] = row_idx.len();
+                        row_idx.push(3 * c + i);
+                    }
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        let nnz = row_idx.len();
+        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let symbolic = factorize_symbolic_lu(pattern.as_ref(), Default::default())
+            .map_err(|e| Fc3dError::Unsupported(format!("sparse LU analysis failed: {e:?}")))?;
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        ]);
+        let workspace = MemBuffer::try_new(req)
+            .map_err(|_| Fc3dError::Unsupported("out of memory for the sparse LU".into()))?;
+        Ok(NewtonMatrix {
+            n,
+            pattern,
+            slots,
+            diagonal_block,
+            values: vec![0.0; nnz],
+            symbolic,
+            numeric: NumericLu::new(),
+            workspace,
+        })
+    }
+
+    #[allow(clippy::needless_range_loop)] // i, j index rows and columns of three arrays at once
+    /// Fills `J = A + B (W + w_shift I) + regularization I` (A, B: one 3x3 block per contact,
+    /// row-major).
+    pub fn fill(
+        &mut self,
+        w: &BlockSparseMatrix,
+        a: &[Mat3],
+        b: &[Mat3],
+        w_shift: f64,
+        regularization: f64,
+    ) {
+        let (row_ptr, col_idx, blocks) = (w.row_ptr(), w.col_idx(), w.blocks());
+        for c in 0..self.diagonal_block.len() {
+            let bc = &b[c];
+            for k in row_ptr[c]..row_ptr[c + 1] {
+                let wk = &blocks[k]; // column-major
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let v = bc[i][0] * wk[3 * j]
+                            + bc[i][1] * wk[1 + 3 * j]
+                            + bc[i][2] * wk[2 + 3 * j];
+                        self.values[self.slots[9 * k + 3 * i + j]] = v;
+                    }
+                }
+                if col_idx[k] == c {
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            self.values[self.slots[9 * k + 3 * i + j]] +=
+                                a[c][i][j] + w_shift * bc[i][j];
+                        }
+                        self.values[self.slots[9 * k + 4 * i]] += regularization;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Factors the current values and solves `J x = rhs` in place. Returns false (rhs then
+    /// unspecified) when the factorization fails or the solution is not finite.
+    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
+        debug_assert_eq!(rhs.len(), self.n);
+        if !self.values.iter().all(|v| v.is_finite()) {
+            return false;
+        }
+        let mat = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let stack = MemStack::new(&mut self.workspace);
+        let lu = match self.symbolic.factorize_numeric_lu(
+            &mut self.numeric,
+            mat,
+            Par::Seq,
+            stack,
+            Default::default(),
+        ) {
+            Ok(lu) => lu,
+            Err(_) => return false,
+        };
+        let n = self.n;
+        lu.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, n, 1),
+            Par::Seq,
+            MemStack::new(&mut self.workspace),
+        );
+        rhs.iter().all(|v| v.is_finite())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_coupled_two_contact_system() {
+        // W with an off-diagonal block in one direction only (non-symmetric pattern).
+        let d0 = [4.0, 1.0, 0.0, 0.5, 3.0, 0.2, 0.0, 0.1, 2.0];
+        let d1 = [5.0, 0.0, 1.0, 0.0, 2.0, 0.0, 0.3, 0.0, 6.0];
+        let off = [1.0, 0.0, 0.5, 0.0, -1.0, 0.0, 0.2, 0.0, 0.7];
+        let w =
+            BlockSparseMatrix::new(2, 2, vec![0, 2, 3], vec![0, 1, 1], vec![d0, off, d1]).unwrap();
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let zero = [[0.0; 3]; 3];
+        // J = 0 + I W + 0.5 I.
+        m.fill(&w, &[zero, zero], &[id, id], 0.25, 0.25);
+        let x = [1.0, -2.0, 0.5, 3.0, 0.25, -1.0];
+        let mut rhs = vec![0.0; 6];
+        let dw = crate::matrix::Delassus::SparseBlock(w.clone());
+        dw.mul_add(&x, &mut rhs);
+        for i in 0..6 {
+            rhs[i] += 0.5 * x[i];
+        }
+        assert!(m.solve(&mut rhs));
+        for i in 0..6 {
+            assert!((rhs[i] - x[i]).abs() < 1e-12, "{rhs:?}");
+        }
+        // Refill with other values on the same pattern and solve again.
+        m.fill(&w, &[id, id], &[zero, zero], 0.0, 0.0);
+        let mut rhs2 = x.to_vec();
+        assert!(m.solve(&mut rhs2));
+        assert_eq!(rhs2, x.to_vec());
+    }
+
+    #[test]
+    fn singular_matrix_is_reported() {
+        let d0 = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
+        let w = BlockSparseMatrix::new(1, 1, vec![0, 1], vec![0], vec![d0]).unwrap();
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        let zero = [[0.0; 3]; 3];
+        m.fill(&w, &[zero], &[zero], 0.0, 0.0);
+        let mut rhs = vec![1.0, 1.0, 1.0];
+        assert!(!m.solve(&mut rhs));
+    }
+}

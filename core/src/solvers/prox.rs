@@ -1,0 +1,293 @@
+//! Proximal point method (PROX, Siconos id 502; Algorithm 8 of Acary-Brémond-Huber with
+//! omega = 1): from `r_k`, solve the regularized problem FC(W + a_k I, q - a_k r_k, mu) with an
+//! internal solver (NSN-AC: PPA-NSN-AC, or NSGS: PPA-NSGS-AC) to the internal tolerance
+//! `error_k / 10` (section 6.3), take its solution as `r_{k+1}`, and update the shift by
+//! Siconos' variable rule `a_k = sigma error_k^nu` (read off Siconos 4.4's trace: its first shift
+//! is `sigma` times the error of the initial guess), capped by `alpha`.
+
+use std::time::{Duration, Instant};
+
+use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::error::{require_setting, Fc3dError};
+use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
+use crate::measure::natural_map_error;
+use crate::problem::FrictionProblem;
+use crate::solvers::nsgs::{nsgs, NsgsOptions};
+use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
+
+/// The solver of the regularized problems. Its tolerance is the internal tolerance of each
+/// proximal step; its other settings (rho, line search, local solver, ...) are used as given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ProxInternal {
+    /// Alart-Curnier nonsmooth Newton (Siconos' default, 504).
+    NsnAc(NsnOptions),
+    /// Nonsmooth Gauss-Seidel (500).
+    Nsgs(NsgsOptions),
+}
+
+impl ProxInternal {
+    fn family(&self) -> &dyn Family {
+        match self {
+            ProxInternal::NsnAc(n) => n,
+            ProxInternal::Nsgs(g) => g,
+        }
+    }
+}
+
+/// Settings of the proximal point method, Siconos 4.4's defaults. Its limits default to 1000
+/// proximal iterations and a tolerance of 1e-4.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProxOptions {
+    /// Largest diagonal shift `a_k` (Siconos' alpha, dparam[3], 1e4).
+    pub alpha: f64,
+    /// Factor of the shift rule `a_k = sigma error_k^nu` (dparam[4], 5).
+    pub sigma: f64,
+    /// Exponent of the shift rule (dparam[5], 1).
+    pub nu: f64,
+    /// Internal solver (NSN-AC with Siconos' 504 defaults).
+    pub internal: ProxInternal,
+    /// Iteration limit of each internal solve; `None` (default) takes the internal solver's own
+    /// default (200 Newton iterations, 1000 NSGS sweeps).
+    pub internal_max_iter: Option<usize>,
+}
+
+impl Default for ProxOptions {
+    fn default() -> Self {
+        ProxOptions {
+            alpha: 1e4,
+            sigma: 5.0,
+            nu: 1.0,
+            internal: ProxInternal::NsnAc(NsnOptions::new(NsnFormulation::AlartCurnier)),
+            internal_max_iter: None,
+        }
+    }
+}
+
+impl ProxOptions {
+    /// Short label: `PROX/NSN-AC` or `PROX/NSGS`.
+    pub fn label(&self) -> String {
+        match self.internal {
+            ProxInternal::NsnAc(_) => "PROX/NSN-AC".into(),
+            ProxInternal::Nsgs(_) => "PROX/NSGS".into(),
+        }
+    }
+}
+
+impl ProxOptions {
+    fn validate(&self) -> Result<(), Fc3dError> {
+        for (setting, v) in [
+            ("prox.alpha", self.alpha),
+            ("prox.sigma", self.sigma),
+            ("prox.nu", self.nu),
+        ] {
+            require_setting(v > 0.0 && v.is_finite(), setting, v, "finite and > 0")?;
+        }
+        if let ProxInternal::NsnAc(n) = &self.internal {
+            if !matches!(
+                n.formulation,
+                NsnFormulation::AlartCurnier | NsnFormulation::JeanMoreau
+            ) {
+                return Err(Fc3dError::InvalidOption(
+                    "the proximal method's Newton solver must use the Alart-Curnier or \
+                     Jean-Moreau formulation"
+                        .into(),
+                ));
+            }
+        }
+        self.internal.family().validate()
+    }
+
+    /// The iteration limit of each internal solve.
+    fn internal_max_iter(&self) -> usize {
+        self.internal_max_iter
+            .unwrap_or_else(|| self.internal.family().default_limits().1)
+    }
+}
+
+impl Family for ProxOptions {
+    fn presets() -> Vec<Self> {
+        vec![
+            ProxOptions::default(),
+            ProxOptions {
+                internal: ProxInternal::Nsgs(NsgsOptions::default()),
+                ..ProxOptions::default()
+            },
+        ]
+    }
+
+    fn name(&self) -> &'static str {
+        match self.internal {
+            ProxInternal::NsnAc(_) => "PROX",
+            ProxInternal::Nsgs(_) => "PROX-NSGS",
+        }
+    }
+
+    fn label(&self) -> String {
+        ProxOptions::label(self)
+    }
+
+    fn siconos_id(&self) -> i32 {
+        502
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-4, 1000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        ProxOptions::validate(self)
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        prox(problem, self, limits, r, u, observer)
+    }
+}
+
+/// `W + shift I` in W's own storage.
+fn shifted(w: &Delassus<'_>, shift: f64) -> Result<Delassus<'static>, Fc3dError> {
+    let n = w.nrows();
+    Ok(match w {
+        Delassus::Dense(d) => {
+            let mut data = d.values().to_vec();
+            for i in 0..n {
+                data[i + i * n] += shift;
+            }
+            Delassus::Dense(DenseMatrix::new(n, n, data)?)
+        }
+        Delassus::SparseBlock(s) => {
+            let mut blocks = s.blocks().to_vec();
+            for bi in 0..s.n_block_rows() {
+                let (start, end) = (s.row_ptr()[bi], s.row_ptr()[bi + 1]);
+                // Column-major 3x3: the diagonal is entries 0, 4, 8. Added to the first
+                // diagonal block only, should a host store it twice.
+                if let Some(k) = (start..end).find(|&k| s.col_idx()[k] == bi) {
+                    for e in [0, 4, 8] {
+                        blocks[k][e] += shift;
+                    }
+                }
+            }
+            Delassus::SparseBlock(BlockSparseMatrix::new(
+                s.n_block_rows(),
+                s.n_block_cols(),
+                s.row_ptr().to_vec(),
+                s.col_idx().to_vec(),
+                blocks,
+            )?)
+        }
+        Delassus::Sparse(s) => {
+            let mut triplets = Vec::with_capacity(s.nnz() + n);
+            s.for_each_entry(|i, j, v| triplets.push((i, j, v)));
+            triplets.extend((0..n).map(|i| (i, i, shift)));
+            Delassus::Sparse(CsrMatrix::from_triplets(n, n, &triplets)?)
+        }
+    })
+}
+
+/// Runs the proximal point method from the reaction in `r`.
+fn prox(
+    problem: &FrictionProblem<'_>,
+    options: &ProxOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    options.validate()?;
+    let mut newton = match &options.internal {
+        ProxInternal::NsnAc(n) => Some(NewtonSolver::new(problem, n)?),
+        ProxInternal::Nsgs(_) => None,
+    };
+    let internal_max_iter = options.internal_max_iter();
+    let run = limits.start();
+    let n = problem.size();
+    let mut shifted_q = vec![0.0; n];
+    let mut error = natural_map_error(problem, r, u);
+    let mut best = BestIterate::new(r, error);
+    if error <= run.tolerance {
+        return Ok(SolverOutcome::stopped(0, false));
+    }
+    let mut iterations = 0;
+    let mut out_of_time = false;
+    for iteration in 1..=run.max_iter {
+        iterations = iteration;
+        let shift = (options.sigma * error.powf(options.nu)).min(options.alpha);
+        for ((sq, q), ri) in shifted_q.iter_mut().zip(problem.q()).zip(r.iter()) {
+            *sq = q - shift * ri;
+        }
+        let internal_tol = error / 10.0;
+        match &options.internal {
+            ProxInternal::NsnAc(_) => {
+                let solver = newton.as_mut().expect("built for NSN-AC");
+                let inner = run.inner(internal_tol, internal_max_iter);
+                solver.run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
+            }
+            ProxInternal::Nsgs(g) => {
+                let inner = FrictionProblem::new(
+                    shifted(problem.w(), shift)?,
+                    shifted_q.clone(),
+                    problem.mu().to_vec(),
+                )?;
+                // What is left of the budget; an exhausted one still allows one sweep.
+                let time_budget = run.deadline().map(|d| {
+                    let left = d.saturating_duration_since(Instant::now());
+                    left.max(Duration::from_nanos(1))
+                });
+                let inner_limits = Limits {
+                    tolerance: internal_tol,
+                    max_iter: internal_max_iter,
+                    time_budget,
+                };
+                nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
+            }
+        }
+        error = natural_map_error(problem, r, u);
+        best.offer(r, error);
+        observer(&IterationEvent {
+            iteration,
+            reaction: r,
+            error,
+        });
+        if error <= run.tolerance {
+            return Ok(SolverOutcome::stopped(iterations, false));
+        }
+        if !error.is_finite() {
+            break;
+        }
+        if run.out_of_time() {
+            out_of_time = true;
+            break;
+        }
+    }
+    best.restore_if_better(r, error);
+    Ok(SolverOutcome::stopped(iterations, out_of_time))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shifted_keeps_the_storage_and_adds_to_the_diagonal() {
+        let d = DenseMatrix::new(3, 3, vec![1.0, 2.0, 0.0, 0.0, 3.0, 0.0, 0.5, 0.0, 4.0]).unwrap();
+        let w = Delassus::Dense(d);
+        let csr = Delassus::Sparse(w.to_csr());
+        let sbm = Delassus::SparseBlock(w.to_block_sparse().unwrap());
+        for m in [&w, &csr, &sbm] {
+            let s = shifted(m, 0.25).unwrap();
+            assert_eq!(s.storage_name(), m.storage_name());
+            for i in 0..3 {
+                for j in 0..3 {
+                    let extra = if i == j { 0.25 } else { 0.0 };
+                    assert_eq!(s.get(i, j), w.get(i, j) + extra);
+                }
+            }
+        }
+    }
+}
