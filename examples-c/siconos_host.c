@@ -1,7 +1,7 @@
 /* A host program written for Siconos Numerics 4.4's fc3d API, unmodified: it builds against
  * Siconos' own headers and -lsiconos_numerics, or against fc3d's compat headers and -lfc3d.
  *
- *   cc -Icapi/include/siconos-compat examples-c/siconos_host.c -Ltarget/release -lfc3d -o host_fc3d
+ *   cc -Icapi/include/siconos-compat -Icapi/include examples-c/siconos_host.c -Ltarget/release -lfc3d -o host_fc3d
  *   cc -I/usr/include/siconos/numerics -I/usr/include/siconos examples-c/siconos_host.c \
  *      -lsiconos_numerics -o host_siconos
  *   ./host_fc3d problem.dat [tolerance] [max_iter] [local_solver_id]

@@ -7,7 +7,7 @@
  * NSGS and print r, u, iterations and the error fc3d measured on the answer.
  *
  * Build (from the repository root, after `cargo build --release`):
- *   cc -std=c99 -Wall -Icapi/include/siconos-compat examples-c/stack.c -Ltarget/release -lfc3d -lm -o stack
+ *   cc -std=c99 -Wall -Icapi/include/siconos-compat -Icapi/include examples-c/stack.c -Ltarget/release -lfc3d -lm -o stack
  *   LD_LIBRARY_PATH=target/release ./stack
  */
 #include <stdio.h>

@@ -91,9 +91,11 @@ trap 'rm -rf "$BUILD"' EXIT
 trap 'exit 130' INT TERM
 # A private copy of libfc3d.so: a rebuild of target/release during a long run must not change
 # the library under test halfway.
-cp target/release/libfc3d.so target/release/compare_report "$BUILD/"
+cp target/release/libfc3d.so "$BUILD/libfc3d.so.0"
+ln -s libfc3d.so.0 "$BUILD/libfc3d.so"
+cp target/release/compare_report "$BUILD/"
 CFLAGS=(-std=c99 -O2 -Wall -Wextra -Werror)
-cc "${CFLAGS[@]}" -Icapi/include/siconos-compat bench/siconos_compare.c -L"$BUILD" -lfc3d -lm -o "$BUILD/fc3d"
+cc "${CFLAGS[@]}" -Icapi/include/siconos-compat -Icapi/include bench/siconos_compare.c -L"$BUILD" -lfc3d -lm -o "$BUILD/fc3d"
 cc "${CFLAGS[@]}" -I/usr/include/siconos/numerics -I/usr/include/siconos bench/siconos_compare.c \
   -lsiconos_numerics -lm -o "$BUILD/siconos"
 # Both libraries single-threaded (fc3d is; Siconos' OpenBLAS would otherwise start a thread pool).

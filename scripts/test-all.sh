@@ -2,17 +2,26 @@
 # The whole test suite, set-up included (README's test command; .ci/run calls it).
 #  1. cargo test --workspace: Rust unit/integration tests and the C checks of capi-tests
 #     (compiled with the cc crate against capi/include/), including all shared Siconos problems.
-#  2. The C example built with plain cc against the compat headers and libfc3d, and run.
-#  3. The C checks linked against libfc3d.so and run under valgrind (ownership, bad input).
+#  2. scripts/install.sh into a temporary prefix, then hosts built from outside the source tree
+#     against what was installed: a C host with pkg-config (shared and static library, and the
+#     native-only library), the Siconos-style hosts with only the include path and the link flag
+#     changed, a C++ host with CMake's find_package(fc3d), one program linking Siconos and fc3d's
+#     native library side by side, the Fortran module and the Python package.
+#  3. The C checks linked against the installed libfc3d.so and run under valgrind.
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos
-#     4.4 headers, and one unmodified Siconos host program built against both libraries, whose
-#     results must agree.
+#     4.4 headers, one unmodified Siconos host program built against both libraries, whose
+#     results must agree, and the side-by-side agreement check of scripts/compare-siconos.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-DATA=../shared/data/siconos
+ROOT=$(pwd)
+DATA=$ROOT/../shared/data/siconos
 
 packages=()
 command -v cc >/dev/null || packages+=(gcc libc6-dev)
+command -v c++ >/dev/null || packages+=(g++)
+command -v cmake >/dev/null || packages+=(cmake)
+command -v gfortran >/dev/null || packages+=(gfortran)
+python3 -c 'import ensurepip' 2>/dev/null || packages+=(python3-venv)
 command -v valgrind >/dev/null || packages+=(valgrind)
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
 command -v pkg-config >/dev/null || packages+=(pkg-config)
@@ -26,39 +35,76 @@ fi
 
 echo "== cargo test --workspace --features fc3d-core/fclib"
 cargo test --workspace --features fc3d-core/fclib
-echo "== cargo test --test fclib (without the fclib feature: .hdf5 refused with a clear error)"
-cargo test -p fc3d-core --test fclib
+echo "== FCLIB tests without the fclib feature (.hdf5 refused with a clear error by the core, the C ABI and fc3d convert)"
+cargo test -p fc3d-core -p fc3d -p fc3d-cli --test fclib --test convert
 
-echo "== release library"
-cargo build --release -p fc3d
-LIB=target/release
-BUILD=$(mktemp -d)
-trap 'rm -rf "$BUILD"' EXIT
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+PREFIX=$WORK/prefix
+echo "== scripts/install.sh --prefix $PREFIX"
+bash scripts/install.sh --prefix "$PREFIX"
+export PKG_CONFIG_PATH=$PREFIX/lib/pkgconfig LD_LIBRARY_PATH=$PREFIX/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+SICONOS_INC=$(pkg-config --variable=siconos_includedir fc3d)
+readelf -d "$PREFIX/lib/libfc3d.so" | grep -q 'SONAME.*libfc3d.so.0' || { echo "no SONAME"; exit 1; }
+
+# Hosts are built from a copy outside the source tree: only the installed files are visible.
+HOSTS=$WORK/hosts
+mkdir -p "$HOSTS"
+cp examples-c/*.c capi-tests/c/*.c "$HOSTS/"
+cp -r examples-cmake "$HOSTS/cmake"
+cd "$HOSTS"
 CFLAGS=(-std=c99 -Wall -Wextra -Werror -O2)
 
-echo "== examples-c"
-cc "${CFLAGS[@]}" -Icapi/include/siconos-compat examples-c/stack.c -L$LIB -lfc3d -lm -o "$BUILD/stack"
-LD_LIBRARY_PATH=$LIB "$BUILD/stack"
+echo "== C host with pkg-config (shared, static, native-only)"
+cc "${CFLAGS[@]}" $(pkg-config --cflags fc3d) native_host.c $(pkg-config --libs fc3d) -lm -o native_host
+./native_host "$DATA/Confeti-ex13-Fc3D-SBM.dat"
+cc "${CFLAGS[@]}" $(pkg-config --cflags fc3d) native_host.c "$PREFIX/lib/libfc3d.a" \
+  $(pkg-config --static --libs-only-l fc3d | sed 's/-lfc3d//') -o native_host_static
+./native_host_static
+cc "${CFLAGS[@]}" -DFC3D_NATIVE_ONLY $(pkg-config --cflags fc3d-native) native_host.c \
+  $(pkg-config --libs fc3d-native) -lm -o native_only
+./native_only "$DATA/NESpheres_10_1.dat"
+if nm -D --defined-only "$PREFIX/lib/libfc3d_native.so" | grep -E ' (fc3d_driver|solver_options_create|NM_create|frictionContact_new_from_filename)$'; then
+  echo "libfc3d_native exports Siconos names"; exit 1
+fi
 
-echo "== C checks under valgrind"
-cc "${CFLAGS[@]}" -Icapi/include/siconos-compat capi-tests/c/ownership_main.c capi-tests/c/capi_checks.c \
-  capi-tests/c/nsgs_options.c \
-  -L$LIB -lfc3d -lm -o "$BUILD/capi_checks"
-LD_LIBRARY_PATH=$LIB valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
-  "$BUILD/capi_checks" "$DATA" "$BUILD"
+echo "== Siconos-style hosts (include path and link flag changed only)"
+cc "${CFLAGS[@]}" -I"$SICONOS_INC" $(pkg-config --cflags fc3d) stack.c $(pkg-config --libs fc3d) -lm -o stack
+./stack
+
+echo "== C++ host with CMake find_package(fc3d)"
+cmake -S cmake -B cmake-build -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build cmake-build >/dev/null
+./cmake-build/host && ./cmake-build/host_static && ./cmake-build/siconos_style
+
+echo "== Fortran module (installed source) and example"
+bash "$ROOT/scripts/test-fortran.sh" "$PREFIX"
+
+echo "== Python package (venv, pip install ./python, pytest)"
+bash "$ROOT/scripts/test-python.sh"
+
+echo "== Siconos and fc3d's native library in one process"
+cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos $(pkg-config --cflags fc3d-native) side_by_side.c \
+  $(pkg-config --libs fc3d-native) -lsiconos_numerics -lm -o side_by_side
+for p in NESpheres_10_1 Rover1039 Confeti-ex13-Fc3D-SBM; do ./side_by_side "$DATA/$p.dat"; done
+
+echo "== C checks under valgrind (installed libfc3d.so)"
+cc "${CFLAGS[@]}" -I"$SICONOS_INC" $(pkg-config --cflags fc3d) ownership_main.c capi_checks.c nsgs_options.c \
+  $(pkg-config --libs fc3d) -lm -o capi_checks
+valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
+  ./capi_checks "$DATA" "$WORK"
 
 echo "== Siconos 4.4 compatibility"
-cc -Icapi/include/siconos-compat capi-tests/c/layout.c -o "$BUILD/layout_fc3d"
-cc -I/usr/include/siconos/numerics -I/usr/include/siconos capi-tests/c/layout.c -o "$BUILD/layout_siconos"
-diff <("$BUILD/layout_fc3d") <("$BUILD/layout_siconos")
-echo "struct layouts and enum values identical ($("$BUILD/layout_fc3d" | wc -l) checks)"
-cc -O2 -Icapi/include/siconos-compat examples-c/siconos_host.c -L$LIB -lfc3d -lm -o "$BUILD/host_fc3d"
-cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos examples-c/siconos_host.c -lsiconos_numerics -lm \
-  -o "$BUILD/host_siconos"
+cc -I"$SICONOS_INC" $(pkg-config --cflags fc3d) layout.c -o layout_fc3d
+cc -I/usr/include/siconos/numerics -I/usr/include/siconos layout.c -o layout_siconos
+diff <(./layout_fc3d) <(./layout_siconos)
+echo "struct layouts and enum values identical ($(./layout_fc3d | wc -l) checks)"
+cc -O2 -I"$SICONOS_INC" $(pkg-config --cflags fc3d) siconos_host.c $(pkg-config --libs fc3d) -lm -o host_fc3d
+cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos siconos_host.c -lsiconos_numerics -lm -o host_siconos
 agree=0
 for p in Rover1039 Rover4396 Confeti-ex13-Fc3D-SBM Confeti-ex03-Fc3D-SBM OneObject-i1028-138.hdf5 NESpheres_10_1; do
-  ours=$(LD_LIBRARY_PATH=$LIB "$BUILD/host_fc3d" "$DATA/$p.dat" 1e-8 10000)
-  theirs=$("$BUILD/host_siconos" "$DATA/$p.dat" 1e-8 10000)
+  ours=$(./host_fc3d "$DATA/$p.dat" 1e-8 10000)
+  theirs=$(./host_siconos "$DATA/$p.dat" 1e-8 10000)
   # Same converged flag and iteration count; errors may differ in the last digits.
   if [ "$(echo "$ours" | cut -d' ' -f1-4)" != "$(echo "$theirs" | cut -d' ' -f1-4)" ]; then
     echo "disagreement on $p: fc3d [$ours] siconos [$theirs]"; exit 1
@@ -68,6 +114,7 @@ for p in Rover1039 Rover4396 Confeti-ex13-Fc3D-SBM Confeti-ex03-Fc3D-SBM OneObje
 done
 echo "Siconos host program: $agree problems, same info and iterations with both libraries"
 
+cd "$ROOT"
 echo "== side by side with Siconos (compare-siconos.sh --quick: same info, iterations, cross-scored errors)"
 bash scripts/compare-siconos.sh --quick
 echo "== all checks passed"

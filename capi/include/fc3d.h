@@ -8,21 +8,6 @@
 #include <stdbool.h>
 #include <stdio.h>
 
-// Success (and "converged" for solvers).
-#define FC3D_OK 0
-
-// A solver ran and returned its best iterate, but the error is above the tolerance.
-#define FC3D_NOT_CONVERGED 1
-
-// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
-// reaction is the best iterate it measured, and its error is above the tolerance.
-#define FC3D_TIME_BUDGET_EXHAUSTED 2
-
-// A solver of a relaxed problem (SOCLCP, id 517) solved its relaxation to the tolerance, but
-// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
-// returned reaction, is above the tolerance (some contact slides).
-#define FC3D_RELAXED_NOT_COULOMB 3
-
 // Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 // Siconos' fc3d solvers leave unused.
 #define FC3D_DPARAM_TIME_BUDGET 19
@@ -59,6 +44,30 @@
 // the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 #define FC3D_ONECONTACT_EAL 572
 
+// Major version of the library (semantic versioning: the C ABI changes only with it).
+#define FC3D_VERSION_MAJOR 0
+
+// Minor version of the library.
+#define FC3D_VERSION_MINOR 2
+
+// Patch version of the library.
+#define FC3D_VERSION_PATCH 0
+
+// Success (and "converged" for solvers).
+#define FC3D_OK 0
+
+// A solver ran and returned its best iterate, but the error is above the tolerance.
+#define FC3D_NOT_CONVERGED 1
+
+// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
+// reaction is the best iterate it measured, and its error is above the tolerance.
+#define FC3D_TIME_BUDGET_EXHAUSTED 2
+
+// A solver of a relaxed problem (SOCLCP, id 517) solved its relaxation to the tolerance, but
+// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
+// returned reaction, is above the tolerance (some contact slides).
+#define FC3D_RELAXED_NOT_COULOMB 3
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 
@@ -88,6 +97,13 @@
 
 // A bug in fc3d (a caught panic). Please report it.
 #define FC3D_ERR_INTERNAL -99
+
+// A problem read from a file (opaque), with W also kept in compressed rows for
+// `fc3d_problem_get`.
+typedef struct Fc3dProblem Fc3dProblem;
+
+// A solver and its settings (opaque): Siconos' options of a solver id, changed by the setters.
+typedef struct Fc3dSettings Fc3dSettings;
 
 // Siconos' data version counter.
 typedef struct NumericsDataVersion {
@@ -225,19 +241,21 @@ typedef struct SparseBlockCoordinateMatrix {
   unsigned int *column;
 } SparseBlockCoordinateMatrix;
 
+// What a solve reports.
+typedef struct Fc3dResult {
+  // 0 converged, 1 iteration limit, 2 time budget spent, 3 relaxed solution not Coulomb.
+  int info;
+  // Iterations (sweeps, Newton steps, ...) done.
+  int64_t iterations;
+  // The natural-map error of the returned `(r, u)`.
+  double error;
+  // Wall-clock time of the solve, seconds.
+  double seconds;
+} Fc3dResult;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
-
-// The message of the last failed fc3d call on this thread ("" if none). The pointer stays
-// valid until the next failing fc3d call on the same thread; do not free it.
-const char *fc3d_last_error_message(void);
-
-// The code of the last failed fc3d call on this thread (0 if none).
-int fc3d_last_error_code(void);
-
-// Clears the last error of this thread.
-void fc3d_clear_last_error(void);
 
 // Siconos' verbosity switch: > 0 prints rejected calls and solver summaries to stderr.
 void numerics_set_verbose(int newVerboseMode);
@@ -273,6 +291,38 @@ int fc3d_compute_error(struct FrictionContactProblem *problem,
                        struct SolverOptions *options,
                        double norm,
                        double *error);
+
+// The message of the last failed fc3d call on this thread ("" if none). The pointer stays
+// valid until the next failing fc3d call on the same thread; do not free it.
+const char *fc3d_last_error_message(void);
+
+// The code of the last failed fc3d call on this thread (0 if none).
+int fc3d_last_error_code(void);
+
+// Clears the last error of this thread.
+void fc3d_clear_last_error(void);
+
+// Reads the FCLIB file `path`: its local problem (`/fclib_local`), or else its global problem
+// (`/fclib_global`) reduced to the local form W = H^T M^-1 H, q = H^T M^-1 f + w. W has the
+// storage fc3d recorded when it wrote the file, otherwise Siconos' sparse-block storage.
+// Release the result with `frictionContactProblem_free`. NULL on failure (see
+// `fc3d_last_error_message`), in particular when libfc3d was built without FCLIB support.
+struct FrictionContactProblem *frictionContact_fclib_read(const char *path);
+
+// Writes `problem` to the FCLIB file `path` (created or replaced) as a local problem:
+// `/fclib_local` with W in compressed rows, q, mu, and the info group holding `title`,
+// `description`, `mathInfo` (each may be NULL: not written) and the attribute
+// `numberOfDegreeOfFreedom` = `ndof`, as Siconos writes it. Reading the file back with
+// `frictionContact_fclib_read` gives the same problem, bit for bit, W in the same storage.
+// Returns 1 on success and 0 on failure, as Siconos (fclib) does; on failure `path` is left as
+// it was and `fc3d_last_error_code()` says why (`FC3D_ERR_IO` when the file cannot be written
+// or libfc3d was built without FCLIB support).
+int frictionContact_fclib_write(struct FrictionContactProblem *problem,
+                                char *title,
+                                char *description,
+                                char *mathInfo,
+                                const char *path,
+                                int ndof);
 
 // LMGC90 interface: solves in place with `solver_id` (Siconos defaults otherwise), W given as
 // `nb` column-major 3x3 blocks `W[9k..9k+9]` at 1-based block coordinates `(row[k], column[k])`.
@@ -362,7 +412,7 @@ struct SparseBlockStructuredMatrix *SBCM_to_SBM(struct SparseBlockCoordinateMatr
 void SBM_free_from_SBCM(struct SparseBlockStructuredMatrix *M);
 
 // A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
-// size1` and the body; see `fc3d_core::io::dat`). Release with `NM_free`.
+// size1` and the body; the matrix part of a Siconos .dat file). Release with `NM_free`.
 //
 // On a seekable stream (a regular file) only the matrix is consumed: on success the stream is
 // left at the first token after the matrix (as Siconos' reader leaves it, but for the whitespace
@@ -400,6 +450,139 @@ void NM_write_in_filename(const struct NumericsMatrix *M, const char *filename);
 // Release with `SBM_clear` + `free` (or through `NM_free` once wrapped by `NM_new_SBM`).
 // NULL on failure (`FC3D_ERR_PARSE` for malformed text).
 struct SparseBlockStructuredMatrix *SBM_new_from_file(FILE *file);
+
+// The library's version, e.g. "0.2.0" (a static string, do not free).
+const char *fc3d_version(void);
+
+// Settings of solver `solver_id` (a Siconos id such as 500 NSGS, 504 NSN_AC, 502 PROX) with
+// its defaults; NULL for an id fc3d does not implement (the reason in
+// `fc3d_last_error_message`). Release with `fc3d_settings_free`.
+struct Fc3dSettings *fc3d_settings_new(int solver_id);
+
+// Releases settings made by `fc3d_settings_new` (NULL is accepted).
+void fc3d_settings_free(struct Fc3dSettings *settings);
+
+// Tolerance on the relative natural-map error (Siconos' `dparam[0]`). Returns 0, or a negative
+// code (NULL settings); the range is checked when solving.
+int fc3d_settings_set_tolerance(struct Fc3dSettings *settings, double tolerance);
+
+// Iteration limit (`iparam[0]`), 0..=INT_MAX.
+int fc3d_settings_set_max_iter(struct Fc3dSettings *settings, int64_t max_iter);
+
+// Wall-clock budget in seconds (`dparam[FC3D_DPARAM_TIME_BUDGET]`; 0: none).
+int fc3d_settings_set_time_budget(struct Fc3dSettings *settings, double seconds);
+
+// The local solver of NSGS (internal solver 0), by Siconos id (550-565, 570-572), with its
+// defaults.
+int fc3d_settings_set_local_solver(struct Fc3dSettings *settings, int local_solver_id);
+
+// Internal solver 0, by Siconos id, with its defaults: NSGS's local solver, PROX's NSN_AC (504)
+// or NSGS (500), the Tresca sub-problem solver of TFP and PFP (500, 566, 567). Refused (the
+// settings unchanged) when the solver cannot use it.
+int fc3d_settings_set_internal_solver(struct Fc3dSettings *settings, int internal_solver_id);
+
+// Siconos' `iparam[index]` of the solver (index 0..OPTIONS_PARAM_SIZE).
+int fc3d_settings_set_iparam(struct Fc3dSettings *settings, int index, int value);
+
+// Siconos' `dparam[index]` of the solver.
+int fc3d_settings_set_dparam(struct Fc3dSettings *settings, int index, double value);
+
+// `iparam[index]` of the local (internal) solver.
+int fc3d_settings_set_local_iparam(struct Fc3dSettings *settings, int index, int value);
+
+// `dparam[index]` of the local (internal) solver.
+int fc3d_settings_set_local_dparam(struct Fc3dSettings *settings, int index, double value);
+
+// A setting by name, for bindings: `tolerance`, `max_iter`, `time_budget`, `local_solver`,
+// `internal_solver`, `iparam[K]`, `dparam[K]`, `local_iparam[K]`, `local_dparam[K]` (the last
+// two: internal solver 0). Integer settings take an
+// integral `value`.
+int fc3d_settings_set(struct Fc3dSettings *settings, const char *name, double value);
+
+// Solves FC(W, q, mu) with W dense, column-major `3nc x 3nc`. `r` holds the initial reaction and
+// receives the result, `u` receives `W r + q`; `settings` may be NULL (NSGS, Siconos'
+// defaults). Returns the result's `info` (0..3) or a negative `FC3D_ERR_*` code.
+int fc3d_solve_dense(int64_t n_contacts,
+                     const double *w,
+                     const double *q,
+                     const double *mu,
+                     double *r,
+                     double *u,
+                     const struct Fc3dSettings *settings,
+                     struct Fc3dResult *result);
+
+// As `fc3d_solve_dense` with W in compressed rows: `row_ptr` (`3nc + 1` entries), `col_idx`
+// and `values` (`nnz` entries each, 0-based; unsorted columns and duplicates are accepted).
+int fc3d_solve_csr(int64_t n_contacts,
+                   int64_t nnz,
+                   const int64_t *row_ptr,
+                   const int64_t *col_idx,
+                   const double *values,
+                   const double *q,
+                   const double *mu,
+                   double *r,
+                   double *u,
+                   const struct Fc3dSettings *settings,
+                   struct Fc3dResult *result);
+
+// As `fc3d_solve_dense` with W as `nnz` triplets `(rows[k], cols[k], values[k])` (0-based, any
+// order, duplicates summed).
+int fc3d_solve_coo(int64_t n_contacts,
+                   int64_t nnz,
+                   const int64_t *rows,
+                   const int64_t *cols,
+                   const double *values,
+                   const double *q,
+                   const double *mu,
+                   double *r,
+                   double *u,
+                   const struct Fc3dSettings *settings,
+                   struct Fc3dResult *result);
+
+// As `fc3d_solve_dense` with W as `n_blocks` 3x3 blocks in block-compressed rows:
+// `block_row_ptr` (`nc + 1` entries), `block_col_idx` (`n_blocks`, 0-based) and `blocks`
+// (`9 n_blocks` values, each block column-major). Every diagonal block must be present.
+int fc3d_solve_blocks(int64_t n_contacts,
+                      int64_t n_blocks,
+                      const int64_t *block_row_ptr,
+                      const int64_t *block_col_idx,
+                      const double *blocks,
+                      const double *q,
+                      const double *mu,
+                      double *r,
+                      double *u,
+                      const struct Fc3dSettings *settings,
+                      struct Fc3dResult *result);
+
+// Reads a Siconos `.dat` problem (or FCLIB `.hdf5` when fc3d is built with FCLIB); NULL on
+// failure. Release with `fc3d_problem_free`.
+struct Fc3dProblem *fc3d_problem_read(const char *path);
+
+// Releases a problem read by `fc3d_problem_read` (NULL is accepted).
+void fc3d_problem_free(struct Fc3dProblem *problem);
+
+// Number of contacts of the problem (-1 and the last error for NULL).
+int64_t fc3d_problem_contacts(const struct Fc3dProblem *problem);
+
+// Number of stored entries of W in compressed rows (-1 for NULL).
+int64_t fc3d_problem_nnz(const struct Fc3dProblem *problem);
+
+// Copies the problem into the caller's arrays: W in compressed rows (`row_ptr`: `3nc + 1`,
+// `col_idx` and `values`: `fc3d_problem_nnz` entries), `q` (`3nc`), `mu` (`nc`). Returns 0.
+int fc3d_problem_get(const struct Fc3dProblem *problem,
+                     int64_t *row_ptr,
+                     int64_t *col_idx,
+                     double *values,
+                     double *q,
+                     double *mu);
+
+// Solves a problem read by `fc3d_problem_read` in the storage of its file, as
+// `fc3d_solve_dense` does.
+int fc3d_problem_solve(const struct Fc3dProblem *problem,
+                       double *r,
+                       double *u,
+                       const struct Fc3dSettings *settings,
+                       struct Fc3dResult *result);
 
 // Options for solver `solverId` with Siconos 4.4's defaults (and default internal solvers).
 // NULL for an id that is not an fc3d solver. Release with `solver_options_delete` then `free`.
@@ -451,7 +634,9 @@ struct FrictionContactProblem *frictionContactProblem_new_with_data(int dim,
 // Releases `M` (storage and struct), `q`, `mu` and the problem struct. NULL is a no-op.
 void frictionContactProblem_free(struct FrictionContactProblem *problem);
 
-// Reads a problem from a Siconos .dat file. NULL on failure (see `fc3d_last_error_message`).
+// Reads a problem from a Siconos .dat file, or from an FCLIB .hdf5 file (one that starts with
+// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. NULL on
+// failure (see `fc3d_last_error_message`).
 struct FrictionContactProblem *frictionContact_new_from_filename(const char *filename);
 
 // Reads a problem from an open stream (up to its end). NULL on failure.

@@ -82,6 +82,7 @@ unsafe fn driver_impl(
 /// (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 /// input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
 /// and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_driver(
     problem: *mut FrictionContactProblem,
@@ -98,6 +99,7 @@ pub unsafe extern "C" fn fc3d_driver(
 
 /// Siconos' direct NSGS entry: as `fc3d_driver` with `options->solverId` = 500, the result
 /// code written to `*info`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_nsgs(
     problem: *mut FrictionContactProblem,
@@ -134,6 +136,7 @@ pub unsafe extern "C" fn fc3d_nsgs(
 /// `error = ||z - P_K(z - (w_N + mu ||w_T||, w_T))|| / max(norm, ||z||, ||w||)`.
 /// Returns 0 if `error <= tolerance`, 1 otherwise, a negative code on invalid input (nothing
 /// written). `options` may be NULL.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_compute_error(
     problem: *mut FrictionContactProblem,

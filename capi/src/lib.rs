@@ -13,35 +13,32 @@
 //! * Memory that C may free (problem arrays, matrices, options arrays) is allocated with the C
 //!   allocator (`malloc`), so `free` and the `_free`/`_delete` functions may be mixed as in Siconos.
 
+// Without Siconos' names, the code only they use is left unused (not exported).
+#![cfg_attr(not(feature = "siconos-abi"), allow(dead_code, unused_imports))]
+
 pub mod types;
 
 mod alloc;
+mod codes;
 mod driver;
+mod errors;
+mod fclib;
 mod lmgc;
 mod matrix;
+mod native;
 mod options;
 mod params;
 mod problem;
 mod stream;
 
-use std::cell::RefCell;
-use std::ffi::{c_char, CString};
 use std::os::raw::c_int;
-use std::sync::atomic::{AtomicI32, Ordering};
+use std::sync::atomic::Ordering;
 
-use fc3d_core::error::Fc3dError;
+pub use codes::*;
+pub use errors::{fc3d_clear_last_error, fc3d_last_error_code, fc3d_last_error_message};
+pub(crate) use errors::{ffi_guard, verbose, CError, CResult};
+pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
 
-/// Success (and "converged" for solvers).
-pub const FC3D_OK: c_int = 0;
-/// A solver ran and returned its best iterate, but the error is above the tolerance.
-pub const FC3D_NOT_CONVERGED: c_int = 1;
-/// A solver ran until its time budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`) was spent; the
-/// reaction is the best iterate it measured, and its error is above the tolerance.
-pub const FC3D_TIME_BUDGET_EXHAUSTED: c_int = 2;
-/// A solver of a relaxed problem (SOCLCP, id 517) solved its relaxation to the tolerance, but
-/// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
-/// returned reaction, is above the tolerance (some contact slides).
-pub const FC3D_RELAXED_NOT_COULOMB: c_int = 3;
 /// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 /// Siconos' fc3d solvers leave unused.
 pub const FC3D_DPARAM_TIME_BUDGET: c_int = 19;
@@ -71,152 +68,12 @@ pub const FC3D_ONECONTACT_EBP: c_int = 571;
 /// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 pub const FC3D_ONECONTACT_EAL: c_int = 572;
 
-/// A required pointer argument (or a pointer inside a struct) is NULL.
-pub const FC3D_ERR_NULL_POINTER: c_int = -1;
-/// Sizes are negative, inconsistent, or too large.
-pub const FC3D_ERR_INVALID_SIZE: c_int = -2;
-/// Unknown or unsupported matrix storage, or an inconsistent sparse structure.
-pub const FC3D_ERR_INVALID_STORAGE: c_int = -3;
-/// NaN or infinity in W, q, mu or the initial reaction.
-pub const FC3D_ERR_NON_FINITE: c_int = -4;
-/// An option value out of range (iparam/dparam), or an option not implemented.
-pub const FC3D_ERR_INVALID_OPTION: c_int = -5;
-/// A solver id that fc3d does not implement.
-pub const FC3D_ERR_UNSUPPORTED_SOLVER: c_int = -6;
-/// The problem is ill-posed as given: mu < 0, a missing diagonal block, dimension != 3.
-pub const FC3D_ERR_INVALID_PROBLEM: c_int = -7;
-/// A malformed or truncated problem file.
-pub const FC3D_ERR_PARSE: c_int = -8;
-/// A file could not be opened, read or written.
-pub const FC3D_ERR_IO: c_int = -9;
-/// A bug in fc3d (a caught panic). Please report it.
-pub const FC3D_ERR_INTERNAL: c_int = -99;
-
-static VERBOSE: AtomicI32 = AtomicI32::new(0);
-
-thread_local! {
-    static LAST_ERROR: RefCell<(c_int, CString)> = RefCell::new((FC3D_OK, CString::default()));
-}
-
-/// A rejected call: return code and message.
-#[derive(Debug, Clone)]
-pub(crate) struct CError {
-    pub code: c_int,
-    pub message: String,
-}
-
-impl CError {
-    pub fn new(code: c_int, message: impl Into<String>) -> Self {
-        CError {
-            code,
-            message: message.into(),
-        }
-    }
-    pub fn null(what: &str) -> Self {
-        CError::new(FC3D_ERR_NULL_POINTER, format!("{what} is NULL"))
-    }
-}
-
-impl From<Fc3dError> for CError {
-    fn from(e: Fc3dError) -> Self {
-        let code = match &e {
-            Fc3dError::DimensionMismatch { .. } => FC3D_ERR_INVALID_SIZE,
-            Fc3dError::NonFinite { .. } => FC3D_ERR_NON_FINITE,
-            Fc3dError::NegativeFriction { .. } | Fc3dError::MissingDiagonalBlock { .. } => {
-                FC3D_ERR_INVALID_PROBLEM
-            }
-            Fc3dError::InvalidStructure(_) | Fc3dError::Unsupported(_) => FC3D_ERR_INVALID_STORAGE,
-            Fc3dError::UnsupportedSolver { .. } => FC3D_ERR_UNSUPPORTED_SOLVER,
-            Fc3dError::InvalidOption(_) | Fc3dError::InvalidSetting { .. } => {
-                FC3D_ERR_INVALID_OPTION
-            }
-            Fc3dError::Parse { .. } => FC3D_ERR_PARSE,
-            Fc3dError::Io { .. } => FC3D_ERR_IO,
-        };
-        CError::new(code, e.to_string())
-    }
-}
-
-pub(crate) type CResult<T> = Result<T, CError>;
-
-/// Records `e` as the calling thread's last error (printed when verbose) and returns its code.
-pub(crate) fn record(function: &str, e: CError) -> c_int {
-    let msg = format!("fc3d: {function}: {}", e.message);
-    if VERBOSE.load(Ordering::Relaxed) > 0 {
-        eprintln!("{msg}");
-    }
-    let c = CString::new(msg.replace('\0', " ")).unwrap_or_default();
-    LAST_ERROR.with(|l| *l.borrow_mut() = (e.code, c));
-    e.code
-}
-
-pub(crate) fn verbose() -> i32 {
-    VERBOSE.load(Ordering::Relaxed)
-}
-
-/// Runs `body` with panics caught. `Err` and panics are recorded as the last error and mapped
-/// to `on_error(code)`.
-pub(crate) fn ffi_guard<T>(
-    function: &str,
-    on_error: impl FnOnce(c_int) -> T,
-    body: impl FnOnce() -> CResult<T>,
-) -> T {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(body)) {
-        Ok(Ok(v)) => v,
-        Ok(Err(e)) => on_error(record(function, e)),
-        Err(payload) => {
-            let what = payload
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| payload.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".into());
-            on_error(record(
-                function,
-                CError::new(FC3D_ERR_INTERNAL, format!("internal error: {what}")),
-            ))
-        }
-    }
-}
-
-/// The message of the last failed fc3d call on this thread ("" if none). The pointer stays
-/// valid until the next failing fc3d call on the same thread; do not free it.
-#[no_mangle]
-pub extern "C" fn fc3d_last_error_message() -> *const c_char {
-    ffi_guard(
-        "fc3d_last_error_message",
-        |_| std::ptr::null(),
-        || Ok(LAST_ERROR.with(|l| l.borrow().1.as_ptr())),
-    )
-}
-
-/// The code of the last failed fc3d call on this thread (0 if none).
-#[no_mangle]
-pub extern "C" fn fc3d_last_error_code() -> c_int {
-    ffi_guard(
-        "fc3d_last_error_code",
-        |c| c,
-        || Ok(LAST_ERROR.with(|l| l.borrow().0)),
-    )
-}
-
-/// Clears the last error of this thread.
-#[no_mangle]
-pub extern "C" fn fc3d_clear_last_error() {
-    ffi_guard(
-        "fc3d_clear_last_error",
-        |_| (),
-        || {
-            LAST_ERROR.with(|l| *l.borrow_mut() = (FC3D_OK, CString::default()));
-            Ok(())
-        },
-    )
-}
-
 /// Siconos' verbosity switch: > 0 prints rejected calls and solver summaries to stderr.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 #[allow(non_snake_case)]
 pub extern "C" fn numerics_set_verbose(newVerboseMode: c_int) {
-    VERBOSE.store(newVerboseMode, Ordering::Relaxed);
+    errors::VERBOSE.store(newVerboseMode, Ordering::Relaxed);
 }
 
 #[cfg(test)]

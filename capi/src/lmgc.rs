@@ -92,6 +92,7 @@ unsafe fn lmgc_impl(
 /// `nb` column-major 3x3 blocks `W[9k..9k+9]` at 1-based block coordinates `(row[k], column[k])`.
 /// `verbose`, `outputFile`, `freq_output` and `ndof` are accepted and ignored (no file output).
 /// Returns as `fc3d_driver`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_LmgcDriver(
     reaction: *mut c_double,

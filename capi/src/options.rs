@@ -117,6 +117,7 @@ unsafe fn copy_options(src: &SolverOptions) -> CResult<*mut SolverOptions> {
 
 /// Options for solver `solverId` with Siconos 4.4's defaults (and default internal solvers).
 /// NULL for an id that is not an fc3d solver. Release with `solver_options_delete` then `free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn solver_options_create(solverId: c_int) -> *mut SolverOptions {
     ffi_guard(
@@ -128,6 +129,7 @@ pub extern "C" fn solver_options_create(solverId: c_int) -> *mut SolverOptions {
 
 /// Releases everything `options` owns (parameter arrays, work arrays, internal solvers), but not
 /// the struct itself, nor `callback`, `solverParameters`, `solverData` (the caller's).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_delete(options: *mut SolverOptions) {
     ffi_guard(
@@ -142,6 +144,7 @@ pub unsafe extern "C" fn solver_options_delete(options: *mut SolverOptions) {
 
 /// Replaces internal solver number `internal_solver_number` of `parent` by new options for
 /// `solver_id` with their defaults (the old internal solver is released).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_update_internal(
     parent: *mut SolverOptions,
@@ -174,6 +177,7 @@ pub unsafe extern "C" fn solver_options_update_internal(
 
 /// Sets internal solver `n` of `options` to `NSO`, which `options` then owns (the previous one is
 /// released).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_set_internal_solver(
     options: *mut SolverOptions,
@@ -209,6 +213,7 @@ pub unsafe extern "C" fn solver_options_set_internal_solver(
 }
 
 /// Internal solver `n` of `options` (owned by `options`), or NULL.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_get_internal_solver(
     options: *mut SolverOptions,
@@ -238,6 +243,7 @@ pub unsafe extern "C" fn solver_options_get_internal_solver(
 
 /// A deep copy of `source` (parameters and internal solvers); `callback`, `solverParameters` and
 /// `solverData` are shared, as in Siconos.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_copy(source: *mut SolverOptions) -> *mut SolverOptions {
     ffi_guard(
@@ -253,6 +259,7 @@ pub unsafe extern "C" fn solver_options_copy(source: *mut SolverOptions) -> *mut
 }
 
 /// Siconos' name of a solver id ("NONAME" if unknown); a static string, do not free.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn solver_options_id_to_name(Id: c_int) -> *const c_char {
     ffi_guard(
@@ -263,6 +270,7 @@ pub extern "C" fn solver_options_id_to_name(Id: c_int) -> *const c_char {
 }
 
 /// The id of a Siconos solver name, 0 if unknown.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_name_to_id(pName: *const c_char) -> c_int {
     ffi_guard(
@@ -279,6 +287,7 @@ pub unsafe extern "C" fn solver_options_name_to_id(pName: *const c_char) -> c_in
 }
 
 /// Prints the options (and internal solvers) to stdout.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn solver_options_print(options: *mut SolverOptions) {
     ffi_guard(

@@ -92,6 +92,7 @@ unsafe fn read_stream(file: *mut libc::FILE) -> CResult<String> {
 }
 
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
     ffi_guard(
@@ -111,6 +112,7 @@ pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
 
 /// A problem that takes `M`, `q` and `mu` as they are (no copy): they then belong to the
 /// problem and are released by `frictionContactProblem_free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn frictionContactProblem_new_with_data(
     dim: c_int,
@@ -135,6 +137,7 @@ pub extern "C" fn frictionContactProblem_new_with_data(
 }
 
 /// Releases `M` (storage and struct), `q`, `mu` and the problem struct. NULL is a no-op.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionContactProblem) {
     ffi_guard(
@@ -155,7 +158,10 @@ pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionConta
     )
 }
 
-/// Reads a problem from a Siconos .dat file. NULL on failure (see `fc3d_last_error_message`).
+/// Reads a problem from a Siconos .dat file, or from an FCLIB .hdf5 file (one that starts with
+/// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. NULL on
+/// failure (see `fc3d_last_error_message`).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_new_from_filename(
     filename: *const c_char,
@@ -165,6 +171,9 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
         |_| null_mut(),
         || {
             let path = c_filename(filename)?;
+            if super::fclib::is_fclib_file(path) {
+                return super::fclib::read_fclib_problem(path);
+            }
             let p = fc3d_core::io::dat::read_dat_file(std::path::Path::new(path))?;
             problem_to_c(&p)
         },
@@ -172,6 +181,7 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
 }
 
 /// Reads a problem from an open stream (up to its end). NULL on failure.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_newFromFile(
     file: *mut libc::FILE,
@@ -196,6 +206,7 @@ fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
 
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
 /// Returns 0 on success.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_printInFile(
     problem: *mut FrictionContactProblem,
@@ -216,6 +227,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
 }
 
 /// Writes `problem` to the file `filename` (created or truncated). Returns 0 on success.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_printInFilename(
     problem: *mut FrictionContactProblem,
@@ -239,6 +251,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
 }
 
 /// Prints a summary of the problem (sizes, storage, mu, q) to stdout.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactProblem) {
     ffi_guard(

@@ -8,6 +8,8 @@
 //! * `fc3d solve ...` is the same as `fc3d ...`.
 //! * `fc3d bench [FILES]` measures the speed–accuracy trade of the solvers: CSV, summary,
 //!   performance profiles and work–precision pictures (see the `bench` module).
+//! * `fc3d convert IN OUT` rewrites a problem file as `.dat` or FCLIB `.hdf5`, by OUT's
+//!   extension, without changing a bit (see the `convert` module).
 //!
 //! Defaults: NSGS with the hybrid Alart-Curnier local solver (565, Siconos' default), tolerance
 //! 1e-8 on the natural-map error, at most 100000 sweeps. The tolerance is tighter than Siconos'
@@ -27,6 +29,7 @@ use std::time::{Duration, Instant};
 use clap::{Args, Parser, Subcommand};
 
 mod bench;
+mod convert;
 use fc3d_core::{
     solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolveStatus,
     SolverConfig,
@@ -35,7 +38,7 @@ use fc3d_core::{
 /// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
 ///
 /// Without FILES, solves the built-in scenes. A file name that is also a subcommand's name
-/// (`solve`, `bench`) must be written with a path, e.g. `./solve`.
+/// (`solve`, `bench`, `convert`) must be written with a path, e.g. `./solve`.
 #[derive(Parser, Debug)]
 #[command(name = "fc3d", version, args_conflicts_with_subcommands = true)]
 struct Cli {
@@ -51,6 +54,9 @@ enum Command {
     Solve(SolveArgs),
     /// Benchmark solvers: CSV, summary, performance profiles, work–precision curves.
     Bench(bench::BenchArgs),
+    /// Convert a problem file between Siconos .dat and FCLIB .hdf5 (by OUT's extension),
+    /// losslessly. FCLIB needs fc3d built with the `fclib` feature.
+    Convert(convert::ConvertArgs),
 }
 
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -124,6 +130,7 @@ fn main() -> ExitCode {
     let args = match cli.command {
         Some(Command::Solve(args)) => args,
         Some(Command::Bench(args)) => return bench::run(&args),
+        Some(Command::Convert(args)) => return convert::run(&args),
         None => cli.solve,
     };
     run_solve(&args)
@@ -487,6 +494,48 @@ mod tests {
         let cli = Cli::try_parse_from(["fc3d", "./bench"]).unwrap();
         assert!(cli.command.is_none());
         assert_eq!(cli.solve.paths, vec![PathBuf::from("./bench")]);
+    }
+
+    #[test]
+    fn convert_takes_two_files_and_the_info_flags() {
+        let cli = Cli::try_parse_from(["fc3d", "convert", "a.dat", "b.hdf5"]).unwrap();
+        match cli.command {
+            Some(Command::Convert(a)) => {
+                assert_eq!(a.input, PathBuf::from("a.dat"));
+                assert_eq!(a.output, PathBuf::from("b.hdf5"));
+                assert_eq!((a.title, a.description, a.math_info), (None, None, None));
+            }
+            _ => panic!("expected the convert subcommand"),
+        }
+        let cli = Cli::try_parse_from([
+            "fc3d",
+            "convert",
+            "a.hdf5",
+            "b.h5",
+            "--title",
+            "T",
+            "--description",
+            "D",
+            "--math-info",
+            "M",
+        ])
+        .unwrap();
+        match cli.command {
+            Some(Command::Convert(a)) => {
+                assert_eq!(a.title.as_deref(), Some("T"));
+                assert_eq!(a.description.as_deref(), Some("D"));
+                assert_eq!(a.math_info.as_deref(), Some("M"));
+            }
+            _ => panic!("expected the convert subcommand"),
+        }
+        for bad in [
+            vec!["fc3d", "convert"],
+            vec!["fc3d", "convert", "a.dat"],
+            vec!["fc3d", "convert", "a.dat", "b.dat", "c.dat"],
+            vec!["fc3d", "convert", "a.dat", "b.dat", "--tol", "1e-3"],
+        ] {
+            assert!(Cli::try_parse_from(&bad).is_err(), "{bad:?}");
+        }
     }
 
     #[test]

@@ -24,6 +24,11 @@ pub enum Fc3dError {
     /// Index arrays that do not describe a valid matrix.
     #[error("invalid matrix structure: {0}")]
     InvalidStructure(String),
+    /// A problem of another dimension than 3 (a 2D friction problem).
+    #[error(
+        "{file}: problems of dimension {dimension} are not supported (fc3d solves dimension 3)"
+    )]
+    UnsupportedDimension { file: String, dimension: usize },
     /// A storage or problem shape the library does not handle.
     #[error("unsupported: {0}")]
     Unsupported(String),

@@ -370,14 +370,15 @@ fn two_dimensional_files_are_unsupported() {
             continue;
         }
         match read_dat_file(&path) {
-            Err(Fc3dError::Unsupported(message)) => {
+            Err(e @ Fc3dError::UnsupportedDimension { dimension: 2, .. }) => {
+                let message = e.to_string();
                 assert!(message.contains(&name), "{message}");
                 assert!(
-                    message.contains("fc2d problems are not supported"),
+                    message.contains("dimension 2 are not supported"),
                     "{message}"
                 );
             }
-            other => panic!("{name}: expected Unsupported, got {other:?}"),
+            other => panic!("{name}: expected UnsupportedDimension, got {other:?}"),
         }
         seen += 1;
     }
@@ -571,6 +572,10 @@ fn check_no_panic(text: &str) -> Result<(), TestCaseError> {
             }
         }
         Err(Fc3dError::Unsupported(message)) => prop_assert!(message.contains("fuzz")),
+        Err(Fc3dError::UnsupportedDimension { file, dimension }) => {
+            prop_assert_eq!(file, "fuzz");
+            prop_assert_eq!(dimension, 2)
+        }
         Err(other) => prop_assert!(false, "unexpected error kind: {other:?}"),
     }
     Ok(())

@@ -1,11 +1,13 @@
 //! FCLIB `.hdf5` problems: the two shared Siconos files load with the right sizes, the reduction
 //! of the global one agrees with the solution stored in the file, NSGS reaches 1e-8 on both (with
 //! iterations and errors printed next to Siconos 4.4's from `siconos-reference-1e-8.csv`), and
-//! damaged files give typed errors naming the file, never a panic.
+//! damaged files give typed errors naming the file, never a panic. The writer: every shared 3D
+//! `.dat` problem goes `.dat` -> `.hdf5` -> `.dat` without changing a bit (W in the same storage,
+//! q, mu, and the `.dat` text itself), in FCLIB's layout, in all three storages.
 //!
 //! Everything that needs libhdf5 is behind the `fclib` feature
-//! (`cargo test --workspace --features fc3d/fclib`); without it only the check that
-//! `read_problem_file` refuses `.hdf5` files with a clear message runs.
+//! (`cargo test -p fc3d-core --features fclib --test fclib`); without it only the checks that
+//! `.hdf5` files are refused with a clear message run.
 
 use std::path::{Path, PathBuf};
 
@@ -16,6 +18,32 @@ const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/s
 
 fn data(name: &str) -> PathBuf {
     Path::new(DATA_DIR).join(name)
+}
+
+/// The 3D local problems of the shared collection: the `.dat` files except the global ones
+/// (`GFC3D_`, `gfc2d_`), the 2D ones (`fc2d_`, `FC2D_`, `FrictionContactProblem*`) and
+/// `ACinputs.dat` (not a problem).
+fn shared_3d_dat_files() -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(DATA_DIR)
+        .expect("the shared Siconos data directory")
+        .map(|e| e.expect("a directory entry").path())
+        .filter(|p| {
+            let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            name.ends_with(".dat")
+                && ![
+                    "GFC3D_",
+                    "gfc2d_",
+                    "fc2d_",
+                    "FC2D_",
+                    "FrictionContactProblem",
+                ]
+                .iter()
+                .any(|prefix| name.starts_with(prefix))
+                && name != "ACinputs.dat"
+        })
+        .collect();
+    files.sort();
+    files
 }
 
 #[test]
@@ -34,15 +62,60 @@ fn read_problem_file_dispatches_on_the_extension() {
 #[cfg(not(feature = "fclib"))]
 #[test]
 fn hdf5_files_need_the_fclib_feature() {
+    use fc3d_core::io::{read_fclib_file, read_fclib_info, FCLIB_AVAILABLE};
+    assert!(!FCLIB_AVAILABLE);
     for name in ["Box_Stacks-i0122-82-5.hdf5", "missing.H5"] {
-        match read_problem_file(&data(name)) {
+        for result in [
+            read_problem_file(&data(name)).map(drop),
+            read_fclib_file(&data(name)).map(drop),
+            read_fclib_info(&data(name)).map(drop),
+        ] {
+            match result {
+                Err(Fc3dError::Unsupported(m)) => {
+                    assert!(m.contains(name), "{m}");
+                    assert!(m.contains("built without the `fclib` feature"), "{m}");
+                }
+                other => panic!("expected Unsupported, got {other:?}"),
+            }
+        }
+    }
+}
+
+#[cfg(not(feature = "fclib"))]
+#[test]
+fn writing_hdf5_needs_the_fclib_feature_and_writes_nothing() {
+    use fc3d_core::io::{write_fclib_file, write_problem_file, FclibInfo};
+    let p = read_problem_file(&data("FC3D_Example1.dat")).expect("a .dat problem");
+    let dir = std::env::temp_dir().join(format!("fc3d-fclib-nofeature-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("out.hdf5");
+    for result in [
+        write_problem_file(&p, &out, &FclibInfo::default()),
+        write_fclib_file(&p, &out, &FclibInfo::default()),
+    ] {
+        match result {
             Err(Fc3dError::Unsupported(m)) => {
-                assert!(m.contains(name), "{m}");
+                assert!(m.contains("out.hdf5"), "{m}");
+                assert!(m.contains("cannot be written"), "{m}");
                 assert!(m.contains("built without the `fclib` feature"), "{m}");
             }
             other => panic!("expected Unsupported, got {other:?}"),
         }
     }
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "nothing written"
+    );
+    // .dat files are written as before.
+    write_problem_file(&p, &dir.join("out.dat"), &FclibInfo::default()).unwrap();
+    assert_eq!(read_problem_file(&dir.join("out.dat")).unwrap(), p);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_shared_collection_has_its_3d_problems() {
+    assert_eq!(shared_3d_dat_files().len(), 30);
 }
 
 #[cfg(feature = "fclib")]
@@ -557,5 +630,366 @@ mod with_hdf5 {
             g.write(&path);
             invalid_structure(&path, needle);
         }
+    }
+
+    // ---- the writer ----
+
+    use fc3d_core::io::{
+        parse_dat, read_fclib_info, write_dat, write_fclib_file, write_problem_file, FclibInfo,
+    };
+    use fc3d_core::matrix::{BlockSparseMatrix, CsrMatrix, DenseMatrix};
+
+    /// Every stored value of W in storage order, with the storage's structure: equal lists mean
+    /// equal matrices bit for bit (signed zeros included), in the same storage.
+    fn w_bits(w: &Delassus<'_>) -> (String, Vec<usize>, Vec<u64>) {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+        match w {
+            Delassus::Dense(d) => (
+                format!("dense {}x{}", d.nrows(), d.ncols()),
+                Vec::new(),
+                bits(d.values()),
+            ),
+            Delassus::SparseBlock(b) => (
+                format!("sparse-block {}x{}", b.n_block_rows(), b.n_block_cols()),
+                b.row_ptr().iter().chain(b.col_idx()).copied().collect(),
+                bits(&b.blocks().concat()),
+            ),
+            Delassus::Sparse(c) => (
+                format!("csr {}x{}", c.nrows(), c.ncols()),
+                c.row_ptr().iter().chain(c.col_idx()).copied().collect(),
+                bits(c.values()),
+            ),
+        }
+    }
+
+    fn assert_identical(a: &FrictionProblem<'_>, b: &FrictionProblem<'_>, what: &str) {
+        assert_eq!(a, b, "{what}");
+        assert_eq!(w_bits(a.w()), w_bits(b.w()), "{what}: W");
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+        assert_eq!(bits(a.q()), bits(b.q()), "{what}: q");
+        assert_eq!(bits(a.mu()), bits(b.mu()), "{what}: mu");
+    }
+
+    fn dat_text(p: &FrictionProblem<'_>) -> String {
+        let mut bytes = Vec::new();
+        write_dat(p, &mut bytes).unwrap();
+        String::from_utf8(bytes).unwrap()
+    }
+
+    fn info_of(name: &str) -> FclibInfo {
+        FclibInfo {
+            title: Some(name.to_string()),
+            description: Some(format!("{name} rewritten by fc3d's FCLIB writer")),
+            math_info: Some("unknown".to_string()),
+            number_of_degrees_of_freedom: Some(-1),
+        }
+    }
+
+    #[test]
+    fn every_shared_3d_problem_round_trips_dat_hdf5_dat_bit_for_bit() {
+        let s = Scratch::new("roundtrip");
+        let files = shared_3d_dat_files();
+        assert_eq!(files.len(), 30);
+        for path in files {
+            let name = path.file_name().unwrap().to_str().unwrap();
+            let original = read_problem_file(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let hdf5 = s.path(&format!("{name}.hdf5"));
+            let info = info_of(name);
+            write_problem_file(&original, &hdf5, &info).unwrap_or_else(|e| panic!("{name}: {e}"));
+            let back = read_problem_file(&hdf5).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_identical(&original, &back, name);
+            assert_eq!(read_fclib_info(&hdf5).unwrap(), info, "{name}");
+            // And back to .dat: the same text as the original problem writes, which reads back
+            // to the original.
+            let dat = s.path(&format!("{name}.dat"));
+            write_problem_file(&back, &dat, &FclibInfo::default()).unwrap();
+            let text = std::fs::read_to_string(&dat).unwrap();
+            assert_eq!(text, dat_text(&original), "{name}");
+            assert_identical(&parse_dat(&text, name).unwrap(), &original, name);
+            let file = hdf5::File::open(&hdf5).unwrap();
+            println!(
+                "{name}: {} contacts, W {} with {} stored entries, {} bytes of FCLIB",
+                original.n_contacts(),
+                original.w().storage_name(),
+                read_ints(&file, "/fclib_local/W/nzmax")[0],
+                std::fs::metadata(&hdf5).unwrap().len()
+            );
+        }
+    }
+
+    /// A problem with the awkward values: signed zeros, an explicit zero entry, an all-zero
+    /// off-diagonal block, and a denormal.
+    fn awkward() -> FrictionProblem<'static> {
+        let mut blocks = vec![[0.0; 9]; 3];
+        blocks[0] = [2.0, -0.0, 0.5, 0.0, 3.0, 1e-310, -1.25, 0.0, 4.0];
+        blocks[1] = [-0.0; 9]; // block (0, 1): stored, all (negative) zeros
+        blocks[2] = [5.0, 0.0, 0.0, 0.0, 5.0, 0.0, 0.0, 0.0, 5.0];
+        let w = BlockSparseMatrix::new(2, 2, vec![0, 2, 3], vec![0, 1, 1], blocks).unwrap();
+        FrictionProblem::new(
+            Delassus::SparseBlock(w),
+            vec![-1.0, -0.0, 0.0, 2.5, 1e-300, -7.0],
+            vec![0.3, -0.0],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn all_three_storages_round_trip_exactly() {
+        let s = Scratch::new("storages");
+        let base = awkward();
+        let dense = {
+            // Column-major 6x6 with a negative zero and a denormal.
+            let mut v = vec![0.0; 36];
+            base.w().for_each_entry(|i, j, x| v[i + 6 * j] = x);
+            v[1 + 6 * 4] = -0.0;
+            v[5] = f64::MIN_POSITIVE / 8.0;
+            Delassus::Dense(DenseMatrix::new(6, 6, v).unwrap())
+        };
+        let csr = Delassus::Sparse(
+            CsrMatrix::from_triplets(
+                6,
+                6,
+                &[
+                    (0, 0, 2.0),
+                    (0, 3, -0.0), // explicit entries that are zero
+                    (1, 1, 0.0),
+                    (1, 1, 3.0), // a duplicate, summed by the constructor
+                    (2, 0, 0.5),
+                    (3, 3, 5.0),
+                    (4, 4, 5.0),
+                    (5, 5, 5.0),
+                    (5, 0, -1e-310),
+                ],
+            )
+            .unwrap(),
+        );
+        for (label, w) in [
+            ("sparse-block", base.w().clone()),
+            ("dense", dense),
+            ("csr", csr),
+        ] {
+            let p = base.with_w(w).unwrap();
+            let path = s.path(&format!("{label}.h5"));
+            write_fclib_file(&p, &path, &FclibInfo::default()).unwrap();
+            let back = read_fclib_file(&path).unwrap();
+            assert_eq!(back.w().storage_name(), p.w().storage_name(), "{label}");
+            assert_identical(&p, &back, label);
+            assert_eq!(read_fclib_info(&path).unwrap(), FclibInfo::default());
+        }
+    }
+
+    #[test]
+    fn written_files_have_fclibs_layout() {
+        let s = Scratch::new("layout");
+        let p = read_problem_file(&data("Confeti-ex13-4contact-Fc3D-SBM.dat")).unwrap();
+        let Delassus::SparseBlock(b) = p.w() else {
+            panic!("Confeti-ex13-4contact is a sparse-block problem")
+        };
+        let path = s.path("confeti.hdf5");
+        let info = info_of("Confeti-ex13-4contact");
+        write_fclib_file(&p, &path, &info).unwrap();
+        let file = hdf5::File::open(&path).unwrap();
+        let n = p.size() as i64;
+        let nnz = 9 * b.n_blocks() as i64;
+        // Every integer is a C int, every real a double, every array one-dimensional.
+        for (ds, len) in [
+            ("/fclib_local/spacedim", 1),
+            ("/fclib_local/W/nzmax", 1),
+            ("/fclib_local/W/m", 1),
+            ("/fclib_local/W/n", 1),
+            ("/fclib_local/W/nz", 1),
+            ("/fclib_local/W/p", n + 1),
+            ("/fclib_local/W/i", nnz),
+        ] {
+            let d = file.dataset(ds).unwrap();
+            assert_eq!(d.shape(), [len as usize], "{ds}");
+            assert_eq!(
+                d.dtype().unwrap().to_descriptor().unwrap(),
+                hdf5::types::TypeDescriptor::Integer(hdf5::types::IntSize::U4),
+                "{ds}"
+            );
+        }
+        for (ds, len) in [
+            ("/fclib_local/W/x", nnz),
+            ("/fclib_local/vectors/q", n),
+            ("/fclib_local/vectors/mu", n / 3),
+        ] {
+            let d = file.dataset(ds).unwrap();
+            assert_eq!(d.shape(), [len as usize], "{ds}");
+            assert_eq!(
+                d.dtype().unwrap().to_descriptor().unwrap(),
+                hdf5::types::TypeDescriptor::Float(hdf5::types::FloatSize::U8),
+                "{ds}"
+            );
+        }
+        assert_eq!(read_ints(&file, "/fclib_local/spacedim"), [3]);
+        assert_eq!(read_ints(&file, "/fclib_local/W/nz"), [-2]);
+        assert_eq!(read_ints(&file, "/fclib_local/W/m"), [n]);
+        assert_eq!(read_ints(&file, "/fclib_local/W/n"), [n]);
+        assert_eq!(read_ints(&file, "/fclib_local/W/nzmax"), [nnz]);
+        // Compressed rows: every row lists its entries, W[row, col] = x.
+        let (ptr, col, x) = (
+            read_ints(&file, "/fclib_local/W/p"),
+            read_ints(&file, "/fclib_local/W/i"),
+            read_vec(&file, "/fclib_local/W/x"),
+        );
+        for row in 0..n as usize {
+            for k in ptr[row] as usize..ptr[row + 1] as usize {
+                assert_eq!(p.w().get(row, col[k] as usize).to_bits(), x[k].to_bits());
+            }
+        }
+        assert_eq!(ptr[n as usize], nnz);
+        assert_eq!(read_vec(&file, "/fclib_local/vectors/q"), p.q());
+        // The info strings are scalar fixed-length C strings of their length plus the NUL, as
+        // H5LTmake_dataset_string writes them; numberOfDegreeOfFreedom is an int attribute.
+        for (name, value) in [
+            ("title", info.title.as_deref().unwrap()),
+            ("description", info.description.as_deref().unwrap()),
+            ("math_info", info.math_info.as_deref().unwrap()),
+        ] {
+            let d = file.dataset(&format!("/fclib_local/info/{name}")).unwrap();
+            assert!(d.shape().is_empty(), "{name} is a scalar");
+            assert_eq!(
+                d.dtype().unwrap().to_descriptor().unwrap(),
+                hdf5::types::TypeDescriptor::FixedAscii(value.len() + 1),
+                "{name}"
+            );
+            let text: hdf5::types::FixedAscii<256> = d.read_scalar().unwrap();
+            assert_eq!(text.as_str(), value);
+        }
+        let ndof = file
+            .group("/fclib_local/info")
+            .unwrap()
+            .attr("numberOfDegreeOfFreedom")
+            .unwrap();
+        assert_eq!(ndof.read_raw::<i32>().unwrap(), [-1]);
+        let storage = file
+            .group("/fclib_local/W")
+            .unwrap()
+            .attr("fc3d_storage")
+            .unwrap();
+        assert_eq!(storage.read_raw::<i32>().unwrap(), [1]);
+    }
+
+    #[test]
+    fn readers_that_ignore_the_storage_attribute_get_the_same_values() {
+        // Without fc3d_storage (FCLIB's and Siconos' readers do not know it), the rule for
+        // foreign files applies: 3x3 blocks with a non-zero entry plus the diagonal ones. The
+        // values are the same; only exact zeros may lose their blocks or their sign.
+        let s = Scratch::new("nohint");
+        for name in [
+            "FC3D_Example1.dat",
+            "Capsules-i101-404.dat",
+            "NESpheres_10_1.dat",
+        ] {
+            let p = read_problem_file(&data(name)).unwrap();
+            let path = s.path("plain.hdf5");
+            write_fclib_file(&p, &path, &FclibInfo::default()).unwrap();
+            {
+                let file = hdf5::File::open_rw(&path).unwrap();
+                file.group("/fclib_local/W")
+                    .unwrap()
+                    .delete_attr("fc3d_storage")
+                    .unwrap();
+            }
+            let back = read_fclib_file(&path).unwrap();
+            assert!(matches!(back.w(), Delassus::SparseBlock(_)), "{name}");
+            p.w()
+                .for_each_entry(|i, j, v| assert_eq!(back.w().get(i, j), v, "{name} W[{i},{j}]"));
+            back.w()
+                .for_each_entry(|i, j, v| assert_eq!(p.w().get(i, j), v, "{name} W[{i},{j}]"));
+            assert_eq!(back.q(), p.q());
+            assert_eq!(back.mu(), p.mu());
+        }
+    }
+
+    #[test]
+    fn writing_replaces_the_file_and_leaves_nothing_on_failure() {
+        let s = Scratch::new("replace");
+        let path = s.path("p.hdf5");
+        let a = read_problem_file(&data("FC3D_Example1.dat")).unwrap();
+        let b = read_problem_file(&data("Rover4396.dat")).unwrap();
+        write_fclib_file(&a, &path, &info_of("a")).unwrap();
+        write_fclib_file(&b, &path, &FclibInfo::default()).unwrap();
+        assert_identical(&read_fclib_file(&path).unwrap(), &b, "replaced");
+        assert_eq!(read_fclib_info(&path).unwrap(), FclibInfo::default());
+        let before = std::fs::read(&path).unwrap();
+
+        // A NUL in a string is refused before anything is written; the old file stays.
+        let bad = FclibInfo {
+            description: Some("a\0b".into()),
+            ..FclibInfo::default()
+        };
+        match write_fclib_file(&a, &path, &bad) {
+            Err(Fc3dError::Unsupported(m)) => {
+                assert!(
+                    m.contains("p.hdf5") && m.contains("description") && m.contains("NUL"),
+                    "{m}"
+                )
+            }
+            other => panic!("expected Unsupported, got {other:?}"),
+        }
+        assert_eq!(std::fs::read(&path).unwrap(), before);
+
+        // Unwritable places are Io errors naming the path.
+        for target in [s.0.clone(), s.path("no/such/dir/p.hdf5")] {
+            match write_fclib_file(&a, &target, &FclibInfo::default()) {
+                Err(Fc3dError::Io { file, .. }) => assert_eq!(file, target.display().to_string()),
+                other => panic!("{}: expected Io, got {other:?}", target.display()),
+            }
+        }
+        // No temporary file is left behind.
+        let names: Vec<String> = std::fs::read_dir(&s.0)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["p.hdf5"]);
+    }
+
+    #[test]
+    fn a_problem_without_contacts_round_trips() {
+        let s = Scratch::new("empty");
+        let p = FrictionProblem::new(
+            Delassus::Dense(DenseMatrix::new(0, 0, Vec::new()).unwrap()),
+            Vec::new(),
+            Vec::new(),
+        )
+        .unwrap();
+        let path = s.path("empty.hdf5");
+        write_fclib_file(&p, &path, &FclibInfo::default()).unwrap();
+        assert_identical(&read_fclib_file(&path).unwrap(), &p, "no contacts");
+    }
+
+    #[test]
+    fn info_of_the_shared_files_and_of_foreign_strings() {
+        for name in [BOX_STACKS, PERIO_BOX] {
+            let info = read_fclib_info(&data(name)).unwrap();
+            println!("{name}: {info:?}");
+        }
+        // h5py writes variable-length strings; a file without an info group has an empty one.
+        let s = Scratch::new("info");
+        let path = s.path("vlen.hdf5");
+        Local::valid().write(&path);
+        assert_eq!(read_fclib_info(&path).unwrap(), FclibInfo::default());
+        {
+            let f = hdf5::File::open_rw(&path).unwrap();
+            let g = f.create_group("fclib_local/info").unwrap();
+            let title: hdf5::types::VarLenUnicode = "Pile de cubes é".parse().unwrap();
+            g.new_dataset::<hdf5::types::VarLenUnicode>()
+                .create("title")
+                .unwrap()
+                .write_scalar(&title)
+                .unwrap();
+            g.new_attr::<i64>()
+                .shape(1)
+                .create("numberOfDegreeOfFreedom")
+                .unwrap()
+                .write_raw(&[450i64])
+                .unwrap();
+        }
+        let info = read_fclib_info(&path).unwrap();
+        assert_eq!(info.title.as_deref(), Some("Pile de cubes é"));
+        assert_eq!(info.description, None);
+        assert_eq!(info.number_of_degrees_of_freedom, Some(450));
     }
 }

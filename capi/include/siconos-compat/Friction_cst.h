@@ -1,8 +1,9 @@
 /* fc3d compatibility header: stands in for Siconos Numerics 4.4's Friction_cst.h.
-   Compile a Siconos fc3d host with -I<this directory> and link with -lfc3d. */
+   Compile a Siconos fc3d host with -I<this directory> -I<the directory of fc3d.h> (pkg-config
+   fc3d: its variable siconos_includedir and its --cflags) and link with -lfc3d. */
 #ifndef FC3D_COMPAT_FRICTION_CST_H
 #define FC3D_COMPAT_FRICTION_CST_H
-#include "../fc3d.h"
+#include <fc3d.h>
 /* Solver ids (ABI values). fc3d implements those listed in README.md; fc3d_driver returns
    FC3D_ERR_UNSUPPORTED_SOLVER, with a message naming the solver, for the others. */
 enum FRICTION_SOLVER

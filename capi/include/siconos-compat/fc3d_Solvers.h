@@ -1,8 +1,9 @@
 /* fc3d compatibility header: stands in for Siconos Numerics 4.4's fc3d_Solvers.h.
-   Compile a Siconos fc3d host with -I<this directory> and link with -lfc3d. */
+   Compile a Siconos fc3d host with -I<this directory> -I<the directory of fc3d.h> (pkg-config
+   fc3d: its variable siconos_includedir and its --cflags) and link with -lfc3d. */
 #ifndef FC3D_COMPAT_FC3D_SOLVERS_H
 #define FC3D_COMPAT_FC3D_SOLVERS_H
-#include "../fc3d.h"
+#include <fc3d.h>
 #include "FrictionContactProblem.h"
 #include "SolverOptions.h"
 #include "Friction_cst.h"

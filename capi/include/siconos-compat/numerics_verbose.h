@@ -1,6 +1,7 @@
 /* fc3d compatibility header: stands in for Siconos Numerics 4.4's numerics_verbose.h.
-   Compile a Siconos fc3d host with -I<this directory> and link with -lfc3d. */
+   Compile a Siconos fc3d host with -I<this directory> -I<the directory of fc3d.h> (pkg-config
+   fc3d: its variable siconos_includedir and its --cflags) and link with -lfc3d. */
 #ifndef FC3D_COMPAT_NUMERICS_VERBOSE_H
 #define FC3D_COMPAT_NUMERICS_VERBOSE_H
-#include "../fc3d.h"
+#include <fc3d.h>
 #endif

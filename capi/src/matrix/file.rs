@@ -67,7 +67,7 @@ unsafe fn read_from_stream<T, U>(
 }
 
 /// A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
-/// size1` and the body; see `fc3d_core::io::dat`). Release with `NM_free`.
+/// size1` and the body; the matrix part of a Siconos .dat file). Release with `NM_free`.
 ///
 /// On a seekable stream (a regular file) only the matrix is consumed: on success the stream is
 /// left at the first token after the matrix (as Siconos' reader leaves it, but for the whitespace
@@ -78,6 +78,7 @@ unsafe fn read_from_stream<T, U>(
 /// token), `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a sparse-block matrix
 /// whose blocks are not all 3x3, a half-triplet sparse matrix), `FC3D_ERR_NULL_POINTER`,
 /// `FC3D_ERR_IO`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_new_from_file(file: *mut libc::FILE) -> *mut NumericsMatrix {
     ffi_guard(
@@ -95,6 +96,7 @@ pub unsafe extern "C" fn NM_new_from_file(file: *mut libc::FILE) -> *mut Numeric
 
 /// A matrix read from the file `filename` (see `NM_new_from_file`). Release with `NM_free`.
 /// NULL on failure (`FC3D_ERR_IO` when the file cannot be read).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_new_from_filename(filename: *const c_char) -> *mut NumericsMatrix {
     ffi_guard(
@@ -149,6 +151,7 @@ fn matrix_text(M: *const NumericsMatrix) -> CResult<Vec<u8>> {
 ///
 /// Nothing is written when `M` cannot be represented by fc3d (a sparse-block matrix whose blocks
 /// are not all 3x3, non-finite values, an inconsistent structure): see `fc3d_last_error_code`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_write_in_file(M: *const NumericsMatrix, file: *mut libc::FILE) {
     ffi_guard(
@@ -166,6 +169,7 @@ pub unsafe extern "C" fn NM_write_in_file(M: *const NumericsMatrix, file: *mut l
 
 /// Writes `M` to the file `filename`, created or truncated (see `NM_write_in_file`). The file is
 /// not touched when `M` cannot be written.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_write_in_filename(M: *const NumericsMatrix, filename: *const c_char) {
     ffi_guard(
@@ -187,6 +191,7 @@ pub unsafe extern "C" fn NM_write_in_filename(M: *const NumericsMatrix, filename
 /// returns NULL there). The stream is consumed as by `NM_new_from_file`.
 /// Release with `SBM_clear` + `free` (or through `NM_free` once wrapped by `NM_new_SBM`).
 /// NULL on failure (`FC3D_ERR_PARSE` for malformed text).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBM_new_from_file(
     file: *mut libc::FILE,

@@ -16,12 +16,14 @@ use crate::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
 // Siconos API.
 
 /// A new empty matrix (storage NM_UNKNOWN, sizes 0). Release with `NM_free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn NM_new() -> *mut NumericsMatrix {
     ffi_guard("NM_new", |_| null_mut(), || c_box(null_matrix()))
 }
 
 /// Resets every field of `A` (frees nothing).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_null(A: *mut NumericsMatrix) {
     ffi_guard(
@@ -69,6 +71,7 @@ fn storage_for(storageType: c_int, size0: c_int, size1: c_int) -> CResult<Numeri
 
 /// A matrix of the given storage: dense is zero-filled, sparse-block and sparse are empty
 /// structures to fill (e.g. with `NM_triplet_alloc` + `NM_entry`). Release with `NM_free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn NM_create(storageType: c_int, size0: c_int, size1: c_int) -> *mut NumericsMatrix {
     ffi_guard(
@@ -111,6 +114,7 @@ fn fill(
 
 /// A matrix wrapping `data` without copying it (a `double*` for dense, a
 /// `SparseBlockStructuredMatrix*` or a `NumericsSparseMatrix*`). `NM_free` will free `data`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn NM_create_from_data(
     storageType: c_int,
@@ -130,6 +134,7 @@ pub extern "C" fn NM_create_from_data(
 }
 
 /// Sets `M` to wrap `data` (no copy); previous storage of `M` is not released.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_fill(
     M: *mut NumericsMatrix,
@@ -151,6 +156,7 @@ pub unsafe extern "C" fn NM_fill(
 }
 
 /// A sparse-block matrix wrapping `m1` (no copy).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn NM_new_SBM(
     size0: c_int,
@@ -166,6 +172,7 @@ pub extern "C" fn NM_new_SBM(
 }
 
 /// Frees the storage of `m` (not the struct itself) and resets its pointers.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_clear(m: *mut NumericsMatrix) {
     ffi_guard(
@@ -179,6 +186,7 @@ pub unsafe extern "C" fn NM_clear(m: *mut NumericsMatrix) {
 }
 
 /// Frees the storage of `m` and `m` itself; returns NULL (Siconos' idiom `M = NM_free(M)`).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_free(m: *mut NumericsMatrix) -> *mut NumericsMatrix {
     ffi_guard(
@@ -193,6 +201,7 @@ pub unsafe extern "C" fn NM_free(m: *mut NumericsMatrix) -> *mut NumericsMatrix 
 }
 
 /// Allocates a triplet of capacity `nzmax` as the sparse storage of `A` (origin: triplet).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_triplet_alloc(A: *mut NumericsMatrix, nzmax: CS_INT) {
     ffi_guard(
@@ -228,6 +237,7 @@ pub unsafe extern "C" fn NM_triplet_alloc(A: *mut NumericsMatrix, nzmax: CS_INT)
 
 /// Sets entry (i, j) of a dense matrix, or appends it to the triplet of a sparse one (growing
 /// it as needed). Sparse-block matrices are not supported here.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_entry(M: *mut NumericsMatrix, i: c_int, j: c_int, val: c_double) {
     ffi_guard(
@@ -270,6 +280,7 @@ pub unsafe extern "C" fn NM_entry(M: *mut NumericsMatrix, i: c_int, j: c_int, va
 }
 
 /// Entry (i, j) of `M` in any storage (0 where nothing is stored); NaN on invalid input.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_get_value(M: *const NumericsMatrix, i: c_int, j: c_int) -> c_double {
     ffi_guard(
@@ -318,6 +329,7 @@ pub unsafe extern "C" fn NM_get_value(M: *const NumericsMatrix, i: c_int, j: c_i
 
 /// Replaces the storage of `B` by a sparse (triplet) copy of `A`, keeping entries with
 /// `|value| > threshold`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_copy_to_sparse(
     A: *const NumericsMatrix,

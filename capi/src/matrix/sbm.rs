@@ -150,12 +150,14 @@ pub(super) unsafe fn sbm_clear_impl(s: *mut SparseBlockStructuredMatrix, free_bl
 // Siconos API.
 
 /// A new empty sparse-block structure. Release with `SBM_clear` + `free`, or through `NM_free`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn SBM_new() -> *mut SparseBlockStructuredMatrix {
     ffi_guard("SBM_new", |_| null_mut(), || c_box(empty_sbm()))
 }
 
 /// Frees the blocks and index arrays of `blmat` (not the struct).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
     ffi_guard(
@@ -171,6 +173,7 @@ pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
 /// Coordinate block matrix of `nbblocks` 3x3 blocks at 1-based block coordinates
 /// `(row[k], column[k])`, values `block[9k..9k+9]` column-major. Keeps `row`, `column` and
 /// `block` without copying (they stay the caller's); release with `SBCM_free_3x3`.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_new_3x3(
     m: c_uint,
@@ -220,6 +223,7 @@ pub unsafe extern "C" fn SBCM_new_3x3(
 }
 
 /// Frees what `SBCM_new_3x3` allocated (not the caller's row, column and block arrays).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_free_3x3(MC: *mut SparseBlockCoordinateMatrix) {
     ffi_guard(
@@ -239,6 +243,7 @@ pub unsafe extern "C" fn SBCM_free_3x3(MC: *mut SparseBlockCoordinateMatrix) {
 
 /// A sparse-block matrix (block-CSR, sorted) whose blocks point into the coordinate matrix's
 /// values (no copy). Release with `SBM_free_from_SBCM` before the coordinate data goes away.
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_to_SBM(
     MC: *mut SparseBlockCoordinateMatrix,
@@ -304,6 +309,7 @@ pub unsafe extern "C" fn SBCM_to_SBM(
 }
 
 /// Frees an SBM made by `SBCM_to_SBM` (structure and struct, not the block values).
+#[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBM_free_from_SBCM(M: *mut SparseBlockStructuredMatrix) {
     ffi_guard(

@@ -1,4 +1,4 @@
-//! FCLIB problem files (`.hdf5`), read through the system libhdf5 with `hdf5-metno`
+//! FCLIB problem files (`.hdf5`), read and written through the system libhdf5 with `hdf5-metno`
 //! (cargo feature `fclib`, off by default: it needs Debian's `libhdf5-dev` and `pkg-config`).
 //!
 //! # Layout
@@ -12,7 +12,7 @@
 //!                vectors/q           f64[3nc]
 //!                vectors/mu          f64[nc]
 //!                (R/, V/, vectors/s  optional equality constraints: rejected as Unsupported)
-//!                info/title, description, math_info   strings (ignored)
+//!                info/title, description, math_info   strings (read by [`read_fclib_info`])
 //! /fclib_global  spacedim            int[1]
 //!                M/                  sparse matrix, ndof x ndof
 //!                H/                  sparse matrix, ndof x 3nc
@@ -39,6 +39,33 @@
 //! (M 450x450 diagonal, H 450x246 as 1284 triplets, nc = 82); `LMGC_100_PR_PerioBox-i00361-60-03000.hdf5`
 //! is local only (W 180x180 in compressed rows, 9576 entries, nc = 60).
 //!
+//! # Writing
+//!
+//! [`write_fclib_file`] writes a local problem as FCLIB's `fclib_write_local` does (the file is
+//! replaced; FCLIB would refuse a file that already holds `/fclib_local`):
+//!
+//! ```text
+//! /fclib_local   spacedim            int[1] = 3
+//!                W/                  nzmax, m, n, nz = -2 (int[1] each), p int[m+1], i int[nzmax],
+//!                                    x f64[nzmax]: compressed rows holding every entry W stores
+//!                                    (all n^2 of a dense W, as Siconos' writer; the 9 of every
+//!                                    3x3 block of a sparse-block W; those of a CSR W)
+//!                W@fc3d_storage      int[1] attribute: W's storage, Siconos' NM_types code
+//!                                    (0 dense, 1 sparse-block, 2 sparse)
+//!                vectors/q, mu       f64[3nc], f64[nc]
+//!                info/               title, description, math_info: scalar fixed-length
+//!                                    NUL-terminated strings (H5LTmake_dataset_string), each only
+//!                                    when given; attribute numberOfDegreeOfFreedom int[1] (as
+//!                                    Siconos' frictionContact_fclib_write) when given
+//! ```
+//!
+//! Readers that do not know `fc3d_storage` (FCLIB, Siconos) ignore it, as they ignore every
+//! attribute. [`read_fclib_file`] uses it: a local problem with the attribute is rebuilt in that
+//! storage from exactly the stored entries (a dense W from all its entries, a sparse-block W from
+//! every 3x3 block that has a stored entry, zeros and signed zeros included, plus any missing
+//! diagonal block; a CSR W as stored), so that writing then reading gives back an equal problem,
+//! bit for bit, in the same storage. Without the attribute the rule below applies.
+//!
 //! # What is returned
 //!
 //! [`read_fclib_file`] reads `/fclib_local` when present, else reduces `/fclib_global` to the local
@@ -49,8 +76,9 @@
 //! [`Fc3dError::InvalidStructure`], never NaNs in W. M must be stored in full (both triangles):
 //! FCLIB has no symmetric-storage flag.
 //!
-//! W is returned in the sparse-block storage ([`Delassus::SparseBlock`], 3x3 blocks): every block
-//! with a non-zero entry plus every diagonal block. A reduced W is dense within groups of contacts
+//! Unless the file says otherwise (`fc3d_storage`, above), W is returned in the sparse-block
+//! storage ([`Delassus::SparseBlock`], 3x3 blocks): every block with a non-zero entry plus every
+//! diagonal block (Siconos' reader also gives a sparse-block W). A reduced W is dense within groups of contacts
 //! that share a body and exactly zero elsewhere (the solves keep the zeros of M^-1 H exact), so
 //! for block-diagonal M this storage keeps only the couplings that exist.
 //!
@@ -60,8 +88,10 @@
 //! [`Fc3dError::Io`] naming the file; `spacedim != 3` and the optional constraint blocks are
 //! [`Fc3dError::Unsupported`]; missing or mistyped datasets, inconsistent sizes and out-of-range
 //! indices are [`Fc3dError::InvalidStructure`] naming the file and the dataset; NaN or infinite
-//! values are [`Fc3dError::NonFinite`] naming them. A dataset declaring more values than 64 per
-//! byte of the file is rejected before it is allocated.
+//! values are [`Fc3dError::NonFinite`] naming them; an `fc3d_storage` or
+//! `numberOfDegreeOfFreedom` attribute that is not one integer of the expected range is an
+//! [`Fc3dError::InvalidStructure`]. A dataset declaring more values than 64 per byte of the file
+//! is rejected before it is allocated. The writer's errors are listed at [`write_fclib_file`].
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -74,8 +104,21 @@ use hdf5_metno as hdf5;
 use hdf5_metno::types::TypeDescriptor;
 
 use crate::error::Fc3dError;
-use crate::matrix::{CsrMatrix, Delassus};
+use crate::io::info::FclibInfo;
+use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::problem::{FrictionProblem, DIMENSION};
+
+mod info_group;
+mod write;
+
+pub use write::write_fclib_file;
+
+/// The attribute of the W group in which [`write_fclib_file`] records W's storage.
+const STORAGE_ATTRIBUTE: &str = "fc3d_storage";
+/// Values of [`STORAGE_ATTRIBUTE`]: Siconos' `NM_types` codes.
+const STORAGE_DENSE: i32 = 0;
+const STORAGE_SPARSE_BLOCK: i32 = 1;
+const STORAGE_SPARSE: i32 = 2;
 
 /// Right-hand sides solved together when reducing a global problem.
 const SOLVE_CHUNK: usize = 32;
@@ -89,9 +132,46 @@ const BACKWARD_ERROR_TOLERANCE: f64 = 1e-8;
 const MAX_VALUES_PER_FILE_BYTE: u64 = 64;
 
 /// Reads an FCLIB problem: `/fclib_local` when present, else `/fclib_global` reduced to
-/// `W = H^T M^-1 H`, `q = H^T M^-1 f + w`. W comes back in 3x3 sparse-block storage. See the
-/// module documentation for the layout and the errors.
+/// `W = H^T M^-1 H`, `q = H^T M^-1 f + w`. W comes back in the storage [`write_fclib_file`]
+/// recorded (attribute `fc3d_storage`), else in 3x3 sparse-block storage. See the module
+/// documentation for the layout and the errors.
 pub fn read_fclib_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError> {
+    let (file, reader) = open(path)?;
+    if file.link_exists("fclib_local") {
+        reader.read_local(&reader.group(&file, "", "fclib_local")?)
+    } else if file.link_exists("fclib_global") {
+        reader.read_global(&reader.group(&file, "", "fclib_global")?)
+    } else {
+        Err(reader.not_fclib())
+    }
+}
+
+/// Reads the info group of an FCLIB file: that of `/fclib_local` when present, else that of
+/// `/fclib_global`; every field `None` when the group (or a field) is absent. The strings may be
+/// fixed-length (FCLIB) or variable-length (h5py); invalid UTF-8 is replaced by U+FFFD. Errors
+/// as [`read_fclib_file`]'s.
+pub fn read_fclib_info(path: &Path) -> Result<FclibInfo, Fc3dError> {
+    let (file, reader) = open(path)?;
+    let name = if file.link_exists("fclib_local") {
+        "fclib_local"
+    } else if file.link_exists("fclib_global") {
+        "fclib_global"
+    } else {
+        return Err(reader.not_fclib());
+    };
+    let group = reader.group(&file, "", name)?;
+    if !group.link_exists("info") {
+        return Ok(FclibInfo::default());
+    }
+    let gpath = format!("/{name}");
+    reader.read_info(
+        &reader.group(&group, &gpath, "info")?,
+        &format!("{gpath}/info"),
+    )
+}
+
+/// Opens an FCLIB file for reading, with the reader of its datasets.
+fn open(path: &Path) -> Result<(hdf5::File, Reader), Fc3dError> {
     let label = path.display().to_string();
     let io_error = |message: String| Fc3dError::Io {
         file: label.clone(),
@@ -112,15 +192,7 @@ pub fn read_fclib_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dErro
             .saturating_mul(MAX_VALUES_PER_FILE_BYTE)
             .max(1 << 20),
     };
-    if file.link_exists("fclib_local") {
-        reader.read_local(&reader.group(&file, "", "fclib_local")?)
-    } else if file.link_exists("fclib_global") {
-        reader.read_global(&reader.group(&file, "", "fclib_global")?)
-    } else {
-        Err(reader.invalid(
-            "neither /fclib_local nor /fclib_global is present: not an FCLIB problem file",
-        ))
-    }
+    Ok((file, reader))
 }
 
 /// A sparse matrix read from a file: its size and `(row, column, value)` entries (duplicates not
@@ -140,6 +212,10 @@ struct Reader {
 impl Reader {
     fn invalid(&self, message: impl std::fmt::Display) -> Fc3dError {
         Fc3dError::InvalidStructure(format!("{}: {message}", self.label))
+    }
+
+    fn not_fclib(&self) -> Fc3dError {
+        self.invalid("neither /fclib_local nor /fclib_global is present: not an FCLIB problem file")
     }
 
     fn hdf5_error(&self, object: &str, e: hdf5::Error) -> Fc3dError {
@@ -468,7 +544,168 @@ impl Reader {
         self.check_len(&format!("{vp}/q"), q.len(), w.nrows, "the size of W")?;
         let mu = self.floats(&v, &vp, "mu")?;
         self.check_len(&format!("{vp}/mu"), mu.len(), nc, "one per contact")?;
-        self.problem(w.nrows, &w.entries, q, mu)
+        match self.storage(&self.group(g, gp, "W")?, &format!("{gp}/W"))? {
+            Some(storage) => self.problem_as_stored(storage, w.nrows, &w.entries, q, mu),
+            None => self.problem(w.nrows, &w.entries, q, mu),
+        }
+    }
+
+    /// The storage recorded by [`write_fclib_file`] in the attribute `fc3d_storage` of the W
+    /// group `wg`, `None` without the attribute.
+    fn storage(&self, wg: &hdf5::Group, wpath: &str) -> Result<Option<i32>, Fc3dError> {
+        let names = wg
+            .attr_names()
+            .map_err(|e| self.hdf5_error(&format!("{wpath} attributes"), e))?;
+        if !names.iter().any(|n| n == STORAGE_ATTRIBUTE) {
+            return Ok(None);
+        }
+        let apath = format!("{wpath} attribute {STORAGE_ATTRIBUTE}");
+        let value = self.int_attribute(wg, STORAGE_ATTRIBUTE, &apath)?;
+        match i32::try_from(value) {
+            Ok(v @ (STORAGE_DENSE | STORAGE_SPARSE_BLOCK | STORAGE_SPARSE)) => Ok(Some(v)),
+            _ => Err(self.invalid(format!(
+                "{apath} = {value}: expected {STORAGE_DENSE} (dense), {STORAGE_SPARSE_BLOCK} \
+                 (sparse-block) or {STORAGE_SPARSE} (sparse)"
+            ))),
+        }
+    }
+
+    /// The integer attribute `name` of `object` (one value), named `apath` in messages.
+    fn int_attribute(
+        &self,
+        object: &hdf5::Location,
+        name: &str,
+        apath: &str,
+    ) -> Result<i64, Fc3dError> {
+        let attr = object.attr(name).map_err(|e| self.hdf5_error(apath, e))?;
+        match attr
+            .dtype()
+            .and_then(|t| t.to_descriptor())
+            .map_err(|e| self.invalid(format!("{apath} has an unreadable datatype ({e})")))?
+        {
+            TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_) => {}
+            other => {
+                return Err(
+                    self.invalid(format!("{apath} holds {other} values, expected an integer"))
+                )
+            }
+        }
+        if attr.size() != 1 {
+            return Err(self.invalid(format!(
+                "{apath} holds {} values, expected one",
+                attr.size()
+            )));
+        }
+        let values = attr
+            .read_raw::<i64>()
+            .map_err(|e| self.hdf5_error(apath, e))?;
+        values
+            .first()
+            .copied()
+            .ok_or_else(|| self.invalid(format!("{apath} holds no value")))
+    }
+
+    /// The info group `ig` (named `ipath`): its three strings and `numberOfDegreeOfFreedom`.
+    fn read_info(&self, ig: &hdf5::Group, ipath: &str) -> Result<FclibInfo, Fc3dError> {
+        let mut strings = [None, None, None];
+        for (slot, name) in strings.iter_mut().zip(info_group::STRINGS) {
+            if ig.link_exists(name) {
+                let text = info_group::read_string(ig, name, self.max_values)
+                    .map_err(|e| self.invalid(format!("{ipath}/{name}: {e}")))?;
+                *slot = Some(text);
+            }
+        }
+        let names = ig
+            .attr_names()
+            .map_err(|e| self.hdf5_error(&format!("{ipath} attributes"), e))?;
+        let apath = format!("{ipath} attribute {}", info_group::NDOF_ATTRIBUTE);
+        let ndof = if names.iter().any(|n| n == info_group::NDOF_ATTRIBUTE) {
+            let v = self.int_attribute(ig, info_group::NDOF_ATTRIBUTE, &apath)?;
+            Some(
+                i32::try_from(v)
+                    .map_err(|_| self.invalid(format!("{apath} = {v} does not fit a C int")))?,
+            )
+        } else {
+            None
+        };
+        let [title, description, math_info] = strings;
+        Ok(FclibInfo {
+            title,
+            description,
+            math_info,
+            number_of_degrees_of_freedom: ndof,
+        })
+    }
+
+    /// Assembles the problem with W in the storage `storage` (an `fc3d_storage` code), from
+    /// exactly the stored entries: the first value at a position is kept as it is (signed zeros
+    /// included), duplicates are added to it.
+    fn problem_as_stored(
+        &self,
+        storage: i32,
+        n: usize,
+        w_entries: &[(usize, usize, f64)],
+        q: Vec<f64>,
+        mu: Vec<f64>,
+    ) -> Result<FrictionProblem<'static>, Fc3dError> {
+        let w = match storage {
+            STORAGE_DENSE => {
+                let size = n
+                    .checked_mul(n)
+                    .filter(|&s| s as u64 <= self.max_values)
+                    .ok_or_else(|| {
+                        self.invalid(format!(
+                            "/fclib_local/W is marked dense but {n}x{n} values are more than \
+                             the file could describe"
+                        ))
+                    })?;
+                let mut data = vec![0.0; size];
+                let mut seen = vec![false; size];
+                for &(i, j, v) in w_entries {
+                    let k = i + j * n;
+                    if seen[k] {
+                        data[k] += v;
+                    } else {
+                        data[k] = v;
+                        seen[k] = true;
+                    }
+                }
+                Delassus::Dense(DenseMatrix::new(n, n, data)?)
+            }
+            STORAGE_SPARSE_BLOCK => {
+                let nc = n / DIMENSION;
+                let mut map = BTreeMap::<(usize, usize), ([f64; 9], [bool; 9])>::new();
+                for c in 0..nc {
+                    map.insert((c, c), ([0.0; 9], [false; 9]));
+                }
+                for &(i, j, v) in w_entries {
+                    let (block, seen) = map
+                        .entry((i / DIMENSION, j / DIMENSION))
+                        .or_insert(([0.0; 9], [false; 9]));
+                    let k = i % DIMENSION + DIMENSION * (j % DIMENSION);
+                    if seen[k] {
+                        block[k] += v;
+                    } else {
+                        block[k] = v;
+                        seen[k] = true;
+                    }
+                }
+                let mut row_ptr = vec![0usize; nc + 1];
+                let mut col_idx = Vec::with_capacity(map.len());
+                let mut blocks = Vec::with_capacity(map.len());
+                for ((bi, bj), (block, _)) in map {
+                    row_ptr[bi + 1] += 1;
+                    col_idx.push(bj);
+                    blocks.push(block);
+                }
+                for c in 0..nc {
+                    row_ptr[c + 1] += row_ptr[c];
+                }
+                Delassus::SparseBlock(BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)?)
+            }
+            _ => Delassus::Sparse(CsrMatrix::from_triplets(n, n, w_entries)?),
+        };
+        FrictionProblem::new(w, q, mu)
     }
 
     fn read_global(&self, g: &hdf5::Group) -> Result<FrictionProblem<'static>, Fc3dError> {

@@ -25,9 +25,10 @@ pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static
     match dim {
         DIMENSION => {}
         2 => {
-            return Err(Fc3dError::Unsupported(format!(
-                "{file_label}: fc2d problems are not supported (the file has dimension 2, fc3d solves dimension 3)"
-            )))
+            return Err(Fc3dError::UnsupportedDimension {
+                file: file_label.to_string(),
+                dimension: 2,
+            })
         }
         _ => return Err(r.error_at(dim_index, "the problem dimension must be 3")),
     }

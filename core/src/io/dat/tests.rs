@@ -191,8 +191,9 @@ fn non_3x3_blocks_and_2d_files_are_unsupported() {
         other => panic!("{other:?}"),
     }
     match parse_dat("2 1 0 2 2 2 2 1 0 0 1 0 0 0.5", "flat.dat") {
-        Err(Fc3dError::Unsupported(m)) => {
-            assert!(m.contains("flat.dat") && m.contains("fc2d problems are not supported"))
+        Err(e @ Fc3dError::UnsupportedDimension { dimension: 2, .. }) => {
+            let m = e.to_string();
+            assert!(m.contains("flat.dat") && m.contains("dimension 2 are not supported"))
         }
         other => panic!("{other:?}"),
     }
