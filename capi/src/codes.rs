@@ -39,5 +39,7 @@ pub const FC3D_ERR_INVALID_PROBLEM: c_int = -7;
 pub const FC3D_ERR_PARSE: c_int = -8;
 /// A file could not be opened, read or written.
 pub const FC3D_ERR_IO: c_int = -9;
+/// Memory for input-sized data could not be allocated (a size too large for the machine).
+pub const FC3D_ERR_OUT_OF_MEMORY: c_int = -10;
 /// A bug in fc3d (a caught panic). Please report it.
 pub const FC3D_ERR_INTERNAL: c_int = -99;
