@@ -105,10 +105,11 @@ pub(crate) fn require_setting(
 /// an [`Fc3dError::OutOfMemory`] naming `what`, never an abort.
 pub fn try_vec<T: Clone>(len: usize, value: T, what: &str) -> Result<Vec<T>, Fc3dError> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len).map_err(|_| Fc3dError::OutOfMemory {
-        what: what.to_string(),
-        bytes: len.saturating_mul(std::mem::size_of::<T>()),
-    })?;
+    v.try_reserve_exact(len)
+        .map_err(|_| Fc3dError::OutOfMemory {
+            what: what.to_string(),
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
     v.resize(len, value);
     Ok(v)
 }
