@@ -3,7 +3,7 @@
 
 fn main() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let sources = ["c/capi_checks.c", "c/nsgs_options.c"];
+    let sources = ["c/capi_checks.c", "c/nsgs_options.c", "c/matrix_hostile.c"];
     let mut build = cc::Build::new();
     build
         .include(root.join("../capi/include/siconos-compat"))

@@ -38,6 +38,9 @@ cargo test --workspace --features fc3d-core/fclib
 echo "== FCLIB tests without the fclib feature (.hdf5 refused with a clear error by the core, the C ABI and fc3d convert)"
 cargo test -p fc3d-core -p fc3d -p fc3d-cli --test fclib --test convert
 
+echo "== allocation tests under an address-space limit (ulimit -v 1 GiB)"
+bash scripts/test-memory-limit.sh
+
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 PREFIX=$WORK/prefix
@@ -89,7 +92,7 @@ cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos $(pkg-config --cfl
 for p in NESpheres_10_1 Rover1039 Confeti-ex13-Fc3D-SBM; do ./side_by_side "$DATA/$p.dat"; done
 
 echo "== C checks under valgrind (installed libfc3d.so)"
-cc "${CFLAGS[@]}" -I"$SICONOS_INC" $(pkg-config --cflags fc3d) ownership_main.c capi_checks.c nsgs_options.c \
+cc "${CFLAGS[@]}" -I"$SICONOS_INC" $(pkg-config --cflags fc3d) ownership_main.c capi_checks.c nsgs_options.c matrix_hostile.c \
   $(pkg-config --libs fc3d) -lm -o capi_checks
 valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
   ./capi_checks "$DATA" "$WORK"

@@ -68,6 +68,12 @@
 // returned reaction, is above the tolerance (some contact slides).
 #define FC3D_RELAXED_NOT_COULOMB 3
 
+// The reaction grew without bound and the solver stopped (`info` 4): its iterates diverged,
+// or they ran along a direction d with W d = 0 into which q pushes (q·d < 0), where the relative
+// error falls as ||r|| grows although the problem has no solution. `dparam[1]` is the error of
+// the returned reaction.
+#define FC3D_UNBOUNDED 4
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 
@@ -95,8 +101,24 @@
 // A file could not be opened, read or written.
 #define FC3D_ERR_IO -9
 
+// Memory for input-sized data could not be allocated (a size too large for the machine).
+#define FC3D_ERR_OUT_OF_MEMORY -10
+
 // A bug in fc3d (a caught panic). Please report it.
 #define FC3D_ERR_INTERNAL -99
+
+// The deepest chain of internal solvers fc3d accepts: the options given to a function are
+// level 0, their internal solvers level 1, and so on (fc3d's own trees are at most 2 deep: PROX
+// -> NSGS -> local solver). `fc3d_driver`, `solver_options_copy` and `solver_options_print`
+// refuse a deeper chain, and a cycle (an options struct that is its own internal solver,
+// directly or deeper), with `FC3D_ERR_INVALID_OPTION`.
+#define FC3D_OPTIONS_MAX_DEPTH 8
+
+// The most internal solvers one options struct may declare (`numberOfInternalSolvers`).
+#define FC3D_OPTIONS_MAX_INTERNAL_SOLVERS 16
+
+// The largest `iSize` / `dSize` accepted (fc3d reads the first `OPTIONS_PARAM_SIZE` slots).
+#define FC3D_OPTIONS_MAX_PARAM_SIZE 1024
 
 // A problem read from a file (opaque), with W also kept in compressed rows for
 // `fc3d_problem_get`.
@@ -267,6 +289,11 @@ void numerics_set_verbose(int newVerboseMode);
 // (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 // input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
 // and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
+// The options tree is checked first: a cycle of internal solvers, or a chain deeper than
+// `FC3D_OPTIONS_MAX_DEPTH`, is refused with `FC3D_ERR_INVALID_OPTION`. `options->callback`
+// must not free or modify the options (nor the problem or the arrays) during the solve: a
+// change to the options struct or its slots is detected after each call, and the solve is then
+// refused with `FC3D_ERR_INVALID_OPTION` (nothing written; the callback is not called again).
 int fc3d_driver(struct FrictionContactProblem *problem,
                 double *reaction,
                 double *velocity,
@@ -353,47 +380,71 @@ void NM_null(struct NumericsMatrix *A);
 
 // A matrix of the given storage: dense is zero-filled, sparse-block and sparse are empty
 // structures to fill (e.g. with `NM_triplet_alloc` + `NM_entry`). Release with `NM_free`.
+// NULL with `FC3D_ERR_INVALID_SIZE` for negative sizes or a dense size beyond the address
+// space, `FC3D_ERR_OUT_OF_MEMORY`, `FC3D_ERR_INVALID_STORAGE` for an unknown storage type.
 struct NumericsMatrix *NM_create(int storageType, int size0, int size1);
 
 // A matrix wrapping `data` without copying it (a `double*` for dense, a
-// `SparseBlockStructuredMatrix*` or a `NumericsSparseMatrix*`). `NM_free` will free `data`.
+// `SparseBlockStructuredMatrix*` or a `NumericsSparseMatrix*`; NULL is kept as NULL). `NM_free`
+// will free `data`. The data is checked when the matrix is used, not here.
 struct NumericsMatrix *NM_create_from_data(int storageType, int size0, int size1, void *data);
 
-// Sets `M` to wrap `data` (no copy); previous storage of `M` is not released.
+// Sets `M` to wrap `data` (no copy); previous storage of `M` is not released. Negative sizes
+// and unknown storage types are refused and leave `M` unchanged.
 void NM_fill(struct NumericsMatrix *M, int storageType, int size0, int size1, void *data);
 
 // A sparse-block matrix wrapping `m1` (no copy).
 struct NumericsMatrix *NM_new_SBM(int size0, int size1, struct SparseBlockStructuredMatrix *m1);
 
-// Frees the storage of `m` (not the struct itself) and resets its pointers.
+// Frees the storage of `m` (not the struct itself) and resets its pointers. Refused, with
+// nothing freed (`FC3D_ERR_INVALID_STORAGE`), when a sparse-block storage's `nbblocks` exceeds
+// the heap block that holds its block pointers.
 void NM_clear(struct NumericsMatrix *m);
 
 // Frees the storage of `m` and `m` itself; returns NULL (Siconos' idiom `M = NM_free(M)`).
+// When the storage cannot be freed safely (see `NM_clear`) nothing is freed: NULL is returned
+// all the same, with `fc3d_last_error_code()` set.
 struct NumericsMatrix *NM_free(struct NumericsMatrix *m);
 
-// Allocates a triplet of capacity `nzmax` as the sparse storage of `A` (origin: triplet).
+// Allocates a triplet of capacity `nzmax` as the sparse storage of `A` (origin: triplet),
+// replacing (and freeing) a previous triplet. All or nothing: a NULL `A`, negative sizes or
+// `nzmax`, a capacity beyond the address space (`FC3D_ERR_INVALID_SIZE`) or memory that cannot
+// be had (`FC3D_ERR_OUT_OF_MEMORY`) leave `A` unchanged.
 void NM_triplet_alloc(struct NumericsMatrix *A, CS_INT nzmax);
 
-// Sets entry (i, j) of a dense matrix, or appends it to the triplet of a sparse one (growing
-// it as needed). Sparse-block matrices are not supported here.
+// Sets entry (i, j) of a dense matrix, or adds it to a sparse one as Siconos does: appended to
+// the triplet (grown as needed; a sparse matrix without storage gets a triplet), or inserted
+// into the compressed columns of a CSC matrix (rebuilt, origin kept). Refused, with the matrix
+// unchanged: (i, j) outside the matrix, compressed-row and half-triplet storage, storage whose
+// counts or index arrays are inconsistent (negative `nz` or `nzmax`, `nz > nzmax`, pointers
+// that decrease or pass `nzmax`, indices out of range), and sparse-block storage.
 void NM_entry(struct NumericsMatrix *M, int i, int j, double val);
 
-// Entry (i, j) of `M` in any storage (0 where nothing is stored); NaN on invalid input.
+// Entry (i, j) of `M` in any storage: the value stored there (NaN and infinities included),
+// the sum of the entries or blocks stored at (i, j) of a sparse or sparse-block matrix, 0 where
+// nothing is stored. NaN on invalid input, with a code: (i, j) outside the matrix
+// (`FC3D_ERR_INVALID_SIZE`), NULL storage, and an inconsistent storage where it is read
+// (block counts, cumulative block sizes, the pointers and indices of the line read).
 double NM_get_value(const struct NumericsMatrix *M, int i, int j);
 
 // Replaces the storage of `B` by a sparse (triplet) copy of `A`, keeping entries with
-// `|value| > threshold`.
+// `|value| > threshold` (`A` and `B` may be the same matrix). All or nothing: `A` is checked as
+// the driver checks it (non-finite values are refused) and `B` is changed only on success.
 void NM_copy_to_sparse(const struct NumericsMatrix *A, struct NumericsMatrix *B, double threshold);
 
 // A new empty sparse-block structure. Release with `SBM_clear` + `free`, or through `NM_free`.
 struct SparseBlockStructuredMatrix *SBM_new(void);
 
-// Frees the blocks and index arrays of `blmat` (not the struct).
+// Frees the `nbblocks` blocks and the index arrays of `blmat` (not the struct); NULL is a
+// no-op. Refused (`FC3D_ERR_INVALID_STORAGE`, nothing freed) when `nbblocks` exceeds the heap
+// block holding the block array.
 void SBM_clear(struct SparseBlockStructuredMatrix *blmat);
 
 // Coordinate block matrix of `nbblocks` 3x3 blocks at 1-based block coordinates
-// `(row[k], column[k])`, values `block[9k..9k+9]` column-major. Keeps `row`, `column` and
-// `block` without copying (they stay the caller's); release with `SBCM_free_3x3`.
+// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks.
+// Keeps `row`, `column` and `block` without copying (they stay the caller's); release with
+// `SBCM_free_3x3`. NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n` exceeds a C int or a
+// coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a NULL array.
 struct SparseBlockCoordinateMatrix *SBCM_new_3x3(unsigned int m,
                                                  unsigned int n,
                                                  unsigned int nbblocks,
@@ -406,6 +457,8 @@ void SBCM_free_3x3(struct SparseBlockCoordinateMatrix *MC);
 
 // A sparse-block matrix (block-CSR, sorted) whose blocks point into the coordinate matrix's
 // values (no copy). Release with `SBM_free_from_SBCM` before the coordinate data goes away.
+// Checks what a host may have filled: NULL arrays and block pointers, cumulative sizes that do
+// not increase, coordinates outside `1..=blocknumber0` x `1..=blocknumber1` (NULL and a code).
 struct SparseBlockStructuredMatrix *SBCM_to_SBM(struct SparseBlockCoordinateMatrix *MC);
 
 // Frees an SBM made by `SBCM_to_SBM` (structure and struct, not the block values).
@@ -414,14 +467,18 @@ void SBM_free_from_SBCM(struct SparseBlockStructuredMatrix *M);
 // A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
 // size1` and the body; the matrix part of a Siconos .dat file). Release with `NM_free`.
 //
-// On a seekable stream (a regular file) only the matrix is consumed: on success the stream is
-// left at the first token after the matrix (as Siconos' reader leaves it, but for the whitespace
-// after a CSC dump, which Siconos leaves unread), so a host may read what follows; on failure it
-// is put back where it was. On a stream that cannot seek (a pipe) the rest of the stream is read.
+// Only the matrix is read, in chunks (never the rest of a stream that goes on): on success a
+// stream that can seek (a regular file) is left at the first token after the matrix (as
+// Siconos' reader leaves it, but for the whitespace after a CSC dump, which Siconos leaves
+// unread), so a host may read what follows, and one that cannot (a pipe) just after the
+// whitespace that follows the matrix; on failure a stream that can seek is put back where it
+// was.
 //
-// NULL on failure: `FC3D_ERR_PARSE` for malformed text (`fc3d_last_error_message` names the
-// token), `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a sparse-block matrix
-// whose blocks are not all 3x3, a half-triplet sparse matrix), `FC3D_ERR_NULL_POINTER`,
+// NULL on failure: `FC3D_ERR_PARSE` for malformed or truncated text (`fc3d_last_error_message`
+// names the token), a declared size the stream cannot hold, or a stream that stops making
+// tokens (`/dev/zero`); `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a
+// sparse-block matrix whose blocks are not all 3x3, a half-triplet sparse matrix);
+// `FC3D_ERR_OUT_OF_MEMORY` when the values given cannot be allocated; `FC3D_ERR_NULL_POINTER`,
 // `FC3D_ERR_IO`.
 struct NumericsMatrix *NM_new_from_file(FILE *file);
 
@@ -589,17 +646,23 @@ int fc3d_problem_solve(const struct Fc3dProblem *problem,
 struct SolverOptions *solver_options_create(int solverId);
 
 // Releases everything `options` owns (parameter arrays, work arrays, internal solvers), but not
-// the struct itself, nor `callback`, `solverParameters`, `solverData` (the caller's).
+// the struct itself, nor `callback`, `solverParameters`, `solverData` (the caller's). Each
+// internal solver is released once however often it appears in the tree (shared or in a cycle),
+// without recursion, whatever the depth. Refused (nothing released, the reason in
+// `fc3d_last_error_message`) when a struct declares more than
+// `FC3D_OPTIONS_MAX_INTERNAL_SOLVERS` internal solvers.
 void solver_options_delete(struct SolverOptions *options);
 
 // Replaces internal solver number `internal_solver_number` of `parent` by new options for
-// `solver_id` with their defaults (the old internal solver is released).
+// `solver_id` with their defaults (the old internal solver is released, except the parts of it
+// still referenced elsewhere in `parent`'s tree).
 void solver_options_update_internal(struct SolverOptions *parent,
                                     size_t internal_solver_number,
                                     int solver_id);
 
 // Sets internal solver `n` of `options` to `NSO`, which `options` then owns (the previous one is
-// released).
+// released, except the parts of it still referenced elsewhere in the tree). Refused when `NSO`
+// is `options` or contains it (a cycle).
 void solver_options_set_internal_solver(struct SolverOptions *options,
                                         size_t n,
                                         struct SolverOptions *NSO);
@@ -608,7 +671,9 @@ void solver_options_set_internal_solver(struct SolverOptions *options,
 struct SolverOptions *solver_options_get_internal_solver(struct SolverOptions *options, size_t n);
 
 // A deep copy of `source` (parameters and internal solvers); `callback`, `solverParameters` and
-// `solverData` are shared, as in Siconos.
+// `solverData` are shared, as in Siconos. NULL (the reason in `fc3d_last_error_message`) for a
+// cycle of internal solvers, a chain deeper than `FC3D_OPTIONS_MAX_DEPTH`, or sizes and counts
+// outside fc3d's limits.
 struct SolverOptions *solver_options_copy(struct SolverOptions *source);
 
 // Siconos' name of a solver id ("NONAME" if unknown); a static string, do not free.
@@ -617,7 +682,8 @@ const char *solver_options_id_to_name(int Id);
 // The id of a Siconos solver name, 0 if unknown.
 int solver_options_name_to_id(const char *pName);
 
-// Prints the options (and internal solvers) to stdout.
+// Prints the options (and internal solvers) to stdout. Nothing is printed (the reason in
+// `fc3d_last_error_message`) for a tree `solver_options_copy` refuses.
 void solver_options_print(struct SolverOptions *options);
 
 // An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
@@ -635,11 +701,19 @@ struct FrictionContactProblem *frictionContactProblem_new_with_data(int dim,
 void frictionContactProblem_free(struct FrictionContactProblem *problem);
 
 // Reads a problem from a Siconos .dat file, or from an FCLIB .hdf5 file (one that starts with
-// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. NULL on
-// failure (see `fc3d_last_error_message`).
+// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. A .dat
+// file is read in chunks up to its last friction coefficient (see `frictionContact_newFromFile`;
+// a declared size larger than the file can hold fails before it is read). NULL on failure (see
+// `fc3d_last_error_message`).
 struct FrictionContactProblem *frictionContact_new_from_filename(const char *filename);
 
-// Reads a problem from an open stream (up to its end). NULL on failure.
+// Reads a problem in the .dat format from an open stream, as Siconos does: up to the last
+// friction coefficient, in chunks, never to the end of a stream that goes on. On success a
+// stream that can seek is left at the first token after the problem (a pipe: after the
+// whitespace that follows it); on failure a stream that can seek is put back where it was.
+// NULL on failure: `FC3D_ERR_PARSE` (malformed or truncated text, a stream that stops making
+// tokens such as `/dev/zero`), `FC3D_ERR_OUT_OF_MEMORY` (a stream going on with values beyond
+// what can be allocated), `FC3D_ERR_IO`, `FC3D_ERR_NULL_POINTER`.
 struct FrictionContactProblem *frictionContact_newFromFile(FILE *file);
 
 // Writes `problem` to an open stream in the .dat format (round-trip exact numbers).

@@ -32,6 +32,12 @@
 // returned reaction, is above the tolerance (some contact slides).
 #define FC3D_RELAXED_NOT_COULOMB 3
 
+// The reaction grew without bound and the solver stopped (`info` 4): its iterates diverged,
+// or they ran along a direction d with W d = 0 into which q pushes (q·d < 0), where the relative
+// error falls as ||r|| grows although the problem has no solution. `dparam[1]` is the error of
+// the returned reaction.
+#define FC3D_UNBOUNDED 4
+
 // A required pointer argument (or a pointer inside a struct) is NULL.
 #define FC3D_ERR_NULL_POINTER -1
 
@@ -58,6 +64,9 @@
 
 // A file could not be opened, read or written.
 #define FC3D_ERR_IO -9
+
+// Memory for input-sized data could not be allocated (a size too large for the machine).
+#define FC3D_ERR_OUT_OF_MEMORY -10
 
 // A bug in fc3d (a caught panic). Please report it.
 #define FC3D_ERR_INTERNAL -99

@@ -2,7 +2,7 @@
 
 use std::os::raw::c_void;
 
-use super::{CError, CResult, FC3D_ERR_INVALID_SIZE};
+use super::{CError, CResult, FC3D_ERR_OUT_OF_MEMORY};
 
 /// `calloc(n, size_of::<T>())`, zero-filled; an error (not a crash) if it fails.
 /// `n == 0` still returns a valid, freeable pointer.
@@ -12,7 +12,7 @@ pub(crate) fn c_calloc<T>(n: usize) -> CResult<*mut T> {
     let p = unsafe { libc::calloc(n.max(1), size) } as *mut T;
     if p.is_null() {
         Err(CError::new(
-            FC3D_ERR_INVALID_SIZE,
+            FC3D_ERR_OUT_OF_MEMORY,
             format!("cannot allocate {n} elements of {size} bytes"),
         ))
     } else {

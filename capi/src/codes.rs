@@ -21,6 +21,11 @@ pub const FC3D_TIME_BUDGET_EXHAUSTED: c_int = 2;
 /// the result is not a Coulomb solution: `dparam[1]`, the Coulomb natural-map error of the
 /// returned reaction, is above the tolerance (some contact slides).
 pub const FC3D_RELAXED_NOT_COULOMB: c_int = 3;
+/// The reaction grew without bound and the solver stopped (`info` 4): its iterates diverged,
+/// or they ran along a direction d with W d = 0 into which q pushes (q·d < 0), where the relative
+/// error falls as ||r|| grows although the problem has no solution. `dparam[1]` is the error of
+/// the returned reaction.
+pub const FC3D_UNBOUNDED: c_int = 4;
 /// A required pointer argument (or a pointer inside a struct) is NULL.
 pub const FC3D_ERR_NULL_POINTER: c_int = -1;
 /// Sizes are negative, inconsistent, or too large.
@@ -39,5 +44,7 @@ pub const FC3D_ERR_INVALID_PROBLEM: c_int = -7;
 pub const FC3D_ERR_PARSE: c_int = -8;
 /// A file could not be opened, read or written.
 pub const FC3D_ERR_IO: c_int = -9;
+/// Memory for input-sized data could not be allocated (a size too large for the machine).
+pub const FC3D_ERR_OUT_OF_MEMORY: c_int = -10;
 /// A bug in fc3d (a caught panic). Please report it.
 pub const FC3D_ERR_INTERNAL: c_int = -99;

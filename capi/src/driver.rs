@@ -5,12 +5,99 @@
 use std::os::raw::{c_double, c_int};
 
 use super::matrix::c_slice;
-use super::params::{config_from_c, write_outputs};
+use super::params::{
+    config_from_c, write_outputs, DPARAM_DUMONT_CRITERION, DPARAM_RESIDU, IPARAM_ITER_DONE,
+};
 use super::problem::problem_from_c;
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION};
-use fc3d_core::measure::{absolute_natural_map_residual, relative_scale};
+use fc3d_core::measure::relative_natural_map_error;
 use fc3d_core::{solve_with_observer, IterationEvent};
+
+/// What `fc3d_driver` read from the options and writes back into, to detect a callback that
+/// freed or changed them during the solve (`solver_options_delete` in a callback, a new array, a
+/// new value in a slot). The output slots (`iparam[1]`, `dparam[1]`, `dparam[18]`) may change:
+/// a callback may run another solve with the same options.
+struct OptionsSeal {
+    solver_id: c_int,
+    sizes: (c_int, c_int),
+    arrays: (*mut c_int, *mut c_double),
+    internal: (usize, *mut *mut SolverOptions),
+    /// The internal solver pointers (at most `FC3D_OPTIONS_MAX_INTERNAL_SOLVERS`: the tree was
+    /// checked).
+    slots: Vec<*mut SolverOptions>,
+    iparam: [c_int; SIZE],
+    dparam: [u64; SIZE],
+}
+
+const SIZE: usize = crate::OPTIONS_PARAM_SIZE as usize;
+
+/// The internal solver pointers of options whose tree `config_from_c` checked (none when the
+/// count is above the limit or the array is gone: a change the seal sees anyway).
+unsafe fn internal_slots(o: &SolverOptions) -> Vec<*mut SolverOptions> {
+    let n = o.numberOfInternalSolvers;
+    if n == 0
+        || n > crate::options::FC3D_OPTIONS_MAX_INTERNAL_SOLVERS as usize
+        || o.internalSolvers.is_null()
+    {
+        return Vec::new();
+    }
+    std::slice::from_raw_parts(o.internalSolvers, n).to_vec()
+}
+
+impl OptionsSeal {
+    /// The seal of options `config_from_c` accepted (arrays of at least `SIZE` slots).
+    unsafe fn of(o: &SolverOptions) -> Self {
+        let mut seal = OptionsSeal {
+            solver_id: o.solverId,
+            sizes: (o.iSize, o.dSize),
+            arrays: (o.iparam, o.dparam),
+            internal: (o.numberOfInternalSolvers, o.internalSolvers),
+            slots: internal_slots(o),
+            iparam: [0; SIZE],
+            dparam: [0; SIZE],
+        };
+        for k in 0..SIZE {
+            seal.iparam[k] = *o.iparam.add(k);
+            seal.dparam[k] = (*o.dparam.add(k)).to_bits();
+        }
+        seal
+    }
+
+    /// What changed, if anything.
+    unsafe fn changed(&self, o: &SolverOptions) -> Option<String> {
+        if o.solverId != self.solver_id {
+            return Some(format!("solverId {} -> {}", self.solver_id, o.solverId));
+        }
+        if (o.iSize, o.dSize) != self.sizes || (o.iparam, o.dparam) != self.arrays {
+            return Some("iparam, dparam, iSize or dSize replaced or released".into());
+        }
+        if (o.numberOfInternalSolvers, o.internalSolvers) != self.internal
+            || internal_slots(o) != self.slots
+        {
+            return Some("internal solvers replaced or released".into());
+        }
+        for k in (0..SIZE).filter(|&k| k != IPARAM_ITER_DONE) {
+            if *o.iparam.add(k) != self.iparam[k] {
+                return Some(format!(
+                    "iparam[{k}] {} -> {}",
+                    self.iparam[k],
+                    *o.iparam.add(k)
+                ));
+            }
+        }
+        for k in (0..SIZE).filter(|&k| k != DPARAM_RESIDU && k != DPARAM_DUMONT_CRITERION) {
+            let now = *o.dparam.add(k);
+            if now.to_bits() != self.dparam[k] {
+                return Some(format!(
+                    "dparam[{k}] {} -> {now}",
+                    f64::from_bits(self.dparam[k])
+                ));
+            }
+        }
+        None
+    }
+}
 
 unsafe fn driver_impl(
     problem: *mut FrictionContactProblem,
@@ -36,8 +123,13 @@ unsafe fn driver_impl(
     let callback = (*options).callback;
     let mut scratch_r = Vec::new();
     let mut scratch_u = Vec::new();
+    // A callback must not free or change the options (nor the problem) during the solve: the
+    // options are checked after each call, the callback is not called again once they changed,
+    // and the solve is then refused (nothing written).
+    let seal = OptionsSeal::of(&*options);
+    let mut tampered: Option<String> = None;
     let mut observer = |ev: &IterationEvent<'_>| {
-        if callback.is_null() {
+        if callback.is_null() || tampered.is_some() {
             return;
         }
         let cb = &*callback;
@@ -54,9 +146,16 @@ unsafe fn driver_impl(
                 ev.error,
                 std::ptr::null_mut(),
             );
+            tampered = seal.changed(&*options);
         }
     };
     let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut observer)?;
+    if let Some(what) = tampered.or_else(|| seal.changed(&*options)) {
+        return Err(CError::new(
+            FC3D_ERR_INVALID_OPTION,
+            format!("the options changed during the solve ({what}): a callback must not free or modify the options; nothing was written"),
+        ));
+    }
 
     std::ptr::copy_nonoverlapping(r.as_ptr(), reaction, n);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, n);
@@ -82,6 +181,11 @@ unsafe fn driver_impl(
 /// (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 /// input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
 /// and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
+/// The options tree is checked first: a cycle of internal solvers, or a chain deeper than
+/// `FC3D_OPTIONS_MAX_DEPTH`, is refused with `FC3D_ERR_INVALID_OPTION`. `options->callback`
+/// must not free or modify the options (nor the problem or the arrays) during the solve: a
+/// change to the options struct or its slots is detected after each call, and the solve is then
+/// refused with `FC3D_ERR_INVALID_OPTION` (nothing written; the callback is not called again).
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_driver(
@@ -165,8 +269,7 @@ pub unsafe extern "C" fn fc3d_compute_error(
             fc3d_core::error::check_finite("z", r)?;
             let mut u = vec![0.0; n];
             p.velocity(r, &mut u);
-            let abs = absolute_natural_map_residual(r, &u, p.mu());
-            let e = abs / relative_scale(norm.abs(), r, &u);
+            let e = relative_natural_map_error(r, &u, p.mu(), norm.abs());
             std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);
             *error = e;
             Ok(if e <= tolerance { 0 } else { 1 })

@@ -49,6 +49,7 @@ impl From<Fc3dError> for CError {
             }
             Fc3dError::Parse { .. } => FC3D_ERR_PARSE,
             Fc3dError::Io { .. } => FC3D_ERR_IO,
+            Fc3dError::OutOfMemory { .. } => FC3D_ERR_OUT_OF_MEMORY,
         };
         CError::new(code, e.to_string())
     }

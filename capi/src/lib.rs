@@ -38,6 +38,9 @@ pub use codes::*;
 pub use errors::{fc3d_clear_last_error, fc3d_last_error_code, fc3d_last_error_message};
 pub(crate) use errors::{ffi_guard, verbose, CError, CResult};
 pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
+pub use options::{
+    FC3D_OPTIONS_MAX_DEPTH, FC3D_OPTIONS_MAX_INTERNAL_SOLVERS, FC3D_OPTIONS_MAX_PARAM_SIZE,
+};
 
 /// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index
 /// Siconos' fc3d solvers leave unused.

@@ -14,11 +14,9 @@ use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
 use super::matrix::{c_slice, delassus_from_c, matrix_to_c, nm_clear_impl};
-use super::stream::{c_filename, read_rest, write_all};
+use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
-use super::{
-    ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_IO,
-};
+use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
 use fc3d_core::matrix::{Delassus, DenseMatrix};
 use fc3d_core::problem::FrictionProblem;
 
@@ -41,7 +39,23 @@ pub(crate) unsafe fn problem_from_c<'a>(
             format!("numberOfContacts = {} is negative", p.numberOfContacts),
         )
     })?;
-    let n = 3 * nc;
+    // M's sizes are C ints: 3 * numberOfContacts must be one (checked, never truncated).
+    let n = nc
+        .checked_mul(3)
+        .filter(|&n| c_int::try_from(n).is_ok())
+        .ok_or_else(|| {
+            CError::new(
+                FC3D_ERR_INVALID_SIZE,
+                format!(
+                    "numberOfContacts = {nc} is too large: M would have 3 * {nc} rows, more \
+                     than a C int holds ({})",
+                    c_int::MAX
+                ),
+            )
+        })?;
+    // q and mu first: they are cheap to check, and a W conversion may allocate.
+    let q = c_slice(p.q as *const c_double, n, "problem->q")?;
+    let mu = c_slice(p.mu as *const c_double, nc, "problem->mu")?;
     let w = if p.M.is_null() {
         if nc > 0 {
             return Err(CError::null("problem->M"));
@@ -49,7 +63,8 @@ pub(crate) unsafe fn problem_from_c<'a>(
         Delassus::Dense(DenseMatrix::new(0, 0, Vec::new())?)
     } else {
         let m = &*p.M;
-        if m.size0 != n as c_int || m.size1 != n as c_int {
+        let is_n = |size: c_int| usize::try_from(size) == Ok(n);
+        if !is_n(m.size0) || !is_n(m.size1) {
             return Err(CError::new(
                 FC3D_ERR_INVALID_SIZE,
                 format!(
@@ -60,8 +75,6 @@ pub(crate) unsafe fn problem_from_c<'a>(
         }
         delassus_from_c(m)?
     };
-    let q = c_slice(p.q as *const c_double, n, "problem->q")?;
-    let mu = c_slice(p.mu as *const c_double, nc, "problem->mu")?;
     Ok(FrictionProblem::new(
         w,
         Cow::Borrowed(q),
@@ -74,8 +87,16 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
     let nc = c_int::try_from(p.n_contacts())
         .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
     let m = matrix_to_c(p.w())?;
-    let q = c_copy(p.q())?;
-    let mu = c_copy(p.mu())?;
+    // On a failure below, release what was made (the problem struct owns nothing yet).
+    let release = |ptrs: &[*mut c_double]| unsafe {
+        for &x in ptrs {
+            c_free(x);
+        }
+        super::matrix::nm_clear_impl(m);
+        c_free(m);
+    };
+    let q = c_copy(p.q()).inspect_err(|_| release(&[]))?;
+    let mu = c_copy(p.mu()).inspect_err(|_| release(&[q]))?;
     c_box(FrictionContactProblem {
         dimension: 3,
         numberOfContacts: nc,
@@ -83,12 +104,7 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
         q,
         mu,
     })
-}
-
-/// Reads everything left in a C stream as text.
-unsafe fn read_stream(file: *mut libc::FILE) -> CResult<String> {
-    String::from_utf8(read_rest(file)?)
-        .map_err(|_| CError::new(FC3D_ERR_IO, "the stream is not text"))
+    .inspect_err(|_| release(&[q, mu]))
 }
 
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
@@ -159,8 +175,10 @@ pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionConta
 }
 
 /// Reads a problem from a Siconos .dat file, or from an FCLIB .hdf5 file (one that starts with
-/// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. NULL on
-/// failure (see `fc3d_last_error_message`).
+/// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. A .dat
+/// file is read in chunks up to its last friction coefficient (see `frictionContact_newFromFile`;
+/// a declared size larger than the file can hold fails before it is read). NULL on failure (see
+/// `fc3d_last_error_message`).
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_new_from_filename(
@@ -180,7 +198,13 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
     )
 }
 
-/// Reads a problem from an open stream (up to its end). NULL on failure.
+/// Reads a problem in the .dat format from an open stream, as Siconos does: up to the last
+/// friction coefficient, in chunks, never to the end of a stream that goes on. On success a
+/// stream that can seek is left at the first token after the problem (a pipe: after the
+/// whitespace that follows it); on failure a stream that can seek is put back where it was.
+/// NULL on failure: `FC3D_ERR_PARSE` (malformed or truncated text, a stream that stops making
+/// tokens such as `/dev/zero`), `FC3D_ERR_OUT_OF_MEMORY` (a stream going on with values beyond
+/// what can be allocated), `FC3D_ERR_IO`, `FC3D_ERR_NULL_POINTER`.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn frictionContact_newFromFile(
@@ -190,18 +214,25 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
         "frictionContact_newFromFile",
         |_| null_mut(),
         || {
-            let text = read_stream(file)?;
-            let p = fc3d_core::io::dat::parse_dat(&text, "<FILE stream>")?;
-            problem_to_c(&p)
+            let mut stream = CStream::new(file)?;
+            let len = stream.len_hint();
+            match fc3d_core::io::dat::read_dat(&mut stream, len, "<FILE stream>") {
+                Ok((p, used)) => {
+                    stream.finish(Some(used));
+                    problem_to_c(&p)
+                }
+                Err(e) => {
+                    stream.finish(None);
+                    Err(e.into())
+                }
+            }
         },
     )
 }
 
-fn dat_text(p: &FrictionProblem<'_>) -> CResult<Vec<u8>> {
-    let mut out = Vec::new();
+/// Writes `p` in the .dat format with `out`, as it is produced.
+fn write_dat_to(p: &FrictionProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
     fc3d_core::io::dat::write_dat(p, &mut out)
-        .map_err(|e| CError::new(FC3D_ERR_IO, e.to_string()))?;
-    Ok(out)
 }
 
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
@@ -220,7 +251,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
                 return Err(CError::null("problem"));
             }
             let p = problem_from_c(&*problem)?;
-            write_all(file, &dat_text(&p)?)?;
+            write_stream(file, |out| write_dat_to(&p, out))?;
             Ok(0)
         },
     )
@@ -242,9 +273,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
             }
             let p = problem_from_c(&*problem)?;
             let path = c_filename(filename)?;
-            let text = dat_text(&p)?;
-            std::fs::write(path, text)
-                .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: {e}")))?;
+            write_file(path, |out| write_dat_to(&p, out))?;
             Ok(0)
         },
     )

@@ -31,8 +31,7 @@ use clap::{Args, Parser, Subcommand};
 mod bench;
 mod convert;
 use fc3d_core::{
-    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolveStatus,
-    SolverConfig,
+    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolverConfig,
 };
 
 /// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
@@ -365,12 +364,7 @@ impl Table {
             lines.push(format_cells(&HEADERS.map(String::from)));
             lines.push(format_cells(&WIDTHS.map(|w| "-".repeat(w))));
         }
-        let status = match row.report.status {
-            SolveStatus::Converged => "converged",
-            SolveStatus::MaxIterationsReached => "max-iter",
-            SolveStatus::TimeBudgetExhausted => "out-of-time",
-            SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
-        };
+        let status = row.report.status.name();
         lines.push(format_cells(&[
             row.problem,
             row.contacts.to_string(),

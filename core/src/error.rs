@@ -55,6 +55,9 @@ pub enum Fc3dError {
         token: String,
         message: String,
     },
+    /// Memory for data of the given size could not be allocated (sizes come from the input).
+    #[error("out of memory: {what} needs {bytes} bytes")]
+    OutOfMemory { what: String, bytes: usize },
     /// An operating-system level I/O failure.
     #[error("{file}: {message}")]
     Io { file: String, message: String },
@@ -96,6 +99,31 @@ pub(crate) fn require_setting(
             requirement,
         })
     }
+}
+
+/// A vector of `len` copies of `value`, allocated fallibly: an impossible size (from the input) is
+/// an [`Fc3dError::OutOfMemory`] naming `what`, never an abort.
+pub fn try_vec<T: Clone>(len: usize, value: T, what: &str) -> Result<Vec<T>, Fc3dError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(len)
+        .map_err(|_| Fc3dError::OutOfMemory {
+            what: what.to_string(),
+            bytes: len.saturating_mul(std::mem::size_of::<T>()),
+        })?;
+    v.resize(len, value);
+    Ok(v)
+}
+
+/// A copy of `values`, allocated fallibly (see [`try_vec`]).
+pub fn try_copy<T: Clone>(values: &[T], what: &str) -> Result<Vec<T>, Fc3dError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(values.len())
+        .map_err(|_| Fc3dError::OutOfMemory {
+            what: what.to_string(),
+            bytes: std::mem::size_of_val(values),
+        })?;
+    v.extend_from_slice(values);
+    Ok(v)
 }
 
 /// Checks that every value is finite, naming the first offender.

@@ -5,6 +5,7 @@
 use crate::config::{scalar_factors, Rescaling, SolverConfig};
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
+use crate::math::linalg::norm;
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 
@@ -122,7 +123,13 @@ fn finish(
         error = natural_map_error(problem, r, u);
     }
     let status = if error <= config.tolerance {
-        SolveStatus::Converged
+        if grows_where_no_solution_is(problem, r, u, error) {
+            SolveStatus::Unbounded
+        } else {
+            SolveStatus::Converged
+        }
+    } else if outcome.diverged {
+        SolveStatus::Unbounded
     } else if outcome.relaxation_converged {
         SolveStatus::RelaxationNotCoulomb
     } else if outcome.out_of_time {
@@ -137,3 +144,46 @@ fn finish(
         dumont_criterion: outcome.dumont_criterion,
     }
 }
+
+/// Whether `r` is (nearly) a ray of no solution: its direction `d = r / ||r||` satisfies
+/// `W d = 0` up to the size of the error (`||W d|| <= min(RAY_NULL error, RAY_NULL_CAP)
+/// max|W_ii|`: W r stays bounded while r grows) and q pushes along it (`q·d <= -RAY_PUSH ||q||`). Then `u = W r + q`
+/// hardly depends on how far r goes along d, and the relative error `|residual| / ||r||` falls
+/// below any tolerance as `||r||` grows, although no r solves the problem (along d, `u = q`, and
+/// complementarity would need `q·d >= 0`). A solution of a stiff problem (small W, large r) is
+/// not flagged: its `W r` balances q, so `||W d||` is of the order of `max|W_ii|`.
+fn grows_where_no_solution_is(
+    problem: &FrictionProblem<'_>,
+    r: &[f64],
+    u: &[f64],
+    error: f64,
+) -> bool {
+    let nr = norm(r);
+    if !(nr > 0.0 && nr.is_finite()) {
+        return false;
+    }
+    let q = problem.q();
+    let nq = norm(q);
+    // ||W d|| and q·d, divided by ||r|| term by term (no overflow).
+    let w_d = u
+        .iter()
+        .zip(q)
+        .map(|(ui, qi)| ((ui - qi) / nr).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let q_d: f64 = q.iter().zip(r).map(|(qi, ri)| qi * (ri / nr)).sum();
+    let w_scale = (0..problem.n_contacts())
+        .filter_map(|c| problem.w().diagonal_block(c))
+        .flat_map(|b| [b[0][0].abs(), b[1][1].abs(), b[2][2].abs()])
+        .fold(0.0_f64, f64::max);
+    let null = (RAY_NULL * error.max(f64::EPSILON)).min(RAY_NULL_CAP);
+    w_d <= null * w_scale && q_d <= -RAY_PUSH * nq
+}
+
+/// `||W d|| <= RAY_NULL error max|W_ii|`: W d vanishes like the error...
+const RAY_NULL: f64 = 100.0;
+/// ... and is at most this fraction of W's diagonal whatever the tolerance (an error of order
+/// one proves nothing about d).
+const RAY_NULL_CAP: f64 = 1e-3;
+/// `q·d <= -RAY_PUSH ||q||`: q pushes along d.
+const RAY_PUSH: f64 = 1e-3;

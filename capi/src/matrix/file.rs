@@ -2,15 +2,16 @@
 //! `NM_write_in_filename` and `SBM_new_from_file`.
 
 use std::ffi::c_char;
+use std::os::raw::c_int;
 use std::ptr::null_mut;
 
 use super::sbm::sbm_to_c;
 use super::{delassus_from_c, matrix_to_c, NM_SPARSE_BLOCK};
-use crate::stream::{c_filename, read_rest, write_all};
+use crate::stream::{c_filename, write_file, write_stream, CStream};
 use crate::types::*;
-use crate::{ffi_guard, CError, CResult, FC3D_ERR_IO};
-use fc3d_core::io::dat::{parse_matrix, parse_matrix_prefix, parse_sbm_prefix, write_matrix};
-use fc3d_core::matrix::{BlockSparseMatrix, Delassus};
+use crate::{ffi_guard, CError, CResult};
+use fc3d_core::io::dat::{read_matrix, read_matrix_file, read_sbm, write_matrix};
+use fc3d_core::matrix::Delassus;
 
 // ---------------------------------------------------------------------------------------------
 // Matrix files: the matrix part of the .dat format (see `fc3d_core::io::dat`).
@@ -18,65 +19,47 @@ use fc3d_core::matrix::{BlockSparseMatrix, Delassus};
 /// The label of a stream in error messages.
 const STREAM_LABEL: &str = "<FILE stream>";
 
-/// Reads a matrix from `file` with `parse`, which returns the value and the number of bytes it
-/// used, then convert it with `to_c`. The whole rest of the stream is read, then, when the stream
-/// is seekable (`ftell` works), it is repositioned just after what was used on success (the next
-/// token), and back where it was on failure. On a non-seekable stream (a pipe) the rest of the
-/// stream is consumed either way.
+/// Reads a value from `file` with `read` (which pulls the stream in chunks and returns the value
+/// and the number of bytes it used), then converts it with `to_c`. The stream is read only up
+/// to the end of the value (never to the end of a stream that goes on), then left just after
+/// it on success and put back where it was on failure (see `CStream`).
 unsafe fn read_from_stream<T, U>(
     file: *mut libc::FILE,
-    parse: impl FnOnce(&str) -> Result<(T, usize), fc3d_core::error::Fc3dError>,
+    read: impl FnOnce(&mut CStream, Option<u64>) -> Result<(T, u64), fc3d_core::error::Fc3dError>,
     to_c: impl FnOnce(&T) -> CResult<U>,
 ) -> CResult<U> {
-    if file.is_null() {
-        return Err(CError::null("file"));
-    }
-    let start = libc::ftell(file);
-    let result = match read_rest(file) {
-        Err(e) => Err(e),
-        Ok(bytes) => {
-            // Matrix text is ASCII: a byte that is not UTF-8 can only end it (data after the matrix),
-            // so only the valid prefix is parsed; byte offsets stay those of the stream.
-            let (text, bad_byte) = match std::str::from_utf8(&bytes) {
-                Ok(t) => (t, None),
-                Err(e) => (
-                    std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or(""),
-                    Some(e.valid_up_to()),
-                ),
-            };
-            match parse(text) {
-                Ok((value, used)) => to_c(&value).map(|c| (c, used)),
-                Err(e) => {
-                    let mut err = CError::from(e);
-                    if let Some(at) = bad_byte {
-                        err.message += &format!(" (the stream holds a byte that is not text at offset {at} from where reading started)");
-                    }
-                    Err(err)
-                }
-            }
+    let mut stream = CStream::new(file)?;
+    let len = stream.len_hint();
+    let result = read(&mut stream, len)
+        .map_err(CError::from)
+        .and_then(|(value, used)| to_c(&value).map(|c| (c, used)));
+    match result {
+        Ok((c, used)) => {
+            stream.finish(Some(used));
+            Ok(c)
         }
-    };
-    if start >= 0 {
-        let target = match &result {
-            Ok((_, used)) => start + *used as libc::c_long,
-            Err(_) => start,
-        };
-        libc::fseek(file, target, libc::SEEK_SET);
+        Err(e) => {
+            stream.finish(None);
+            Err(e)
+        }
     }
-    result.map(|(c, _)| c)
 }
 
 /// A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
 /// size1` and the body; the matrix part of a Siconos .dat file). Release with `NM_free`.
 ///
-/// On a seekable stream (a regular file) only the matrix is consumed: on success the stream is
-/// left at the first token after the matrix (as Siconos' reader leaves it, but for the whitespace
-/// after a CSC dump, which Siconos leaves unread), so a host may read what follows; on failure it
-/// is put back where it was. On a stream that cannot seek (a pipe) the rest of the stream is read.
+/// Only the matrix is read, in chunks (never the rest of a stream that goes on): on success a
+/// stream that can seek (a regular file) is left at the first token after the matrix (as
+/// Siconos' reader leaves it, but for the whitespace after a CSC dump, which Siconos leaves
+/// unread), so a host may read what follows, and one that cannot (a pipe) just after the
+/// whitespace that follows the matrix; on failure a stream that can seek is put back where it
+/// was.
 ///
-/// NULL on failure: `FC3D_ERR_PARSE` for malformed text (`fc3d_last_error_message` names the
-/// token), `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a sparse-block matrix
-/// whose blocks are not all 3x3, a half-triplet sparse matrix), `FC3D_ERR_NULL_POINTER`,
+/// NULL on failure: `FC3D_ERR_PARSE` for malformed or truncated text (`fc3d_last_error_message`
+/// names the token), a declared size the stream cannot hold, or a stream that stops making
+/// tokens (`/dev/zero`); `FC3D_ERR_INVALID_STORAGE` for what fc3d does not represent (a
+/// sparse-block matrix whose blocks are not all 3x3, a half-triplet sparse matrix);
+/// `FC3D_ERR_OUT_OF_MEMORY` when the values given cannot be allocated; `FC3D_ERR_NULL_POINTER`,
 /// `FC3D_ERR_IO`.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
@@ -87,7 +70,7 @@ pub unsafe extern "C" fn NM_new_from_file(file: *mut libc::FILE) -> *mut Numeric
         || {
             read_from_stream(
                 file,
-                |text| parse_matrix_prefix(text, STREAM_LABEL),
+                |stream, len| read_matrix(stream, len, STREAM_LABEL),
                 |w| matrix_to_c(w),
             )
         },
@@ -104,22 +87,30 @@ pub unsafe extern "C" fn NM_new_from_filename(filename: *const c_char) -> *mut N
         |_| null_mut(),
         || {
             let path = c_filename(filename)?;
-            let bytes = std::fs::read(path)
-                .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: cannot read: {e}")))?;
-            let w = parse_matrix(&String::from_utf8_lossy(&bytes), path)?;
+            let w = read_matrix_file(std::path::Path::new(path))?;
             matrix_to_c(&w)
         },
     )
 }
 
-fn matrix_text(M: *const NumericsMatrix) -> CResult<Vec<u8>> {
+/// What `NM_write_in_file` writes: the core view of a matrix, checked whole before anything is
+/// written, or the header of a sparse-block matrix without blocks.
+enum ToWrite<'a> {
+    Matrix(Delassus<'a>),
+    /// `NM_create(NM_SPARSE_BLOCK, ..)` not filled yet: the zero matrix of its size, written as
+    /// Siconos does (a lone 0 after the header) without building anything of that size.
+    NoBlocks {
+        rows: c_int,
+        cols: c_int,
+    },
+}
+
+fn matrix_to_write<'a>(M: *const NumericsMatrix) -> CResult<ToWrite<'a>> {
     if M.is_null() {
         return Err(CError::null("M"));
     }
     // SAFETY: checked non-NULL; the caller passes a valid matrix.
     let m = unsafe { &*M };
-    // A sparse-block matrix without blocks (`NM_create(NM_SPARSE_BLOCK, ..)` not filled yet) is
-    // the zero matrix of its size, written as Siconos does (a lone 0 after the header).
     let no_blocks = m.storageType == NM_SPARSE_BLOCK
         && !m.matrix1.is_null()
         && unsafe { (*m.matrix1).nbblocks } == 0
@@ -127,21 +118,23 @@ fn matrix_text(M: *const NumericsMatrix) -> CResult<Vec<u8>> {
         && m.size1 >= 0
         && m.size0 % 3 == 0
         && m.size1 % 3 == 0;
-    let w = if no_blocks {
-        let (nbr, nbc) = (m.size0 as usize / 3, m.size1 as usize / 3);
-        Delassus::SparseBlock(BlockSparseMatrix::new(
-            nbr,
-            nbc,
-            vec![0; nbr + 1],
-            Vec::new(),
-            Vec::new(),
-        )?)
+    if no_blocks {
+        Ok(ToWrite::NoBlocks {
+            rows: m.size0,
+            cols: m.size1,
+        })
     } else {
-        unsafe { delassus_from_c(m)? }
-    };
-    let mut out = Vec::new();
-    write_matrix(&w, &mut out).map_err(|e| CError::new(FC3D_ERR_IO, e.to_string()))?;
-    Ok(out)
+        Ok(ToWrite::Matrix(unsafe { delassus_from_c(m)? }))
+    }
+}
+
+/// Writes `w` with `out`, as the text is produced.
+fn write_matrix_to(w: &ToWrite<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    match w {
+        ToWrite::Matrix(w) => write_matrix(w, &mut out),
+        // What `write_matrix` writes for a sparse-block matrix without blocks.
+        ToWrite::NoBlocks { rows, cols } => writeln!(out, "{NM_SPARSE_BLOCK}\n{rows}\n{cols}\n0"),
+    }
 }
 
 /// Writes `M` to an open stream as Siconos does (`storageType size0 size1` and the body), values
@@ -158,11 +151,8 @@ pub unsafe extern "C" fn NM_write_in_file(M: *const NumericsMatrix, file: *mut l
         "NM_write_in_file",
         |_| (),
         || {
-            let text = matrix_text(M)?;
-            if file.is_null() {
-                return Err(CError::null("file"));
-            }
-            write_all(file, &text)
+            let w = matrix_to_write(M)?;
+            write_stream(file, |out| write_matrix_to(&w, out))
         },
     )
 }
@@ -176,10 +166,9 @@ pub unsafe extern "C" fn NM_write_in_filename(M: *const NumericsMatrix, filename
         "NM_write_in_filename",
         |_| (),
         || {
-            let text = matrix_text(M)?;
+            let w = matrix_to_write(M)?;
             let path = c_filename(filename)?;
-            std::fs::write(path, text)
-                .map_err(|e| CError::new(FC3D_ERR_IO, format!("{path}: cannot write: {e}")))
+            write_file(path, |out| write_matrix_to(&w, out))
         },
     )
 }
@@ -199,6 +188,12 @@ pub unsafe extern "C" fn SBM_new_from_file(
     ffi_guard(
         "SBM_new_from_file",
         |_| null_mut(),
-        || read_from_stream(file, |text| parse_sbm_prefix(text, STREAM_LABEL), sbm_to_c),
+        || {
+            read_from_stream(
+                file,
+                |stream, len| read_sbm(stream, len, STREAM_LABEL),
+                sbm_to_c,
+            )
+        },
     )
 }

@@ -32,12 +32,12 @@ use std::borrow::Cow;
 use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
-use super::alloc::{c_box, c_copy, c_free};
+use super::alloc::{c_calloc, c_free};
 use super::types::*;
 use super::{CError, CResult, FC3D_ERR_INVALID_SIZE, FC3D_ERR_INVALID_STORAGE};
 use csparse::{csc_to_c, csr_from_cs, empty_nsm, nsm_clear};
 use fc3d_core::matrix::{Delassus, DenseMatrix};
-use sbm::{block_sparse_from_sbm, sbm_clear_impl, sbm_to_c};
+use sbm::{block_sparse_from_sbm, check_sbm_clearable, sbm_clear_impl, sbm_to_c};
 
 pub(crate) const NM_DENSE: c_int = 0;
 pub(crate) const NM_SPARSE_BLOCK: c_int = 1;
@@ -54,12 +54,42 @@ fn storage_err(msg: impl Into<String>) -> CError {
     CError::new(FC3D_ERR_INVALID_STORAGE, msg)
 }
 
-fn nonneg(v: CS_INT, what: &str) -> CResult<usize> {
-    usize::try_from(v)
-        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, format!("{what} = {v} is negative")))
+fn size_err(msg: impl Into<String>) -> CError {
+    CError::new(FC3D_ERR_INVALID_SIZE, msg)
 }
 
-/// A slice view of a C array; `len == 0` accepts NULL.
+fn nonneg(v: CS_INT, what: &str) -> CResult<usize> {
+    usize::try_from(v).map_err(|_| size_err(format!("{what} = {v} is negative")))
+}
+
+/// The number of bytes of `len` values of `T`, if that many can exist in one allocation
+/// (at most `isize::MAX` bytes, Rust's and C's limit for one object).
+fn byte_size<T>(len: usize) -> Option<usize> {
+    len.checked_mul(std::mem::size_of::<T>())
+        .filter(|&b| b <= isize::MAX as usize)
+}
+
+/// Checks that `len` values of `T` at `p` could be one array: the byte size fits one object,
+/// the array does not wrap around the address space, `p` is aligned for `T`.
+fn check_extent<T>(p: *const T, len: usize, what: &str) -> CResult<()> {
+    let fits = byte_size::<T>(len).is_some_and(|b| (p as usize).checked_add(b).is_some());
+    if !fits {
+        return Err(size_err(format!(
+            "{what}: {len} elements of {} bytes exceed the address space",
+            std::mem::size_of::<T>()
+        )));
+    }
+    if !p.is_aligned() {
+        return Err(storage_err(format!(
+            "{what} is not aligned for its type (address {p:p})"
+        )));
+    }
+    Ok(())
+}
+
+/// A slice view of a C array of `len` elements, as the host declares it; `len == 0` accepts
+/// NULL. NULL for a non-empty array, a length no array can have and a misaligned pointer are
+/// errors (the memory behind a valid pointer is the host's promise: it cannot be checked).
 pub(crate) unsafe fn c_slice<'a, T>(p: *const T, len: usize, what: &str) -> CResult<&'a [T]> {
     if len == 0 {
         return Ok(&[]);
@@ -67,27 +97,159 @@ pub(crate) unsafe fn c_slice<'a, T>(p: *const T, len: usize, what: &str) -> CRes
     if p.is_null() {
         return Err(CError::null(what));
     }
+    check_extent(p, len, what)?;
     Ok(std::slice::from_raw_parts(p, len))
 }
 
-fn indices(v: &[CS_INT], what: &str) -> CResult<Vec<usize>> {
-    v.iter().map(|&x| nonneg(x, what)).collect()
+/// Memory the host may release with `free()` (an allocation of `malloc`/`calloc`/`realloc`):
+/// the number of bytes usable in the heap block at `p`, where the C library can tell.
+/// Used only on arrays fc3d is about to free or grow (they must be heap blocks anyway), so that
+/// a count above what the block holds is refused instead of read past it.
+unsafe fn heap_block_bytes<T>(p: *const T) -> Option<usize> {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        Some(libc::malloc_usable_size(p as *mut libc::c_void))
+    }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    {
+        let _ = p;
+        None
+    }
 }
 
-/// The core view of a NumericsMatrix (dense storage is borrowed, not copied).
-pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delassus<'a>> {
-    if m.size0 < 0 || m.size1 < 0 {
-        return Err(CError::new(
-            FC3D_ERR_INVALID_SIZE,
-            format!("matrix size {}x{} is negative", m.size0, m.size1),
-        ));
+/// Checks that the heap block at `p` (a host array fc3d will free or grow) holds at least
+/// `len` values of `T`.
+unsafe fn check_heap_len<T>(p: *const T, len: usize, what: &str) -> CResult<()> {
+    if len == 0 || p.is_null() {
+        return Ok(());
     }
-    let (rows, cols) = (m.size0 as usize, m.size1 as usize);
+    let need = byte_size::<T>(len).ok_or_else(|| {
+        storage_err(format!(
+            "{what} declares {len} elements: no array is that large"
+        ))
+    })?;
+    match heap_block_bytes(p) {
+        Some(have) if have < need => Err(storage_err(format!(
+            "{what} declares {len} elements but its heap block holds {} bytes ({} elements)",
+            have,
+            have / std::mem::size_of::<T>().max(1)
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// A C allocation owned until handed over with `into_raw`: partial results of a call that
+/// fails half-way are freed, not leaked.
+pub(crate) struct CBuf<T> {
+    ptr: *mut T,
+    len: usize,
+}
+
+impl<T> CBuf<T> {
+    /// `len` zeroed elements (`calloc`).
+    pub(crate) fn zeroed(len: usize, what: &str) -> CResult<Self> {
+        if byte_size::<T>(len).is_none() {
+            return Err(size_err(format!(
+                "{what}: {len} elements of {} bytes exceed the address space",
+                std::mem::size_of::<T>()
+            )));
+        }
+        Ok(CBuf {
+            ptr: c_calloc::<T>(len)?,
+            len,
+        })
+    }
+
+    pub(crate) fn as_mut_slice(&mut self) -> &mut [T] {
+        // SAFETY: ptr holds len zero-initialised elements of plain C data.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr, self.len) }
+    }
+
+    /// Hands the allocation over (to a struct the host will free).
+    pub(crate) fn into_raw(self) -> *mut T {
+        let p = self.ptr;
+        std::mem::forget(self);
+        p
+    }
+}
+
+impl<T: Copy> CBuf<T> {
+    /// A C-allocated copy of `values`.
+    pub(crate) fn copy(values: &[T], what: &str) -> CResult<Self> {
+        let mut b = Self::zeroed(values.len(), what)?;
+        b.as_mut_slice().copy_from_slice(values);
+        Ok(b)
+    }
+}
+
+impl<T> Drop for CBuf<T> {
+    fn drop(&mut self) {
+        // SAFETY: ptr came from c_calloc and was not handed over.
+        unsafe { c_free(self.ptr) };
+    }
+}
+
+/// The CSparse matrix a `NumericsSparseMatrix` designates by its origin (for an unknown origin:
+/// the CSC, else the triplet, else the CSR form), with its kind; `None` when that pointer is
+/// NULL.
+pub(crate) unsafe fn sparse_origin(
+    s: &NumericsSparseMatrix,
+) -> CResult<Option<(*mut CSparseMatrix, c_int)>> {
+    let pick = |origin: c_int| -> Option<(*mut CSparseMatrix, c_int)> {
+        let p = match origin {
+            NSM_TRIPLET => s.triplet,
+            NSM_CSC => s.csc,
+            NSM_CSR => s.csr,
+            NSM_HALF_TRIPLET => s.half_triplet,
+            _ => null_mut(),
+        };
+        (!p.is_null()).then_some((p, origin))
+    };
+    match s.origin {
+        NSM_UNKNOWN => Ok(pick(NSM_CSC)
+            .or_else(|| pick(NSM_TRIPLET))
+            .or_else(|| pick(NSM_CSR))),
+        NSM_TRIPLET | NSM_CSC | NSM_CSR | NSM_HALF_TRIPLET => Ok(pick(s.origin)),
+        other => Err(storage_err(format!(
+            "unknown sparse origin {other} (0 unknown, 1 triplet, 2 CSC, 3 CSR, 4 half triplet)"
+        ))),
+    }
+}
+
+/// The CSparse matrix of a sparse NumericsMatrix, as `sparse_origin`, NULL being an error.
+unsafe fn sparse_source(s: &NumericsSparseMatrix) -> CResult<(&CSparseMatrix, c_int)> {
+    match sparse_origin(s)? {
+        Some((cs, kind)) => Ok((&*cs, kind)),
+        None if s.origin == NSM_HALF_TRIPLET || !s.half_triplet.is_null() => Err(storage_err(
+            "half-triplet (symmetric half) storage is rejected: W is not symmetric in general",
+        )),
+        None => Err(CError::null(&format!(
+            "the CSparse matrix of the sparse storage (origin {})",
+            s.origin
+        ))),
+    }
+}
+
+/// The sizes of a NumericsMatrix as `usize`; negative sizes are an error.
+fn matrix_dims(m: &NumericsMatrix) -> CResult<(usize, usize)> {
+    if m.size0 < 0 || m.size1 < 0 {
+        return Err(size_err(format!(
+            "matrix size {}x{} is negative",
+            m.size0, m.size1
+        )));
+    }
+    Ok((m.size0 as usize, m.size1 as usize))
+}
+
+/// The core view of a NumericsMatrix (dense storage is borrowed, not copied). Every number of
+/// the host's structs is checked before an array is read with it.
+pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delassus<'a>> {
+    let (rows, cols) = matrix_dims(m)?;
     match m.storageType {
         NM_DENSE => {
             let n = rows
                 .checked_mul(cols)
-                .ok_or_else(|| CError::new(FC3D_ERR_INVALID_SIZE, "matrix size overflows"))?;
+                .ok_or_else(|| size_err("matrix size overflows"))?;
             let data = c_slice(
                 m.matrix0 as *const c_double,
                 n,
@@ -113,34 +275,8 @@ pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delas
             if m.matrix2.is_null() {
                 return Err(CError::null("sparse storage (matrix2)"));
             }
-            let s = &*m.matrix2;
-            let pick = |origin: c_int| -> Option<(*mut CSparseMatrix, c_int)> {
-                let p = match origin {
-                    NSM_TRIPLET => s.triplet,
-                    NSM_CSC => s.csc,
-                    NSM_CSR => s.csr,
-                    NSM_HALF_TRIPLET => s.half_triplet,
-                    _ => null_mut(),
-                };
-                (!p.is_null()).then_some((p, origin))
-            };
-            let chosen = match s.origin {
-                NSM_UNKNOWN => pick(NSM_CSC)
-                    .or_else(|| pick(NSM_TRIPLET))
-                    .or_else(|| pick(NSM_CSR)),
-                NSM_TRIPLET | NSM_CSC | NSM_CSR | NSM_HALF_TRIPLET => pick(s.origin),
-                other => return Err(storage_err(format!("unknown sparse origin {other}"))),
-            };
-            let Some((cs, kind)) = chosen else {
-                if s.origin == NSM_HALF_TRIPLET || !s.half_triplet.is_null() {
-                    return Err(storage_err("half-triplet (symmetric half) storage is rejected: W is not symmetric in general"));
-                }
-                return Err(CError::null(&format!(
-                    "the sparse matrix of origin {} ",
-                    s.origin
-                )));
-            };
-            Ok(Delassus::Sparse(csr_from_cs(&*cs, kind, rows, cols)?))
+            let (cs, kind) = sparse_source(&*m.matrix2)?;
+            Ok(Delassus::Sparse(csr_from_cs(cs, kind, rows, cols)?))
         }
         other => Err(storage_err(format!(
             "unknown storage type {other} (0 dense, 1 sparse-block, 2 sparse)"
@@ -175,15 +311,16 @@ fn c_size(n: usize) -> CResult<c_int> {
 }
 
 /// A C-allocated NumericsMatrix holding a copy of `w` in the same storage
-/// (CSR becomes Siconos' CSC origin).
+/// (CSR becomes Siconos' CSC origin). Nothing is left allocated on failure.
 pub(crate) fn matrix_to_c(w: &Delassus<'_>) -> CResult<*mut NumericsMatrix> {
     let mut m = null_matrix();
     m.size0 = c_size(w.nrows())?;
     m.size1 = c_size(w.ncols())?;
+    let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
     match w {
         Delassus::Dense(d) => {
             m.storageType = NM_DENSE;
-            m.matrix0 = c_copy(d.values())?;
+            m.matrix0 = CBuf::copy(d.values(), "dense matrix")?.into_raw();
         }
         Delassus::SparseBlock(b) => {
             m.storageType = NM_SPARSE_BLOCK;
@@ -191,20 +328,47 @@ pub(crate) fn matrix_to_c(w: &Delassus<'_>) -> CResult<*mut NumericsMatrix> {
         }
         Delassus::Sparse(s) => {
             m.storageType = NM_SPARSE;
-            let mut nsm = empty_nsm();
-            nsm.csc = csc_to_c(s)?;
-            nsm.origin = NSM_CSC;
-            m.matrix2 = c_box(nsm)?;
+            let csc = csc_to_c(s)?;
+            let nsm = match CBuf::<NumericsSparseMatrix>::zeroed(1, "sparse storage") {
+                Ok(b) => b.into_raw(),
+                Err(e) => {
+                    // SAFETY: csc was made just above and is referenced nowhere else.
+                    unsafe { csparse::cs_free(csc) };
+                    return Err(e);
+                }
+            };
+            let mut v = empty_nsm();
+            v.csc = csc;
+            v.origin = NSM_CSC;
+            // SAFETY: nsm is a fresh allocation for one NumericsSparseMatrix.
+            unsafe { nsm.write(v) };
+            m.matrix2 = nsm;
         }
     }
-    c_box(m)
+    let out = out.into_raw();
+    // SAFETY: out is a fresh allocation for one NumericsMatrix.
+    unsafe { out.write(m) };
+    Ok(out)
 }
 
 // ---------------------------------------------------------------------------------------------
 // Releasing.
 
+/// Checks that `nm_clear_impl` can release `m` without reading past an array: a sparse-block
+/// storage whose `nbblocks` exceeds the heap block holding its block pointers is refused.
+pub(crate) unsafe fn check_clearable(m: *const NumericsMatrix) -> CResult<()> {
+    if let Some(mm) = m.as_ref() {
+        if let Some(s) = mm.matrix1.as_ref() {
+            check_sbm_clearable(s)?;
+        }
+    }
+    Ok(())
+}
+
+/// Frees the storage of `m` and resets its pointers, or nothing at all when it cannot be freed
+/// safely (`check_clearable`: the error is then the caller's to report, or the memory leaks).
 pub(crate) unsafe fn nm_clear_impl(m: *mut NumericsMatrix) {
-    if m.is_null() {
+    if m.is_null() || check_clearable(m).is_err() {
         return;
     }
     let mm = &mut *m;

@@ -1,15 +1,46 @@
 //! Sparse-block matrices (`SparseBlockStructuredMatrix`, `SparseBlockCoordinateMatrix`):
-//! conversion to and from the core's `BlockSparseMatrix`, release, and the `SBM_*` / `SBCM_*`
-//! functions of Siconos' API.
+//! conversion to and from the core's `BlockSparseMatrix`, single entries, release, and the
+//! `SBM_*` / `SBCM_*` functions of Siconos' API.
+//!
+//! A host fills the counts (`nbblocks`, `blocknumber0/1`, `filled1/2`), the cumulative sizes and
+//! the index arrays as plain integers: each is checked against the others before an array is
+//! read with it. Declared lengths: `blocksize0`/`blocksize1` hold `blocknumber0`/`blocknumber1`
+//! sizes, `index1_data` `filled1` pointers, `index2_data` and `block` `filled2` = `nbblocks`
+//! entries.
 
-use std::os::raw::{c_double, c_uint};
+use std::os::raw::{c_double, c_int, c_uint};
 use std::ptr::null_mut;
 
-use super::{c_slice, storage_err};
-use crate::alloc::{c_box, c_calloc, c_copy, c_free};
+use super::{c_slice, check_heap_len, size_err, storage_err, CBuf};
+use crate::alloc::c_free;
 use crate::types::*;
-use crate::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
+use crate::{ffi_guard, CError, CResult};
+use fc3d_core::error::{try_copy, try_vec};
 use fc3d_core::matrix::BlockSparseMatrix;
+
+/// Checks cumulative block sizes: strictly increasing from a positive first size.
+fn check_block_sizes(bs: &[c_uint], what: &str) -> CResult<()> {
+    let mut prev = 0;
+    for (k, &v) in bs.iter().enumerate() {
+        if v <= prev {
+            return Err(storage_err(format!(
+                "{what} must be cumulative block sizes (strictly increasing from a positive size): entry {k} is {v} after {prev}"
+            )));
+        }
+        prev = v;
+    }
+    Ok(())
+}
+
+/// A block count whose 3x3 blocks a NumericsMatrix can hold: 3 * count fits a C int.
+fn check_block_count(count: c_uint, what: &str) -> CResult<()> {
+    if count as u64 * 3 > c_int::MAX as u64 {
+        return Err(size_err(format!(
+            "{what} = {count} blocks of size 3 exceed the size of a matrix (a C int)"
+        )));
+    }
+    Ok(())
+}
 
 /// Validated block-sparse core copy of a Siconos SBM with uniform 3x3 blocks.
 pub(super) unsafe fn block_sparse_from_sbm(
@@ -19,10 +50,9 @@ pub(super) unsafe fn block_sparse_from_sbm(
 ) -> CResult<BlockSparseMatrix> {
     let (nbr, nbc) = (s.blocknumber0 as usize, s.blocknumber1 as usize);
     if 3 * nbr != rows || 3 * nbc != cols {
-        return Err(CError::new(
-            FC3D_ERR_INVALID_SIZE,
-            format!("sparse-block matrix has {nbr}x{nbc} blocks but the NumericsMatrix is {rows}x{cols} (fc3d needs 3x3 blocks)"),
-        ));
+        return Err(size_err(format!(
+            "sparse-block matrix has {nbr}x{nbc} blocks but the NumericsMatrix is {rows}x{cols} (fc3d needs 3x3 blocks)"
+        )));
     }
     let bs0 = c_slice(s.blocksize0, nbr, "SBM blocksize0")?;
     let bs1 = c_slice(s.blocksize1, nbc, "SBM blocksize1")?;
@@ -41,60 +71,169 @@ pub(super) unsafe fn block_sparse_from_sbm(
             nbr + 1
         )));
     }
-    let row_ptr = c_slice(s.index1_data, s.filled1, "SBM index1_data")?.to_vec();
-    let nb = *row_ptr.last().unwrap_or(&0);
+    let row_ptr = c_slice(s.index1_data, s.filled1, "SBM index1_data")?;
+    let nb = row_ptr[nbr];
     if nb != s.filled2 || nb != s.nbblocks as usize {
         return Err(storage_err(format!(
             "SBM block counts disagree: index1_data ends at {nb}, filled2 = {}, nbblocks = {}",
             s.filled2, s.nbblocks
         )));
     }
-    let col_idx = c_slice(s.index2_data, nb, "SBM index2_data")?.to_vec();
+    let row_ptr = try_copy(row_ptr, "SBM block row pointers")?;
+    let col_idx = try_copy(
+        c_slice(s.index2_data, nb, "SBM index2_data")?,
+        "SBM block columns",
+    )?;
     let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
-    let mut blocks = Vec::with_capacity(nb);
-    for (k, &bp) in ptrs.iter().enumerate() {
-        let b = c_slice(bp as *const c_double, 9, &format!("SBM block {k}"))?;
-        let mut a = [0.0; 9];
-        a.copy_from_slice(b);
-        blocks.push(a);
+    let mut blocks = try_vec(nb, [0.0; 9], "SBM blocks")?;
+    for (k, (&bp, a)) in ptrs.iter().zip(blocks.iter_mut()).enumerate() {
+        a.copy_from_slice(c_slice(
+            bp as *const c_double,
+            9,
+            &format!("SBM block {k}"),
+        )?);
     }
     Ok(BlockSparseMatrix::new(nbr, nbc, row_ptr, col_idx, blocks)?)
+}
+
+/// Entry (i, j) of a host SBM of any block sizes (the sum of the blocks stored at its place, 0
+/// if none), `i`, `j` inside the NumericsMatrix. Checks the counts, the cumulative sizes and the
+/// block row it reads; an SBM with no block row or column (as `NM_create` makes it) holds zeros.
+pub(super) unsafe fn sbm_get(s: &SparseBlockStructuredMatrix, i: usize, j: usize) -> CResult<f64> {
+    let (nbr, nbc, nb) = (s.blocknumber0 as usize, s.blocknumber1 as usize, s.filled2);
+    if nb != s.nbblocks as usize {
+        return Err(storage_err(format!(
+            "SBM block counts disagree: filled2 = {nb}, nbblocks = {}",
+            s.nbblocks
+        )));
+    }
+    if nbr == 0 || nbc == 0 {
+        if nb == 0 {
+            return Ok(0.0);
+        }
+        return Err(storage_err(format!(
+            "SBM has {nb} blocks but {nbr}x{nbc} block rows and columns"
+        )));
+    }
+    let bs0 = c_slice(s.blocksize0, nbr, "SBM blocksize0")?;
+    let bs1 = c_slice(s.blocksize1, nbc, "SBM blocksize1")?;
+    check_block_sizes(bs0, "SBM blocksize0")?;
+    check_block_sizes(bs1, "SBM blocksize1")?;
+    // The block row of i: the first cumulative size above it.
+    let bi = bs0.partition_point(|&c| c as usize <= i);
+    let bj = bs1.partition_point(|&c| c as usize <= j);
+    if bi == nbr || bj == nbc {
+        return Err(storage_err(format!(
+            "entry ({i}, {j}) is outside the blocks, which cover {}x{}",
+            bs0[nbr - 1],
+            bs1[nbc - 1]
+        )));
+    }
+    let r0 = if bi == 0 { 0 } else { bs0[bi - 1] as usize };
+    let c0 = if bj == 0 { 0 } else { bs1[bj - 1] as usize };
+    let (nrows, ncols) = (bs0[bi] as usize - r0, bs1[bj] as usize - c0);
+    if s.filled1 != nbr + 1 {
+        return Err(storage_err(format!(
+            "SBM filled1 = {} but blocknumber0 + 1 = {}",
+            s.filled1,
+            nbr + 1
+        )));
+    }
+    let ptr = c_slice(s.index1_data, s.filled1, "SBM index1_data")?;
+    let (a, z) = (ptr[bi], ptr[bi + 1]);
+    if a > z || z > nb {
+        return Err(storage_err(format!(
+            "SBM block row {bi} spans blocks {a}..{z} of {nb} (index1_data)"
+        )));
+    }
+    let cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
+    let blocks = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
+    let mut v = 0.0;
+    for k in a..z {
+        if cols[k] >= nbc {
+            return Err(storage_err(format!(
+                "SBM block {k} is in block column {}, past {nbc} (index2_data)",
+                cols[k]
+            )));
+        }
+        if cols[k] == bj {
+            let b = c_slice(
+                blocks[k] as *const c_double,
+                nrows * ncols,
+                &format!("SBM block {k}"),
+            )?;
+            v += b[(i - r0) + (j - c0) * nrows];
+        }
+    }
+    Ok(v)
 }
 
 // ---------------------------------------------------------------------------------------------
 // Building C matrices from core ones.
 
-/// A C-allocated SBM copy of a core block-sparse matrix (blocks malloc'd one by one, as Siconos).
+/// A C-allocated SBM copy of a core block-sparse matrix (blocks malloc'd one by one, as
+/// Siconos); nothing is left allocated on failure.
 pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructuredMatrix> {
-    let nb = b.n_blocks();
-    let block = c_calloc::<*mut c_double>(nb)?;
-    for (k, v) in b.blocks().iter().enumerate() {
-        // SAFETY: block has nb slots.
-        unsafe { *block.add(k) = c_copy(v)? };
-    }
-    let bs0: Vec<c_uint> = (1..=b.n_block_rows()).map(|i| 3 * i as c_uint).collect();
-    let bs1: Vec<c_uint> = (1..=b.n_block_cols()).map(|i| 3 * i as c_uint).collect();
-    let diag: Vec<c_uint> = (0..b.n_block_rows())
-        .map(|i| {
-            (b.row_ptr()[i]..b.row_ptr()[i + 1])
+    let (nbr, nbc, nb) = (b.n_block_rows(), b.n_block_cols(), b.n_blocks());
+    let count = |n: usize, what: &str| -> CResult<c_uint> {
+        c_uint::try_from(n.saturating_mul(3))
+            .map(|_| n as c_uint)
+            .map_err(|_| size_err(format!("{n} {what} do not fit a C unsigned int")))
+    };
+    let (nbr_u, nbc_u, nb_u) = (
+        count(nbr, "block rows")?,
+        count(nbc, "block columns")?,
+        c_uint::try_from(nb)
+            .map_err(|_| size_err(format!("{nb} blocks do not fit a C unsigned int")))?,
+    );
+    let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "sparse-block matrix")?;
+    let mut s = empty_sbm();
+    let filled = (|| -> CResult<()> {
+        s.block = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?.into_raw();
+        for (k, v) in b.blocks().iter().enumerate() {
+            // SAFETY: s.block has nb slots; nbblocks counts the blocks allocated so far.
+            unsafe { *s.block.add(k) = CBuf::copy(v, "SBM block")?.into_raw() };
+            s.nbblocks = k as c_uint + 1;
+        }
+        s.nbblocks = nb_u;
+        s.blocknumber0 = nbr_u;
+        s.blocknumber1 = nbc_u;
+        let mut bs0 = CBuf::<c_uint>::zeroed(nbr, "SBM blocksize0")?;
+        for (k, v) in bs0.as_mut_slice().iter_mut().enumerate() {
+            *v = 3 * (k as c_uint + 1);
+        }
+        s.blocksize0 = bs0.into_raw();
+        let mut bs1 = CBuf::<c_uint>::zeroed(nbc, "SBM blocksize1")?;
+        for (k, v) in bs1.as_mut_slice().iter_mut().enumerate() {
+            *v = 3 * (k as c_uint + 1);
+        }
+        s.blocksize1 = bs1.into_raw();
+        s.index1_data = CBuf::copy(b.row_ptr(), "SBM index1_data")?.into_raw();
+        s.filled1 = nbr + 1;
+        s.index2_data = CBuf::copy(b.col_idx(), "SBM index2_data")?.into_raw();
+        s.filled2 = nb;
+        let mut diag = CBuf::<c_uint>::zeroed(nbr, "SBM diagonal_blocks")?;
+        for (i, d) in diag.as_mut_slice().iter_mut().enumerate() {
+            *d = (b.row_ptr()[i]..b.row_ptr()[i + 1])
                 .find(|&k| b.col_idx()[k] == i)
-                .map_or(c_uint::MAX, |k| k as c_uint)
-        })
-        .collect();
-    c_box(SparseBlockStructuredMatrix {
-        nbblocks: nb as c_uint,
-        block,
-        blocknumber0: b.n_block_rows() as c_uint,
-        blocknumber1: b.n_block_cols() as c_uint,
-        blocksize0: c_copy(&bs0)?,
-        blocksize1: c_copy(&bs1)?,
-        filled1: b.n_block_rows() + 1,
-        filled2: nb,
-        index1_data: c_copy(b.row_ptr())?,
-        index2_data: c_copy(b.col_idx())?,
-        diagonal_blocks: c_copy(&diag)?,
-        version: NumericsDataVersion::default(),
-    })
+                .map_or(c_uint::MAX, |k| k as c_uint);
+        }
+        s.diagonal_blocks = diag.into_raw();
+        Ok(())
+    })();
+    match filled {
+        Ok(()) => {
+            let out = out.into_raw();
+            // SAFETY: out is a fresh allocation for one SBM.
+            unsafe { out.write(s) };
+            Ok(out)
+        }
+        Err(e) => {
+            // SAFETY: s holds only what was allocated above (nbblocks blocks so far).
+            unsafe { sbm_clear_impl(&mut s, true) };
+            Err(e)
+        }
+    }
 }
 
 pub(super) fn empty_sbm() -> SparseBlockStructuredMatrix {
@@ -117,6 +256,21 @@ pub(super) fn empty_sbm() -> SparseBlockStructuredMatrix {
 // ---------------------------------------------------------------------------------------------
 // Releasing.
 
+/// Checks that `sbm_clear_impl(s, true)` reads no block pointer past the heap block holding the
+/// block array (`nbblocks` larger than the array is refused).
+pub(super) unsafe fn check_sbm_clearable(s: &SparseBlockStructuredMatrix) -> CResult<()> {
+    if !s.block.is_null() {
+        check_heap_len(
+            s.block as *const *mut c_double,
+            s.nbblocks as usize,
+            "SBM block array (nbblocks)",
+        )?;
+    }
+    Ok(())
+}
+
+/// Frees the arrays of `s` (and its `nbblocks` blocks with `free_blocks`); callers check
+/// `check_sbm_clearable` first when `s` comes from the host.
 pub(super) unsafe fn sbm_clear_impl(s: *mut SparseBlockStructuredMatrix, free_blocks: bool) {
     if s.is_null() {
         return;
@@ -153,10 +307,21 @@ pub(super) unsafe fn sbm_clear_impl(s: *mut SparseBlockStructuredMatrix, free_bl
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn SBM_new() -> *mut SparseBlockStructuredMatrix {
-    ffi_guard("SBM_new", |_| null_mut(), || c_box(empty_sbm()))
+    ffi_guard(
+        "SBM_new",
+        |_| null_mut(),
+        || {
+            let p = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "SBM")?.into_raw();
+            // SAFETY: p is a fresh allocation for one SBM.
+            unsafe { p.write(empty_sbm()) };
+            Ok(p)
+        },
+    )
 }
 
-/// Frees the blocks and index arrays of `blmat` (not the struct).
+/// Frees the `nbblocks` blocks and the index arrays of `blmat` (not the struct); NULL is a
+/// no-op. Refused (`FC3D_ERR_INVALID_STORAGE`, nothing freed) when `nbblocks` exceeds the heap
+/// block holding the block array.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
@@ -164,6 +329,9 @@ pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
         "SBM_clear",
         |_| (),
         || {
+            if let Some(s) = blmat.as_ref() {
+                check_sbm_clearable(s)?;
+            }
             sbm_clear_impl(blmat, true);
             Ok(())
         },
@@ -171,8 +339,10 @@ pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
 }
 
 /// Coordinate block matrix of `nbblocks` 3x3 blocks at 1-based block coordinates
-/// `(row[k], column[k])`, values `block[9k..9k+9]` column-major. Keeps `row`, `column` and
-/// `block` without copying (they stay the caller's); release with `SBCM_free_3x3`.
+/// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks.
+/// Keeps `row`, `column` and `block` without copying (they stay the caller's); release with
+/// `SBCM_free_3x3`. NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n` exceeds a C int or a
+/// coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a NULL array.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_new_3x3(
@@ -187,37 +357,46 @@ pub unsafe extern "C" fn SBCM_new_3x3(
         "SBCM_new_3x3",
         |_| null_mut(),
         || {
+            check_block_count(m, "m (block rows)")?;
+            check_block_count(n, "n (block columns)")?;
             let nb = nbblocks as usize;
             let rows = c_slice(row, nb, "row")?;
             let cols = c_slice(column, nb, "column")?;
             c_slice(block, 9 * nb, "block")?;
             for k in 0..nb {
                 if rows[k] == 0 || rows[k] > m || cols[k] == 0 || cols[k] > n {
-                    return Err(CError::new(
-                        FC3D_ERR_INVALID_SIZE,
-                        format!(
-                            "block {k} at 1-based ({}, {}) is outside {m}x{n} blocks",
-                            rows[k], cols[k]
-                        ),
-                    ));
+                    return Err(size_err(format!(
+                        "block {k} at 1-based ({}, {}) is outside {m}x{n} blocks",
+                        rows[k], cols[k]
+                    )));
                 }
             }
-            let ptrs = c_calloc::<*mut c_double>(nb)?;
-            for k in 0..nb {
-                *ptrs.add(k) = block.add(9 * k);
+            let mut ptrs = CBuf::<*mut c_double>::zeroed(nb, "block pointers")?;
+            for (k, p) in ptrs.as_mut_slice().iter_mut().enumerate() {
+                *p = block.add(9 * k);
             }
-            let bs0: Vec<c_uint> = (1..=m).map(|i| 3 * i).collect();
-            let bs1: Vec<c_uint> = (1..=n).map(|i| 3 * i).collect();
-            c_box(SparseBlockCoordinateMatrix {
+            let cumulative = |count: c_uint, what: &str| -> CResult<CBuf<c_uint>> {
+                let mut bs = CBuf::<c_uint>::zeroed(count as usize, what)?;
+                for (k, v) in bs.as_mut_slice().iter_mut().enumerate() {
+                    *v = 3 * (k as c_uint + 1);
+                }
+                Ok(bs)
+            };
+            let bs0 = cumulative(m, "blocksize0")?;
+            let bs1 = cumulative(n, "blocksize1")?;
+            let out =
+                CBuf::<SparseBlockCoordinateMatrix>::zeroed(1, "coordinate matrix")?.into_raw();
+            out.write(SparseBlockCoordinateMatrix {
                 nbblocks,
                 blocknumber0: m,
                 blocknumber1: n,
-                block: ptrs,
-                blocksize0: c_copy(&bs0)?,
-                blocksize1: c_copy(&bs1)?,
+                block: ptrs.into_raw(),
+                blocksize0: bs0.into_raw(),
+                blocksize1: bs1.into_raw(),
                 row,
                 column,
-            })
+            });
+            Ok(out)
         },
     )
 }
@@ -243,6 +422,8 @@ pub unsafe extern "C" fn SBCM_free_3x3(MC: *mut SparseBlockCoordinateMatrix) {
 
 /// A sparse-block matrix (block-CSR, sorted) whose blocks point into the coordinate matrix's
 /// values (no copy). Release with `SBM_free_from_SBCM` before the coordinate data goes away.
+/// Checks what a host may have filled: NULL arrays and block pointers, cumulative sizes that do
+/// not increase, coordinates outside `1..=blocknumber0` x `1..=blocknumber1` (NULL and a code).
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_to_SBM(
@@ -257,53 +438,73 @@ pub unsafe extern "C" fn SBCM_to_SBM(
             }
             let mc = &*MC;
             let nb = mc.nbblocks as usize;
+            let (nbr, nbc) = (mc.blocknumber0 as usize, mc.blocknumber1 as usize);
             let rows = c_slice(mc.row, nb, "row")?;
             let cols = c_slice(mc.column, nb, "column")?;
             let ptrs = c_slice(mc.block as *const *mut c_double, nb, "block")?;
-            let mut order: Vec<usize> = (0..nb).collect();
-            order.sort_by_key(|&k| (rows[k], cols[k]));
-            let nbr = mc.blocknumber0 as usize;
-            let mut row_ptr = vec![0usize; nbr + 1];
-            for &k in &order {
-                let r = rows[k] as usize;
-                if r == 0 || r > nbr {
-                    return Err(CError::new(
-                        FC3D_ERR_INVALID_SIZE,
-                        format!("block row {r} outside 1..={nbr}"),
-                    ));
+            let bs0 = c_slice(mc.blocksize0, nbr, "blocksize0")?;
+            let bs1 = c_slice(mc.blocksize1, nbc, "blocksize1")?;
+            check_block_sizes(bs0, "blocksize0")?;
+            check_block_sizes(bs1, "blocksize1")?;
+            for k in 0..nb {
+                let (r, c) = (rows[k] as usize, cols[k] as usize);
+                if r == 0 || r > nbr || c == 0 || c > nbc {
+                    return Err(size_err(format!(
+                        "block {k} at 1-based ({r}, {c}) is outside {nbr}x{nbc} blocks"
+                    )));
                 }
-                row_ptr[r] += 1;
+                if ptrs[k].is_null() {
+                    return Err(CError::null(&format!("block {k}")));
+                }
+            }
+            // Sorted by (row, column), ties in the given order.
+            let mut order = try_vec(nb, 0usize, "block order")?;
+            order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
+            order.sort_unstable_by_key(|&k| (rows[k], cols[k], k));
+            let mut row_ptr = CBuf::<usize>::zeroed(nbr + 1, "index1_data")?;
+            let rp = row_ptr.as_mut_slice();
+            for &k in &order {
+                rp[rows[k] as usize] += 1;
             }
             for i in 0..nbr {
-                row_ptr[i + 1] += row_ptr[i];
+                rp[i + 1] += rp[i];
             }
-            let col_idx: Vec<usize> = order.iter().map(|&k| cols[k] as usize - 1).collect();
-            let sorted: Vec<*mut c_double> = order.iter().map(|&k| ptrs[k]).collect();
-            let diag: Vec<c_uint> = (0..nbr)
-                .map(|i| {
-                    (row_ptr[i]..row_ptr[i + 1])
-                        .find(|&k| col_idx[k] == i)
-                        .map_or(c_uint::MAX, |k| k as c_uint)
-                })
-                .collect();
-            c_box(SparseBlockStructuredMatrix {
+            let mut col_idx = CBuf::<usize>::zeroed(nb, "index2_data")?;
+            let mut sorted = CBuf::<*mut c_double>::zeroed(nb, "block array")?;
+            for ((c, b), &k) in col_idx
+                .as_mut_slice()
+                .iter_mut()
+                .zip(sorted.as_mut_slice().iter_mut())
+                .zip(&order)
+            {
+                *c = cols[k] as usize - 1;
+                *b = ptrs[k];
+            }
+            let mut diag = CBuf::<c_uint>::zeroed(nbr, "diagonal_blocks")?;
+            let (rp, ci) = (row_ptr.as_mut_slice(), col_idx.as_mut_slice());
+            for (i, d) in diag.as_mut_slice().iter_mut().enumerate() {
+                *d = (rp[i]..rp[i + 1])
+                    .find(|&k| ci[k] == i)
+                    .map_or(c_uint::MAX, |k| k as c_uint);
+            }
+            let bs0 = CBuf::copy(bs0, "blocksize0")?;
+            let bs1 = CBuf::copy(bs1, "blocksize1")?;
+            let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "SBM")?.into_raw();
+            out.write(SparseBlockStructuredMatrix {
                 nbblocks: mc.nbblocks,
-                block: c_copy(&sorted)?,
+                block: sorted.into_raw(),
                 blocknumber0: mc.blocknumber0,
                 blocknumber1: mc.blocknumber1,
-                blocksize0: c_copy(c_slice(mc.blocksize0, nbr, "blocksize0")?)?,
-                blocksize1: c_copy(c_slice(
-                    mc.blocksize1,
-                    mc.blocknumber1 as usize,
-                    "blocksize1",
-                )?)?,
+                blocksize0: bs0.into_raw(),
+                blocksize1: bs1.into_raw(),
                 filled1: nbr + 1,
                 filled2: nb,
-                index1_data: c_copy(&row_ptr)?,
-                index2_data: c_copy(&col_idx)?,
-                diagonal_blocks: c_copy(&diag)?,
+                index1_data: row_ptr.into_raw(),
+                index2_data: col_idx.into_raw(),
+                diagonal_blocks: diag.into_raw(),
                 version: NumericsDataVersion::default(),
-            })
+            });
+            Ok(out)
         },
     )
 }

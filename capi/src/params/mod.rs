@@ -19,6 +19,7 @@ pub(crate) use siconos::{solver_name, solver_name_to_id};
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;
 
+use super::options::check_tree;
 use super::types::SolverOptions;
 use super::{CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
 use fc3d_core::{Fc3dError, LocalSolverKind, Method, SolverConfig};
@@ -127,9 +128,11 @@ impl<'a> Params<'a> {
                 o.iSize, o.dSize
             )));
         }
+        // Only the first OPTIONS_PARAM_SIZE slots carry settings: nothing beyond them is read,
+        // whatever iSize and dSize say.
         Ok(Params {
-            iparam: std::slice::from_raw_parts(o.iparam, o.iSize as usize),
-            dparam: std::slice::from_raw_parts(o.dparam, o.dSize as usize),
+            iparam: std::slice::from_raw_parts(o.iparam, SIZE),
+            dparam: std::slice::from_raw_parts(o.dparam, SIZE),
         })
     }
 
@@ -143,14 +146,18 @@ impl<'a> Params<'a> {
         })
     }
 
-    /// fc3d's wall-clock budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`, seconds, 0 = none; a budget
-    /// too large for the clock is no budget).
+    /// fc3d's wall-clock budget (`dparam[FC3D_DPARAM_TIME_BUDGET]`, seconds, 0 = none). Huge
+    /// means unlimited: a budget too large for the clock (above about 1.8e19 s, +inf included)
+    /// is no budget. A positive budget below the clock's resolution is 1 ns (spent at once), not
+    /// a zero budget.
     pub fn time_budget(&self) -> CResult<Option<Duration>> {
         let b = self.dparam[DPARAM_TIME_BUDGET];
         if b == 0.0 {
             Ok(None)
         } else if b > 0.0 && !b.is_nan() {
-            Ok(Duration::try_from_secs_f64(b).ok())
+            Ok(Duration::try_from_secs_f64(b)
+                .ok()
+                .map(|d| d.max(Duration::from_nanos(1))))
         } else {
             Err(invalid(format!(
                 "time budget (dparam[{DPARAM_TIME_BUDGET}]) = {b} must be 0 (none) or a positive number of seconds"
@@ -182,8 +189,16 @@ pub(crate) unsafe fn first_internal(o: &SolverOptions) -> Option<&SolverOptions>
 }
 
 /// The typed solver configuration described by Siconos options, checked by the core. Rejects
-/// unimplemented solver ids and options with a message naming them.
+/// unimplemented solver ids and options with a message naming them, and option trees that are
+/// not finite or not readable (`check_tree`: cycles, chains deeper than
+/// `FC3D_OPTIONS_MAX_DEPTH`, counts and sizes outside the limits).
 pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
+    check_tree(o)?;
+    config_from_node(o)
+}
+
+/// `config_from_c` of a node of a checked tree.
+pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig> {
     let id = o.solverId;
     let what = solver_name(id).to_string_lossy();
     let p = Params::of(o, &format!("{what} options"))?;

@@ -3,7 +3,7 @@
 //! tolerance is replaced by the proximal rule). Rejected: iparam[2] (internal error strategy
 //! other than error / 10), iparam[8] (relaxation), iparam[9] (other proximal strategies).
 
-use super::{config_from_c, write_config, Encoded, Params};
+use super::{config_from_node, write_config, Encoded, Params};
 use crate::types::SolverOptions;
 use crate::{CError, CResult, FC3D_ERR_UNSUPPORTED_SOLVER};
 use fc3d_core::{Method, NsnFormulation, ProxInternal, ProxOptions, SolverConfig};
@@ -33,7 +33,11 @@ pub(super) unsafe fn read(
     p.require(IPARAM_RELAXATION, 0, "proximal relaxation")?;
     p.require(IPARAM_STRATEGY, 0, "proximal strategy (0 = proximal point)")?;
     if let Some(i) = internal {
-        let inner = config_from_c(i)?;
+        // Named as the internal solver's: its slots are not PROX's.
+        let inner = config_from_node(i).map_err(|e| CError {
+            message: format!("PROX's internal solver {}: {}", i.solverId, e.message),
+            ..e
+        })?;
         x.internal = match inner.method {
             Method::Nsn(n)
                 if matches!(

@@ -43,12 +43,7 @@ fn run_once(
 }
 
 fn status_name(s: SolveStatus) -> &'static str {
-    match s {
-        SolveStatus::Converged => "converged",
-        SolveStatus::MaxIterationsReached => "max-iter",
-        SolveStatus::TimeBudgetExhausted => "out-of-time",
-        SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
-    }
+    s.name()
 }
 
 /// Runs `fc3d bench`.

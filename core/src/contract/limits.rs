@@ -53,7 +53,7 @@ impl Run {
     }
 
     pub fn out_of_time(&self) -> bool {
-        self.deadline.is_some_and(|d| Instant::now() >= d)
+        deadline_passed(self.deadline)
     }
 
     /// The end-of-iteration test every main loop runs after iteration `iteration`: stop when
@@ -71,6 +71,27 @@ impl Run {
     /// The outcome of a loop that used all its iterations.
     pub fn exhausted(&self) -> SolverOutcome {
         SolverOutcome::stopped(self.max_iter, false)
+    }
+}
+
+/// Whether `deadline` has passed (for loops whose iteration costs a sweep or more).
+#[inline]
+pub fn deadline_passed(deadline: Option<Instant>) -> bool {
+    deadline.is_some_and(|d| Instant::now() >= d)
+}
+
+/// Every this many iterations a tight loop reads the clock (a local solve's iteration costs far
+/// less than a clock read).
+const CLOCK_PERIOD: usize = 64;
+
+/// Whether `deadline` has passed, read once every [`CLOCK_PERIOD`] iterations of a tight loop
+/// (its `iteration` counter): the budget holds in loops whose length an option controls
+/// (`INT_MAX` local iterations or line-search trials) at the cost of one clock read per period.
+#[inline]
+pub fn past_deadline(deadline: Option<Instant>, iteration: usize) -> bool {
+    match deadline {
+        Some(d) => iteration % CLOCK_PERIOD == CLOCK_PERIOD - 1 && Instant::now() >= d,
+        None => false,
     }
 }
 

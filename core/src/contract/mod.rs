@@ -13,6 +13,7 @@ mod schedule;
 
 pub(crate) use family::Family;
 pub use limits::Limits;
+pub use limits::{deadline_passed, past_deadline};
 pub(crate) use limits::{BestIterate, Run};
 pub use outer::InnerTolerance;
 pub(crate) use outer::OuterLoop;
@@ -49,6 +50,8 @@ pub(crate) struct SolverOutcome {
     /// A solver of a relaxed problem (SOCLCP) solved its relaxation to the tolerance: whether the
     /// result is a Coulomb solution is then decided by the Coulomb error.
     pub relaxation_converged: bool,
+    /// The run stopped because its iterates grew without bound.
+    pub diverged: bool,
 }
 
 impl SolverOutcome {
@@ -60,6 +63,15 @@ impl SolverOutcome {
             final_error: None,
             dumont_criterion: None,
             relaxation_converged: false,
+            diverged: false,
+        }
+    }
+
+    /// A run that stopped after `iterations` because its iterates grew without bound.
+    pub fn diverged(iterations: usize) -> Self {
+        SolverOutcome {
+            diverged: true,
+            ..SolverOutcome::stopped(iterations, false)
         }
     }
 

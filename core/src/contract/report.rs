@@ -14,17 +14,36 @@ pub enum SolveStatus {
     /// tolerance, but the returned `(r, u)` is not a Coulomb solution: its natural-map error (the
     /// one reported) is above the tolerance. Happens when some contact slides.
     RelaxationNotCoulomb,
+    /// The reaction grew without bound, and the solver stopped: either its iterates diverged
+    /// (a step too large for W), or the relative error fell below the tolerance only because
+    /// `||r||` grew along a direction `d` with `W d = 0` into which q pushes (`q·d < 0`): then the
+    /// problem has no solution (a singular W that cannot balance the contacts q pushes in).
+    Unbounded,
 }
 
 impl SolveStatus {
-    /// Siconos' `info`: 0 converged, 1 not; fc3d adds 2 for an exhausted time budget and 3
-    /// (`FC3D_RELAXED_NOT_COULOMB`) for a relaxed solution that is not a Coulomb solution.
+    /// Short name for tables and CSV files (`converged`, `max-iter`, `out-of-time`,
+    /// `relaxed-not-coulomb`, `unbounded`).
+    pub fn name(self) -> &'static str {
+        match self {
+            SolveStatus::Converged => "converged",
+            SolveStatus::MaxIterationsReached => "max-iter",
+            SolveStatus::TimeBudgetExhausted => "out-of-time",
+            SolveStatus::RelaxationNotCoulomb => "relaxed-not-coulomb",
+            SolveStatus::Unbounded => "unbounded",
+        }
+    }
+
+    /// Siconos' `info`: 0 converged, 1 not; fc3d adds 2 for an exhausted time budget, 3
+    /// (`FC3D_RELAXED_NOT_COULOMB`) for a relaxed solution that is not a Coulomb solution and 4
+    /// (`FC3D_UNBOUNDED`) for a reaction that grew without bound.
     pub fn info_code(self) -> i32 {
         match self {
             SolveStatus::Converged => 0,
             SolveStatus::MaxIterationsReached => 1,
             SolveStatus::TimeBudgetExhausted => 2,
             SolveStatus::RelaxationNotCoulomb => 3,
+            SolveStatus::Unbounded => 4,
         }
     }
 }

@@ -1,12 +1,14 @@
 //! Problem files.
 
+mod alloc;
 pub mod dat;
 mod files;
 mod info;
 
 pub use dat::{
-    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat_file,
-    write_dat, write_dat_file, write_matrix, write_sbm,
+    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat,
+    read_dat_file, read_matrix, read_matrix_file, read_sbm, write_dat, write_dat_file,
+    write_matrix, write_sbm,
 };
 pub use files::{
     has_fclib_extension, is_hdf5_file, read_fclib_file, read_fclib_info, read_problem_file,

@@ -4,7 +4,10 @@
 //! `NU` while `rho ||f(r+) - f(r)|| > L ||r+ - r||`, grow it by `1 / NU` after a step whose
 //! ratio is below `L_MIN`, until the natural-map residual of the contact is below the tolerance.
 
+use std::time::Instant;
+
 use super::{LocalOutcome, LocalProblem};
+use crate::contract::past_deadline;
 use crate::math::linalg::{norm3, sub3, Vec3};
 use crate::math::step::{L, L_MIN, NU};
 
@@ -19,18 +22,26 @@ pub(crate) trait ProjectionStep {
     fn residual(&self, p: &LocalProblem<'_>, r: &Vec3, field: &Vec3) -> f64;
 }
 
-/// Runs the iteration from `r` with initial step `rho` to the relative residual `tolerance` or
-/// `max_iter` steps. A non-finite step stops it with `r` at the last finite iterate.
+/// Runs the iteration from `r` with initial step `rho` to the relative residual `tolerance`,
+/// `max_iter` steps or the `deadline`. A non-finite step stops it with `r` at the last finite
+/// iterate.
 pub(crate) fn self_adaptive_projection(
     map: &impl ProjectionStep,
     p: &LocalProblem<'_>,
     mut rho: f64,
     tolerance: f64,
     max_iter: usize,
+    deadline: Option<Instant>,
     r: &mut Vec3,
 ) -> LocalOutcome {
     let mut field = map.field(p, r);
     for it in 0..max_iter {
+        if past_deadline(deadline, it) {
+            return LocalOutcome {
+                converged: false,
+                iterations: it,
+            };
+        }
         let next = map.step(p, r, &field, rho);
         let step = norm3(&sub3(&next, r));
         if step == 0.0 || !step.is_finite() {

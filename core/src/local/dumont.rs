@@ -28,6 +28,9 @@ use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
 use crate::local::{LocalSolverOptions, RhoRule};
+use std::time::Instant;
+
+use crate::contract::past_deadline;
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 
@@ -98,6 +101,7 @@ pub struct EnhancedBipotential {
     max_iter: usize,
     rule: RhoRule,
     projection: ProjectionOnConeWithLocalIteration,
+    deadline: Option<Instant>,
 }
 
 impl EnhancedBipotential {
@@ -109,11 +113,17 @@ impl EnhancedBipotential {
             max_iter: options.max_iter,
             rule: options.rho_rule,
             projection: ProjectionOnConeWithLocalIteration::new(&proj),
+            deadline: None,
         }
     }
 }
 
 impl LocalSolver for EnhancedBipotential {
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
+        self.projection.set_deadline(deadline);
+    }
+
     fn rho(&self, w: &Mat3) -> (f64, f64) {
         // The cone projection takes one scalar rho; the normal one is Dumont's.
         let rho = local_rho(w, self.rule).0;
@@ -175,6 +185,12 @@ impl EnhancedBipotential {
             if ng <= self.tolerance * scale {
                 return LocalOutcome {
                     converged: true,
+                    iterations: it,
+                };
+            }
+            if past_deadline(self.deadline, it) {
+                return LocalOutcome {
+                    converged: false,
                     iterations: it,
                 };
             }

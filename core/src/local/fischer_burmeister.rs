@@ -19,6 +19,9 @@
 
 use super::{local_rho, AlartCurnierNewton, LocalOutcome, LocalProblem, LocalSolver};
 use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
+use std::time::Instant;
+
+use crate::contract::past_deadline;
 use crate::math::cone::modified_velocity;
 use crate::math::linalg::{norm2, norm3, solve3, Mat3, Vec3};
 
@@ -63,6 +66,7 @@ pub struct FischerBurmeisterNewton {
     tolerance: f64,
     max_iter: usize,
     finish: AlartCurnierNewton,
+    deadline: Option<Instant>,
 }
 
 impl FischerBurmeisterNewton {
@@ -74,6 +78,7 @@ impl FischerBurmeisterNewton {
             tolerance: options.tolerance,
             max_iter: options.max_iter,
             finish: AlartCurnierNewton::new(&finish),
+            deadline: None,
         }
     }
 }
@@ -82,6 +87,11 @@ impl LocalSolver for FischerBurmeisterNewton {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
         let rho = local_rho(w, RhoRule::SplitSpectralNorm).0;
         (rho, rho)
+    }
+
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
+        self.finish.set_deadline(deadline);
     }
 
     fn solve_with_rho(
@@ -104,6 +114,10 @@ impl LocalSolver for FischerBurmeisterNewton {
                     converged: true,
                     iterations: it,
                 };
+            }
+            if past_deadline(self.deadline, it) {
+                iterations = it;
+                break;
             }
             let mut jac = [[0.0; 3]; 3];
             for j in 0..3 {

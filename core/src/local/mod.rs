@@ -79,6 +79,10 @@ pub trait LocalSolver {
         r: &mut Vec3,
     ) -> LocalOutcome;
 
+    /// The instant after which iterating solvers stop early and return their best point
+    /// (`None`: no limit). One-step solvers ignore it.
+    fn set_deadline(&mut self, _deadline: Option<std::time::Instant>) {}
+
     /// Solves, computing rho from `p.w`.
     #[inline]
     fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {

@@ -20,6 +20,9 @@ use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
 use crate::local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
+use std::time::Instant;
+
+use crate::contract::past_deadline;
 use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 
 /// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
@@ -129,6 +132,7 @@ pub struct AlartCurnierNewton {
     hybrid: bool,
     jean_moreau: bool,
     projection: ProjectionOnConeWithLocalIteration,
+    deadline: Option<Instant>,
 }
 
 /// Goldstein-Price acceptance bounds on `(psi(r + a d) - psi(r)) / (a * slope)`.
@@ -150,6 +154,7 @@ impl AlartCurnierNewton {
             hybrid,
             jean_moreau: options.formulation == NewtonFormulation::JeanMoreau,
             projection: ProjectionOnConeWithLocalIteration::new(&proj),
+            deadline: None,
         }
     }
 
@@ -184,6 +189,9 @@ impl AlartCurnierNewton {
             let nf = norm3(&f);
             if nf <= tol * scale {
                 return (true, it);
+            }
+            if past_deadline(self.deadline, it) {
+                return (false, it);
             }
             let jac = self.jacobian(p, rho_n, rho_t, r);
             let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
@@ -223,7 +231,10 @@ impl AlartCurnierNewton {
         let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
         let mut alpha = 1.0;
         let mut best: Option<(f64, Vec3, Vec3)> = None;
-        for _ in 0..self.options.line_search_max_iter.max(1) {
+        for trial in 0..self.options.line_search_max_iter.max(1) {
+            if past_deadline(self.deadline, trial) {
+                break;
+            }
             let rt = [
                 r[0] + alpha * d[0],
                 r[1] + alpha * d[1],
@@ -257,6 +268,11 @@ impl LocalSolver for AlartCurnierNewton {
         local_rho(w, self.options.rho_rule)
     }
 
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
+        self.projection.set_deadline(deadline);
+    }
+
     fn solve_with_rho(
         &mut self,
         p: &LocalProblem<'_>,
@@ -284,7 +300,10 @@ impl LocalSolver for AlartCurnierNewton {
         // them (not from `best`, which would make every round after a failed one an exact
         // repeat), then tries Newton from the projected point. Both points are candidates.
         let mut projected = best;
-        for _ in 0..self.options.hybrid_max_loop {
+        for round in 0..self.options.hybrid_max_loop {
+            if past_deadline(self.deadline, round) {
+                break;
+            }
             let pr = self.projection.solve(p, &mut projected);
             iterations += pr.iterations;
             let res = p.residual(&projected);

@@ -1,6 +1,8 @@
 //! Projection-type local solvers: one step on the cone (SBP / FP-DS-One), iterated steps with a
 //! self-adaptive rho, and one augmented-Lagrangian step on the cylinder (SAL).
 
+use std::time::Instant;
+
 use super::adaptive::{self_adaptive_projection, ProjectionStep};
 use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
 use crate::local::{LocalSolverOptions, RhoRule};
@@ -115,6 +117,7 @@ impl LocalSolver for ProjectionOnCylinder {
 pub struct ProjectionOnConeWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
+    deadline: Option<Instant>,
 }
 
 impl ProjectionOnConeWithLocalIteration {
@@ -122,6 +125,7 @@ impl ProjectionOnConeWithLocalIteration {
         ProjectionOnConeWithLocalIteration {
             tolerance: options.tolerance,
             max_iter: options.max_iter,
+            deadline: None,
         }
     }
 }
@@ -137,6 +141,18 @@ impl LocalSolver for ProjectionOnConeWithLocalIteration {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        self_adaptive_projection(&ConeStep, p, rho.0, self.tolerance, self.max_iter, r)
+        self_adaptive_projection(
+            &ConeStep,
+            p,
+            rho.0,
+            self.tolerance,
+            self.max_iter,
+            self.deadline,
+            r,
+        )
+    }
+
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
     }
 }

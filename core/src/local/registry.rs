@@ -78,6 +78,10 @@ macro_rules! local_solvers {
                 match self { $(AnyLocalSolver::$kind(s) => s.rho(w),)+ }
             }
 
+            fn set_deadline(&mut self, deadline: Option<std::time::Instant>) {
+                match self { $(AnyLocalSolver::$kind(s) => s.set_deadline(deadline),)+ }
+            }
+
             #[inline]
             fn solve_with_rho(
                 &mut self,

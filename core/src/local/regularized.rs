@@ -1,6 +1,8 @@
 //! Variants of the projection local solvers: proximal regularization (554), diagonal metric
 //! (555), the cone step computed in velocity space (558) and iterated cylinder steps (564).
 
+use std::time::Instant;
+
 use super::adaptive::self_adaptive_projection;
 use super::adaptive::ProjectionStep;
 use super::projection::{ConeStep, CylinderStep};
@@ -135,6 +137,7 @@ impl LocalSolver for ProjectionOnConeVelocity {
 pub struct ProjectionOnCylinderWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
+    deadline: Option<Instant>,
 }
 
 impl ProjectionOnCylinderWithLocalIteration {
@@ -142,6 +145,7 @@ impl ProjectionOnCylinderWithLocalIteration {
         ProjectionOnCylinderWithLocalIteration {
             tolerance: options.tolerance,
             max_iter: options.max_iter,
+            deadline: None,
         }
     }
 }
@@ -158,6 +162,18 @@ impl LocalSolver for ProjectionOnCylinderWithLocalIteration {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        self_adaptive_projection(&CylinderStep, p, rho.0, self.tolerance, self.max_iter, r)
+        self_adaptive_projection(
+            &CylinderStep,
+            p,
+            rho.0,
+            self.tolerance,
+            self.max_iter,
+            self.deadline,
+            r,
+        )
+    }
+
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
     }
 }

@@ -42,4 +42,8 @@ impl LocalSolver for FpViUpk {
     ) -> LocalOutcome {
         self.iteration.solve_with_rho(p, rho, r)
     }
+
+    fn set_deadline(&mut self, deadline: Option<std::time::Instant>) {
+        self.iteration.set_deadline(deadline);
+    }
 }

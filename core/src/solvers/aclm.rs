@@ -87,6 +87,9 @@ fn aclmfp(
         }
         let inner_tol = options.inner_tolerance.value(error, tol);
         for _ in 0..options.inner_max_iter {
+            if run.out_of_time() {
+                break;
+            }
             let increment_sq = soclcp_sweep(&rows, q, mu, Some(&shift), 1.0, r);
             if cheap_error(increment_sq, r) <= inner_tol {
                 break;

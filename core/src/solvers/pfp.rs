@@ -8,7 +8,11 @@
 //!
 //! until the Coulomb natural-map error is below the tolerance.
 
-use crate::contract::{Family, InnerTolerance, Limits, Observer, OuterLoop, SolverOutcome};
+use std::time::Instant;
+
+use crate::contract::{
+    deadline_passed, Family, InnerTolerance, Limits, Observer, OuterLoop, SolverOutcome,
+};
 use crate::error::Fc3dError;
 use crate::matrix::BlockRows;
 use crate::measure::{cheap_error, natural_map_error_by_rows};
@@ -78,9 +82,13 @@ pub(crate) fn normal_pgs(
     q: &[f64],
     tol: f64,
     max_iter: usize,
+    deadline: Option<Instant>,
     r: &mut [f64],
 ) -> usize {
     for it in 1..=max_iter {
+        if deadline_passed(deadline) {
+            return it - 1;
+        }
         let mut increment_sq = 0.0;
         for c in 0..rows.n_contacts() {
             let w = rows.diagonal(c);
@@ -116,12 +124,20 @@ fn pfp(
     let mut work = TrescaWorkspace::new(problem)?;
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
+    work.deadline = run.deadline();
     let tol = run.tolerance;
     let mut outer = OuterLoop::new(run, r);
     let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);
     for iteration in 1..=run.max_iter {
         let inner_tol = options.inner_tolerance.value(error, tol);
-        normal_pgs(&work.rows, q, inner_tol, options.inner_max_iter, r);
+        normal_pgs(
+            &work.rows,
+            q,
+            inner_tol,
+            options.inner_max_iter,
+            run.deadline(),
+            r,
+        );
         for (c, radius) in work.radius.iter_mut().enumerate() {
             *radius = mu[c] * r[3 * c];
         }

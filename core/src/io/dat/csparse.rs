@@ -1,9 +1,38 @@
 //! The sparse storage (code 2): the CSparse triplet and compressed (CSC / CSR) dumps.
 
-use super::tokens::{token_count, Reader};
+use super::tokens::{ensure_headroom, token_count, try_push, Reader};
 use super::{ORIGIN_CSC, ORIGIN_CSR, ORIGIN_HALF_TRIPLET, ORIGIN_TRIPLET};
 use crate::error::Fc3dError;
 use crate::matrix::{CsrMatrix, Delassus};
+
+/// A sparse matrix as read: its size and `(row, column, value)` entries, all checked in range
+/// and finite; [`SparseEntries::finish`] compresses it.
+pub(super) struct SparseEntries {
+    rows: usize,
+    cols: usize,
+    entries: Vec<(usize, usize, f64)>,
+    /// The token of the origin (kept by the reader), where an error about the matrix points.
+    origin_index: usize,
+}
+
+impl SparseEntries {
+    /// The compressed matrix. `CsrMatrix::from_triplets` allocates a pointer per row (the rows
+    /// are declared, not given by values) and a few arrays per entry, without a fallible path:
+    /// that memory is probed first, so that an impossible size is an out-of-memory error.
+    pub(super) fn finish(self, r: &Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
+        let words = self
+            .rows
+            .saturating_add(1)
+            .saturating_add(self.entries.len().saturating_mul(3));
+        ensure_headroom(
+            words.saturating_mul(std::mem::size_of::<usize>()),
+            &format!("the compressed rows of {}", r.name),
+        )?;
+        CsrMatrix::from_triplets(self.rows, self.cols, &self.entries)
+            .map(Delassus::Sparse)
+            .map_err(|e| r.error_at(self.origin_index, e.to_string()))
+    }
+}
 
 /// Tokens of a `col j : locations a to b` line of a CSC dump.
 const TOKENS_PER_CSC_COLUMN: usize = 7;
@@ -20,8 +49,8 @@ fn parse_csparse_dims(text: &str) -> Option<(usize, usize)> {
 
 /// Reads the `m-by-n,` token and checks it against the expected `m` and `n`.
 fn csparse_dims(r: &mut Reader<'_>, m: usize, n: usize) -> Result<(), Fc3dError> {
-    let (index, text) = r.next("the matrix size 'm-by-n,'")?;
-    match parse_csparse_dims(text) {
+    let index = r.next("the matrix size 'm-by-n,'")?;
+    match parse_csparse_dims(r.text()) {
         Some(dims) if dims == (m, n) => Ok(()),
         Some((a, b)) => Err(r.error_at(
             index,
@@ -31,22 +60,25 @@ fn csparse_dims(r: &mut Reader<'_>, m: usize, n: usize) -> Result<(), Fc3dError>
     }
 }
 
+/// The sparse body: the entries, checked; the caller compresses them with
+/// [`SparseEntries::finish`].
 pub(super) fn parse_sparse(
     r: &mut Reader<'_>,
     rows: usize,
     cols: usize,
-) -> Result<Delassus<'static>, Fc3dError> {
+) -> Result<SparseEntries, Fc3dError> {
     let (origin_index, origin) = r.usize("the sparse origin (1 triplet, 2 CSC, 3 CSR)")?;
+    r.remember(origin_index);
     // Siconos reads what follows with fgets: the rest of the origin line, the CSparse banner line,
     // then the header line. The banner is free text, so it is skipped as a whole line.
-    r.skip_rest_of_line(origin_index);
-    let (banner_index, banner) = r.next("the 'CSparse Version ...' line")?;
-    if banner != "CSparse" {
+    r.skip_rest_of_line(origin_index)?;
+    let banner_index = r.next("the 'CSparse Version ...' line")?;
+    if r.text() != "CSparse" {
         return Err(r.error_at(banner_index, "expected the 'CSparse Version ...' line"));
     }
-    r.skip_rest_of_line(banner_index);
+    r.skip_rest_of_line(banner_index)?;
 
-    let triplets = if r.peek() == Some("triplet:") {
+    let triplets = if r.peek()? == Some("triplet:") {
         match origin {
             ORIGIN_TRIPLET => {}
             ORIGIN_HALF_TRIPLET => {
@@ -78,9 +110,12 @@ pub(super) fn parse_sparse(
         };
         parse_compressed_dump(r, rows, cols, rows_are_outer)?
     };
-    CsrMatrix::from_triplets(rows, cols, &triplets)
-        .map(Delassus::Sparse)
-        .map_err(|e| r.error_at(origin_index, e.to_string()))
+    Ok(SparseEntries {
+        rows,
+        cols,
+        entries: triplets,
+        origin_index,
+    })
 }
 
 /// `triplet: m-by-n, nzmax: Z nnz: N` then `N` lines `row col : value`.
@@ -100,7 +135,8 @@ fn parse_triplet_dump(
         return Err(r.error_at(nnz_index, format!("nnz exceeds nzmax {nzmax}")));
     }
     r.ensure_remaining(token_count(nnz, TOKENS_PER_TRIPLET), "the triplet entries")?;
-    let mut triplets = Vec::with_capacity(nnz);
+    let mut triplets = r.vec_for(nnz, TOKENS_PER_TRIPLET, "the triplet entries")?;
+    let value = format!("a value of {name}");
     for _ in 0..nnz {
         let (i_index, i) = r.usize("a row index")?;
         if i >= rows {
@@ -117,8 +153,8 @@ fn parse_triplet_dump(
             ));
         }
         r.literal(":", "between the indices and the value of a triplet")?;
-        let (_, v) = r.real(&format!("a value of {name}"))?;
-        triplets.push((i, j, v));
+        let (_, v) = r.real(&value)?;
+        try_push(&mut triplets, (i, j, v), "the triplet entries")?;
     }
     Ok(triplets)
 }
@@ -142,8 +178,10 @@ fn parse_compressed_dump(
     r.literal("nzmax:", "the CSparse header")?;
     let (_, nzmax) = r.usize("nzmax")?;
     r.literal("nnz:", "the CSparse header")?;
-    let (nnz_index, nnz_text) = r.next("nnz")?;
-    let nnz: usize = nnz_text
+    let nnz_index = r.next("nnz")?;
+    r.remember(nnz_index);
+    let nnz: usize = r
+        .text()
         .strip_suffix(',')
         .and_then(|t| t.parse().ok())
         .ok_or_else(|| r.error_at(nnz_index, "expected nnz followed by a comma"))?;
@@ -159,7 +197,8 @@ fn parse_compressed_dump(
             .saturating_add(token_count(nnz, TOKENS_PER_CSC_ENTRY)),
         "the compressed sections",
     )?;
-    let mut triplets = Vec::with_capacity(nnz);
+    let mut triplets = r.vec_for(nnz, TOKENS_PER_CSC_ENTRY, "the stored entries")?;
+    let value = format!("a value of {name}");
     for outer in 0..outer_count {
         r.literal("col", "a section header 'col j : locations a to b'")?;
         let (j_index, j) = r.usize("a section number")?;
@@ -198,12 +237,13 @@ fn parse_compressed_dump(
                 ));
             }
             r.literal(":", "between the index and the value of an entry")?;
-            let (_, v) = r.real(&format!("a value of {name}"))?;
-            triplets.push(if rows_are_outer {
+            let (_, v) = r.real(&value)?;
+            let entry = if rows_are_outer {
                 (outer, inner, v)
             } else {
                 (inner, outer, v)
-            });
+            };
+            try_push(&mut triplets, entry, "the stored entries")?;
         }
     }
     if triplets.len() != nnz {

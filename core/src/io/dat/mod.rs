@@ -28,9 +28,22 @@
 //! storages.
 //!
 //! Only dimension 3 is supported, sparse-block matrices must be made of 3x3 blocks, and every error
-//! in the text is an [`Fc3dError::Parse`] naming the token at fault (or `<end of file>`). Declared
-//! sizes are checked against the number of tokens left before anything is allocated, so a corrupt
-//! header cannot make the reader allocate more than the file could describe.
+//! in the text is an [`Fc3dError::Parse`] naming the token at fault (or `<end of file>`).
+//!
+//! # Reading bounded by the data
+//!
+//! Files and streams ([`read_dat_file`], [`read_dat`], [`read_matrix`], [`read_sbm`],
+//! [`read_matrix_file`]) are read in chunks (of at most 64 KiB), only up to the end of what the
+//! header declares: what follows a problem's mu (or a matrix) is not read, so a valid problem followed
+//! by anything, even an endless stream, reads as Siconos reads it. Nothing is allocated for a
+//! declared size before the data is there: a declared size the rest of the input cannot hold
+//! (known for text in memory and regular files: `k` tokens take at least `2k - 1` bytes) is a
+//! parse error naming the end of the input, found without storing anything; otherwise (a pipe)
+//! values are stored as they arrive, in vectors grown fallibly, so that a stream going on with
+//! valid numbers ends in [`Fc3dError::OutOfMemory`] under a memory limit, never an abort. A
+//! stream that stops making tokens is rejected after a bounded read: a token longer than 64 KiB
+//! (`/dev/zero` is one endless token), more than 16 MiB of whitespace between two tokens, or a
+//! skipped CSparse banner line longer than 1 MiB is a parse error.
 //!
 //! The matrix part alone (`storageType size0 size1` and the body, any shape) is what Siconos'
 //! `NM_write_in_file` writes and `NM_new_from_file` reads: [`parse_matrix`] and [`write_matrix`].
@@ -40,6 +53,7 @@
 
 mod csparse;
 mod parse;
+mod scan;
 mod storage;
 #[cfg(test)]
 mod tests;
@@ -47,7 +61,8 @@ mod tokens;
 mod write;
 
 pub use parse::{
-    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat_file,
+    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat,
+    read_dat_file, read_matrix, read_matrix_file, read_sbm,
 };
 pub use write::{write_dat, write_dat_file, write_matrix, write_sbm};
 

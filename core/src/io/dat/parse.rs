@@ -1,10 +1,11 @@
 //! The public readers: a problem file, a matrix (`NM_new_from_file`) and a sparse-block body
-//! (`SBM_new_from_file`).
+//! (`SBM_new_from_file`), each from text in memory or from a stream read in chunks.
 
+use std::io::Read;
 use std::path::Path;
 
 use super::storage::{parse_matrix_body, parse_sparse_block};
-use super::tokens::Reader;
+use super::tokens::{try_push, Reader};
 use super::STORAGE_DENSE;
 use crate::error::Fc3dError;
 use crate::matrix::{BlockSparseMatrix, Delassus};
@@ -20,13 +21,36 @@ const MAX_SPARSE_MATRIX_SIZE: usize = 1 << 24;
 /// Parses the text of a `.dat` file. `file_label` names the input in error messages.
 pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static>, Fc3dError> {
     let mut r = Reader::new(text, file_label, "W");
+    problem(&mut r)
+}
 
+/// Reads a `.dat` problem from a stream, in chunks, up to the last friction coefficient: what
+/// follows is not read (but for the whitespace after mu and the first byte of the next token,
+/// to find where the problem ends). `len`: the number of bytes the stream holds, when known (a
+/// regular file), so that a declared size the stream cannot hold fails before it is read to its
+/// end; without it values are stored as they arrive. Returns the problem and the number of bytes
+/// it takes with the whitespace after it (where the next token starts, or the end).
+///
+/// A stream that never ends is rejected after a bounded amount of reading when it stops making
+/// tokens (`/dev/zero`, endless blank lines: see the module documentation); memory grows only with
+/// the values actually read and is allocated fallibly ([`Fc3dError::OutOfMemory`]).
+pub fn read_dat<R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    file_label: &str,
+) -> Result<(FrictionProblem<'static>, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, file_label, "W");
+    let p = problem(&mut r)?;
+    Ok((p, r.consumed_bytes()))
+}
+
+fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
     let (dim_index, dim) = r.usize("the problem dimension")?;
     match dim {
         DIMENSION => {}
         2 => {
             return Err(Fc3dError::UnsupportedDimension {
-                file: file_label.to_string(),
+                file: r.file.to_string(),
                 dimension: 2,
             })
         }
@@ -38,6 +62,7 @@ pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static
         .ok_or_else(|| r.error_at(nc_index, "the number of contacts is too large"))?;
 
     let (storage_index, storage) = r.usize("the storage type of W")?;
+    r.remember(storage_index);
     let (rows_index, rows) = r.usize("the number of rows of W")?;
     if rows != n {
         return Err(r.error_at(
@@ -52,40 +77,84 @@ pub fn parse_dat(text: &str, file_label: &str) -> Result<FrictionProblem<'static
             format!("W must have 3 * {nc} = {n} columns, not {cols}"),
         ));
     }
-    // q and mu follow the matrix: a size the rest of the file cannot hold fails here, before any
-    // storage sized by it (a CSR row pointer array, say) is allocated.
+    // q and mu follow the matrix: a size the rest of the input cannot hold fails here, before any
+    // storage sized by it is allocated.
     r.ensure_remaining(n.saturating_add(nc), "W, q and mu")?;
     // The solvers need the diagonal block of every contact: a sparse-block W must store them all.
-    let w = parse_matrix_body(&mut r, storage_index, storage, n, n, true)?;
+    let body = parse_matrix_body(r, storage_index, storage, n, n, true)?;
 
     let q = r.reals(n, "q")?;
     r.ensure_remaining(nc, "the friction coefficients mu")?;
-    let mut mu = Vec::with_capacity(nc);
+    let mut mu = r.vec_for(nc, 1, "the friction coefficients mu")?;
     for _ in 0..nc {
         let (index, m) = r.real("a friction coefficient")?;
         if m < 0.0 {
             return Err(r.error_at(index, "friction coefficients must be >= 0"));
         }
-        mu.push(m);
+        try_push(&mut mu, m, "the friction coefficients mu")?;
     }
+    // A sparse W is compressed now that q, one value per row, has been read: its row pointers
+    // are bounded by the input even when its length is unknown.
+    let w = body.finish(r)?;
     // Everything `FrictionProblem::new` checks has been checked token by token above; this only
     // catches what slipped through, pointing at the matrix it concerns.
     FrictionProblem::new(w, q, mu)
         .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))
 }
 
-/// Reads and parses a `.dat` file; parse errors carry the path as `file`.
+/// Opens `path` for the streaming readers: the file and its length when it is a regular file
+/// with a length (not a device, a pipe, or a `/proc` file that says 0).
+fn open(path: &Path, label: &str) -> Result<(std::fs::File, Option<u64>), Fc3dError> {
+    let io_error = |e: std::io::Error| Fc3dError::Io {
+        file: label.to_string(),
+        message: format!("cannot read: {e}"),
+    };
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let meta = file.metadata().map_err(io_error)?;
+    let len = (meta.is_file() && meta.len() > 0).then_some(meta.len());
+    Ok((file, len))
+}
+
+/// Reads and parses a `.dat` file, in chunks, up to the last friction coefficient (see
+/// [`read_dat`]); parse errors carry the path as `file`. Bytes that are not UTF-8 are read as
+/// U+FFFD: where a number is expected they make a parse error, elsewhere (the CSparse banner
+/// line, the ignored tail) they are harmless, as they are to Siconos.
 pub fn read_dat_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError> {
     let label = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| Fc3dError::Io {
-        file: label.clone(),
-        message: format!("cannot read: {e}"),
-    })?;
-    // Bytes that are not UTF-8 can only matter where a number is expected, and there the
-    // replacement character makes a clean parse error; elsewhere (the CSparse banner line, the
-    // ignored tail) they are harmless, as they are to Siconos.
-    let text = String::from_utf8_lossy(&bytes);
-    parse_dat(&text, &label)
+    let (file, len) = open(path, &label)?;
+    read_dat(file, len, &label).map(|(p, _)| p)
+}
+
+/// Reads a matrix file (`NM_write_in_filename`'s, see [`parse_matrix`]) in chunks, up to the end
+/// of the matrix; what follows is not read. Errors as [`parse_matrix`]'s, with the path as label.
+pub fn read_matrix_file(path: &Path) -> Result<Delassus<'static>, Fc3dError> {
+    let label = path.display().to_string();
+    let (file, len) = open(path, &label)?;
+    read_matrix(file, len, &label).map(|(w, _)| w)
+}
+
+/// [`parse_matrix_prefix`] on a stream read in chunks, stopping after the matrix (see
+/// [`read_dat`] for `len` and what is read past the end). Returns the matrix and the number of
+/// bytes of the matrix text and the whitespace after it.
+pub fn read_matrix<R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    label: &str,
+) -> Result<(Delassus<'static>, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, label, "M");
+    let w = matrix(&mut r)?;
+    Ok((w, r.consumed_bytes()))
+}
+
+/// [`parse_sbm_prefix`] on a stream read in chunks, stopping after the body (see [`read_dat`]).
+pub fn read_sbm<R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    label: &str,
+) -> Result<(BlockSparseMatrix, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, label, "M");
+    let m = parse_sparse_block(&mut r, None, false)?;
+    Ok((m, r.consumed_bytes()))
 }
 
 /// Parses a matrix as Siconos' `NM_write_in_file` writes it: `storageType size0 size1` and the
@@ -114,8 +183,20 @@ pub fn parse_matrix_prefix(
     label: &str,
 ) -> Result<(Delassus<'static>, usize), Fc3dError> {
     let mut r = Reader::new(text, label, "M");
+    let w = matrix(&mut r)?;
+    Ok((w, byte_offset(r.consumed_bytes())))
+}
+
+fn byte_offset(consumed: u64) -> usize {
+    // An offset into text in memory.
+    usize::try_from(consumed).unwrap_or(usize::MAX)
+}
+
+fn matrix(r: &mut Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
     let (storage_index, storage) = r.usize("the storage type of the matrix")?;
+    r.remember(storage_index);
     let (rows_index, rows) = r.usize("the number of rows of the matrix (size0)")?;
+    r.remember(rows_index);
     let (cols_index, cols) = r.usize("the number of columns of the matrix (size1)")?;
     let limit = if storage == STORAGE_DENSE {
         // The values are in the text: the remaining-token checks bound what is allocated.
@@ -131,8 +212,7 @@ pub fn parse_matrix_prefix(
             ));
         }
     }
-    let w = parse_matrix_body(&mut r, storage_index, storage, rows, cols, false)?;
-    Ok((w, r.consumed_bytes()))
+    parse_matrix_body(r, storage_index, storage, rows, cols, false)?.finish(r)
 }
 
 /// Parses a sparse-block body without the `storageType size0 size1` header, as Siconos'
@@ -149,5 +229,5 @@ pub fn parse_sbm(text: &str, label: &str) -> Result<BlockSparseMatrix, Fc3dError
 pub fn parse_sbm_prefix(text: &str, label: &str) -> Result<(BlockSparseMatrix, usize), Fc3dError> {
     let mut r = Reader::new(text, label, "M");
     let m = parse_sparse_block(&mut r, None, false)?;
-    Ok((m, r.consumed_bytes()))
+    Ok((m, byte_offset(r.consumed_bytes())))
 }

@@ -1,17 +1,35 @@
 //! The matrix-storage readers: the dispatch on the storage code, the dense body and the
 //! sparse-block body (the sparse storage, a CSparse dump, is in `csparse`).
 
-use super::csparse::parse_sparse;
-use super::tokens::{token_count, Reader};
+use super::csparse::{parse_sparse, SparseEntries};
+use super::tokens::{reserve, token_count, try_push, Reader};
 use super::{STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::DIMENSION;
 
 /// Tokens of a 3x3 block in the sparse-block body: its number and 9 values.
 const TOKENS_PER_BLOCK: usize = 1 + 9;
 
-/// The body of a `rows x cols` matrix of the given storage code (read at token `storage_index`).
+/// A matrix body as read: complete, or the entries of a sparse matrix whose compressed form
+/// (one pointer per row) is built by [`MatrixBody::finish`]. A problem reader finishes it after
+/// q has been read, so that the per-row storage is bounded by values the input holds.
+pub(super) enum MatrixBody {
+    Done(Delassus<'static>),
+    Sparse(SparseEntries),
+}
+
+impl MatrixBody {
+    pub(super) fn finish(self, r: &Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
+        match self {
+            MatrixBody::Done(w) => Ok(w),
+            MatrixBody::Sparse(entries) => entries.finish(r),
+        }
+    }
+}
+
+/// The body of a `rows x cols` matrix of the given storage code (read at token `storage_index`,
+/// which the caller has kept with `Reader::remember`).
 /// `require_diagonal`: a sparse-block matrix must store every diagonal block (a problem's W).
 pub(super) fn parse_matrix_body(
     r: &mut Reader<'_>,
@@ -20,13 +38,12 @@ pub(super) fn parse_matrix_body(
     rows: usize,
     cols: usize,
     require_diagonal: bool,
-) -> Result<Delassus<'static>, Fc3dError> {
+) -> Result<MatrixBody, Fc3dError> {
     match storage {
-        STORAGE_DENSE => parse_dense(r, rows, cols),
-        STORAGE_SPARSE_BLOCK => {
-            parse_sparse_block(r, Some((rows, cols)), require_diagonal).map(Delassus::SparseBlock)
-        }
-        STORAGE_SPARSE => parse_sparse(r, rows, cols),
+        STORAGE_DENSE => parse_dense(r, rows, cols).map(MatrixBody::Done),
+        STORAGE_SPARSE_BLOCK => parse_sparse_block(r, Some((rows, cols)), require_diagonal)
+            .map(|m| MatrixBody::Done(Delassus::SparseBlock(m))),
+        STORAGE_SPARSE => parse_sparse(r, rows, cols).map(MatrixBody::Sparse),
         _ => Err(r.error_at(
             storage_index,
             format!(
@@ -54,13 +71,13 @@ fn parse_dense(
         }
     }
     let start = r.pos;
-    let len = rows
-        .checked_mul(cols)
-        .ok_or_else(|| r.error_at(start, format!("the dense {name} is too large")))?;
+    let Some(len) = rows.checked_mul(cols) else {
+        r.peek()?;
+        return Err(r.error_at(start, format!("the dense {name} is too large")));
+    };
     let values = r.reals(len, &format!("the dense {name}"))?;
-    DenseMatrix::new(rows, cols, values)
-        .map(Delassus::Dense)
-        .map_err(|e| r.error_at(start, e.to_string()))
+    // The values were counted and checked finite one by one: this cannot fail.
+    Ok(Delassus::Dense(DenseMatrix::new(rows, cols, values)?))
 }
 
 /// Reads `count` cumulative block sizes that must be 3, 6, 9, ..., up to `n` when it is given;
@@ -116,6 +133,7 @@ pub(super) fn parse_sparse_block(
 ) -> Result<BlockSparseMatrix, Fc3dError> {
     let name = r.name;
     let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
+    r.remember(nbblocks_index);
     if nbblocks == 0 {
         // Siconos writes a lone 0 for a matrix without blocks and stops there.
         let (rows, cols) = shape.unwrap_or((0, 0));
@@ -135,10 +153,12 @@ pub(super) fn parse_sparse_block(
                 r.file
             )));
         }
+        // The size is declared, not given by values: the row pointers are allocated fallibly.
+        let row_ptr = try_vec(rows / DIMENSION + 1, 0, "the block-row pointers")?;
         let empty = BlockSparseMatrix::new(
             rows / DIMENSION,
             cols / DIMENSION,
-            vec![0; rows / DIMENSION + 1],
+            row_ptr,
             Vec::new(),
             Vec::new(),
         )
@@ -146,13 +166,16 @@ pub(super) fn parse_sparse_block(
         return Ok(empty);
     }
     let (rows_index, block_rows) = r.usize("the number of block rows")?;
+    r.remember(rows_index);
     let (cols_index, block_cols) = r.usize("the number of block columns")?;
+    r.remember(cols_index);
     parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row")?;
     parse_block_sizes(r, block_cols, cols_index, shape.map(|s| s.1), "column")?;
     // From here on the matrix is block_rows x block_cols blocks of 3x3 (and block_rows tokens
     // have been read, so allocating per block row is bounded by the text).
 
     let (filled1_index, filled1) = r.usize("filled1 (the length of index1_data)")?;
+    r.remember(filled1_index);
     if filled1 == 0 || filled1 > block_rows + 1 {
         return Err(r.error_at(
             filled1_index,
@@ -175,7 +198,12 @@ pub(super) fn parse_sparse_block(
     )?;
 
     let index1_start = r.pos;
-    let mut row_ptr = Vec::with_capacity(block_rows + 1);
+    // block_rows + 1 >= filled1 entries; block_rows cumulative sizes have been read.
+    let mut row_ptr = Vec::new();
+    reserve(&mut row_ptr, block_rows + 1, "the block-row pointers")?;
+    // The texts of index1_data not written as their value prints (a sign, leading zeros), for a
+    // message about a missing diagonal block.
+    let mut unusual_texts = Vec::new();
     for k in 0..filled1 {
         let (index, p) = r.usize("a block-row pointer (index1_data)")?;
         let previous = row_ptr.last().copied().unwrap_or(0);
@@ -184,6 +212,9 @@ pub(super) fn parse_sparse_block(
                 index,
                 format!("index1_data must start at 0 and not decrease up to the {filled2} blocks"),
             ));
+        }
+        if r.text() != p.to_string() {
+            unusual_texts.push((k, r.text().to_string()));
         }
         row_ptr.push(p);
     }
@@ -196,7 +227,7 @@ pub(super) fn parse_sparse_block(
     // Siconos may stop index1_data after the last non-empty block row; the rows after it are empty.
     row_ptr.resize(block_rows + 1, filled2);
 
-    let mut col_idx = Vec::with_capacity(filled2);
+    let mut col_idx = r.vec_for(filled2, 1, "the block columns (index2_data)")?;
     for _ in 0..filled2 {
         let (index, c) = r.usize("a block column (index2_data)")?;
         if c >= block_cols {
@@ -205,21 +236,22 @@ pub(super) fn parse_sparse_block(
                 format!("block column {c} is out of range ({name} has {block_cols} block columns)"),
             ));
         }
-        col_idx.push(c);
+        try_push(&mut col_idx, c, "the block columns (index2_data)")?;
     }
     if require_diagonal {
         // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
         for c in 0..block_rows {
             if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
-                let index = if c < filled1 {
-                    index1_start + c
-                } else {
-                    filled1_index
-                };
-                return Err(r.error_at(
-                    index,
-                    format!("the diagonal 3x3 block of contact {c} is missing from {name}"),
-                ));
+                let message =
+                    format!("the diagonal 3x3 block of contact {c} is missing from {name}");
+                if c >= filled1 {
+                    return Err(r.error_at(filled1_index, message));
+                }
+                let text = unusual_texts
+                    .iter()
+                    .find(|(k, _)| *k == c)
+                    .map_or_else(|| row_ptr[c].to_string(), |(_, t)| t.clone());
+                return Err(r.error_with_token(index1_start + c, &text, message));
             }
         }
     }
@@ -228,7 +260,7 @@ pub(super) fn parse_sparse_block(
         token_count(filled2, TOKENS_PER_BLOCK),
         &format!("the blocks of {name}"),
     )?;
-    let mut blocks = Vec::with_capacity(filled2);
+    let mut blocks = r.vec_for(filled2, TOKENS_PER_BLOCK, &format!("the blocks of {name}"))?;
     for row in 0..block_rows {
         for k in row_ptr[row]..row_ptr[row + 1] {
             let (index, number) = r.usize("a block number")?;
@@ -244,7 +276,7 @@ pub(super) fn parse_sparse_block(
             for v in block.iter_mut() {
                 *v = r.real("a block value")?.1;
             }
-            blocks.push(block);
+            try_push(&mut blocks, block, "the blocks")?;
         }
     }
     BlockSparseMatrix::new(block_rows, block_cols, row_ptr, col_idx, blocks)

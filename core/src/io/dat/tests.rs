@@ -59,7 +59,10 @@ fn matrix_of(text: &str) -> Delassus<'static> {
     let mut r = Reader::new(text, "2d", "W");
     let header: Vec<usize> = (0..5).map(|_| r.usize("header").unwrap().1).collect();
     assert_eq!(header[2], STORAGE_SPARSE);
-    parse_sparse(&mut r, header[3], header[4]).unwrap()
+    parse_sparse(&mut r, header[3], header[4])
+        .unwrap()
+        .finish(&r)
+        .unwrap()
 }
 
 #[test]

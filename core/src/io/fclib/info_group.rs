@@ -201,7 +201,11 @@ pub(super) fn read_string(
                 if size == 0 || size as u64 > max_bytes {
                     return Err(format!("declares a string of {size} bytes"));
                 }
-                let mut buffer = vec![0u8; size];
+                let mut buffer = Vec::new();
+                buffer
+                    .try_reserve_exact(size)
+                    .map_err(|_| format!("cannot allocate {size} bytes for the string"))?;
+                buffer.resize(size, 0u8);
                 check(
                     H5Dread(
                         dataset.id,

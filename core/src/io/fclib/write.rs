@@ -9,6 +9,7 @@ use hdf5_metno as hdf5;
 use super::info_group::{strings, write_info};
 use super::{STORAGE_ATTRIBUTE, STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
 use crate::error::Fc3dError;
+use crate::io::alloc::reserve;
 use crate::io::info::FclibInfo;
 use crate::matrix::Delassus;
 use crate::problem::{FrictionProblem, DIMENSION};
@@ -108,9 +109,13 @@ impl CompressedRows {
         };
         int(n + 1, label, "the size of W plus one")?;
         int(stored, label, "the number of stored entries of W")?;
-        let mut p = Vec::with_capacity(n + 1);
-        let mut i = Vec::with_capacity(stored);
-        let mut x = Vec::with_capacity(stored);
+        // Sized by the problem (all n^2 entries of a dense W): allocated fallibly.
+        let mut p = Vec::new();
+        let mut i = Vec::new();
+        let mut x = Vec::new();
+        reserve(&mut p, n + 1, "the row pointers of W")?;
+        reserve(&mut i, stored, "the column indices of W")?;
+        reserve(&mut x, stored, "the values of W")?;
         p.push(0);
         // Indices are below n + 1 and counts at most `stored`, both checked to fit an i32.
         let storage = match w {

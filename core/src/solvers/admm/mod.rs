@@ -25,7 +25,9 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par};
 
-use crate::contract::{Family, IterationEvent, Limits, Observer, SolverOutcome};
+use std::time::Instant;
+
+use crate::contract::{deadline_passed, Family, IterationEvent, Limits, Observer, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{bounded, distance_sq, norm};
@@ -155,11 +157,19 @@ impl ShiftedSystem {
 }
 
 /// Modulus of the dominant eigenvalue of `apply` by power iterations from `x` (overwritten).
-fn power_iteration(x: &mut [f64], y: &mut [f64], mut apply: impl FnMut(&[f64], &mut [f64])) -> f64 {
+fn power_iteration(
+    x: &mut [f64],
+    y: &mut [f64],
+    deadline: Option<Instant>,
+    mut apply: impl FnMut(&[f64], &mut [f64]),
+) -> f64 {
     let n = x.len() as f64;
     x.iter_mut().for_each(|v| *v = 1.0 / n.sqrt());
     let mut lambda = 0.0;
-    for _ in 0..100 {
+    for k in 0..100 {
+        if k > 0 && deadline_passed(deadline) {
+            break;
+        }
         apply(x, y);
         let ny = norm(y);
         if !(ny > 0.0 && ny.is_finite()) {
@@ -183,6 +193,7 @@ fn initial_rho(
     options: &AdmmOptions,
     system: &mut ShiftedSystem,
     work: (&mut [f64], &mut [f64]),
+    deadline: Option<Instant>,
 ) -> f64 {
     let (x, y) = work;
     match options.initial_rho {
@@ -199,7 +210,7 @@ fn initial_rho(
         }
         AdmmInitialRho::Eigenvalues => {
             let w = problem.w();
-            let lambda_max = power_iteration(x, y, |a, b| {
+            let lambda_max = power_iteration(x, y, deadline, |a, b| {
                 b.iter_mut().for_each(|v| *v = 0.0);
                 w.mul_add(a, b);
             });
@@ -208,7 +219,7 @@ fn initial_rho(
             }
             let floor = EIGENVALUE_RATIO_FLOOR * lambda_max;
             let lambda_min = if system.factor(0.0) {
-                let inverse_max = power_iteration(x, y, |a, b| {
+                let inverse_max = power_iteration(x, y, deadline, |a, b| {
                     b.copy_from_slice(a);
                     system.solve_in_place(b);
                 });
@@ -261,7 +272,13 @@ fn admm(
     let mut s = vec![0.0; n];
     let mut scratch = vec![0.0; n];
 
-    let mut rho = initial_rho(problem, options, &mut system, (&mut x, &mut scratch));
+    let mut rho = initial_rho(
+        problem,
+        options,
+        &mut system,
+        (&mut x, &mut scratch),
+        run.deadline(),
+    );
     if !(rho > 0.0 && rho.is_finite()) {
         rho = 1.0;
     }
@@ -294,7 +311,7 @@ fn admm(
         if !bounded(&x) {
             // Diverging, or the factorization lost all accuracy: keep the last z (r and
             // u = W r + q are still those of the previous iteration) and stop.
-            return Ok(SolverOutcome::stopped(iteration, false));
+            return Ok(SolverOutcome::diverged(iteration));
         }
         // z- and dual updates; r holds z.
         for (c, &m) in mu.iter().enumerate() {

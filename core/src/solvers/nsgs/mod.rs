@@ -68,6 +68,7 @@ pub(crate) fn nsgs(
     let (q, mu) = (problem.q(), problem.mu());
     let nc = problem.n_contacts().max(1) as f64;
     let run = limits.start();
+    sweeper.set_deadline(run.deadline());
     let tol = run.tolerance;
     let mut schedule = ErrorSchedule::new(
         options.error_evaluation,

@@ -1,6 +1,8 @@
 //! One Gauss-Seidel sweep over the contacts, prepared once per problem: the block-row view of
 //! W, the local solver, each contact's rho, and the sweep options (order, relaxation, freezing).
 
+use std::time::Instant;
+
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
 use crate::matrix::BlockRows;
@@ -69,6 +71,8 @@ pub struct Sweeper {
     rows: BlockRows,
     local_options: LocalSolverOptions,
     local: AnyLocalSolver,
+    /// When the local solver must stop iterating (the run's deadline).
+    deadline: Option<Instant>,
     /// Each contact's penalty parameters for the local solver (they depend on W_cc only).
     rho: Vec<(f64, f64)>,
     plan: SweepPlan,
@@ -89,6 +93,7 @@ impl Sweeper {
             rows,
             local_options: *local,
             local: local_solver,
+            deadline: None,
             rho,
             plan: SweepPlan::default(),
         })
@@ -234,7 +239,15 @@ impl Sweeper {
         if tolerance != self.local_options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
             self.local_options.tolerance = tolerance;
             self.local = AnyLocalSolver::new(&self.local_options);
+            self.local.set_deadline(self.deadline);
         }
+    }
+
+    /// The instant after which the local solves stop iterating, so that one sweep ends soon
+    /// after the budget whatever the local iteration limits.
+    pub fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
+        self.local.set_deadline(deadline);
     }
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared

@@ -2,7 +2,10 @@
 //! (Algorithm 5), Armijo (Algorithm 6) and its non-monotone variant. The merit is evaluated by a
 //! closure so that the caller keeps its work vectors (nothing is allocated here).
 
+use std::time::Instant;
+
 use super::settings::NsnLineSearch;
+use crate::contract::deadline_passed;
 
 /// Sufficient-decrease parameter m1 (the paper advises m1 < 1/2 < m2).
 pub(crate) const M1: f64 = 0.01;
@@ -24,12 +27,15 @@ pub(crate) struct Step {
 /// decrease from (q0, or the largest recent merit for the non-monotone search). When the
 /// conditions cannot be met within `max_iter` trials, the last finite trial is returned, as
 /// Siconos does: Newton must be allowed to cross a kink of F.
+/// The search also ends, with its best finite trial, once `deadline` has passed (after at least
+/// one trial).
 pub(crate) fn search(
     kind: NsnLineSearch,
     q0: f64,
     slope: f64,
     reference: f64,
     max_iter: usize,
+    deadline: Option<Instant>,
     merit: &mut dyn FnMut(f64) -> f64,
 ) -> Option<Step> {
     let mut last: Option<Step> = None;
@@ -45,7 +51,10 @@ pub(crate) fn search(
             } else {
                 reference
             };
-            for _ in 0..max_iter.max(1) {
+            for trial in 0..max_iter.max(1) {
+                if trial > 0 && deadline_passed(deadline) {
+                    break;
+                }
                 let q = merit(t);
                 if q.is_finite() {
                     if q <= base + M1 * t * slope.min(0.0) {
@@ -60,7 +69,10 @@ pub(crate) fn search(
         }
         NsnLineSearch::GoldsteinPrice => {
             let (mut t_left, mut t_right) = (0.0_f64, 0.0_f64);
-            for _ in 0..max_iter.max(1) {
+            for trial in 0..max_iter.max(1) {
+                if trial > 0 && deadline_passed(deadline) {
+                    break;
+                }
                 let q = merit(t);
                 if !q.is_finite() {
                     // Treat as far too long a step.
@@ -111,7 +123,7 @@ mod tests {
             NsnLineSearch::NonMonotone,
         ] {
             let mut calls = 0;
-            let s = search(kind, 1.0, -2.0, 1.0, 20, &mut |t| {
+            let s = search(kind, 1.0, -2.0, 1.0, 20, None, &mut |t| {
                 calls += 1;
                 (1.0 - t) * (1.0 - t)
             })
@@ -125,14 +137,17 @@ mod tests {
     #[test]
     fn overlong_direction_is_shortened() {
         for kind in [NsnLineSearch::GoldsteinPrice, NsnLineSearch::Armijo] {
-            let s = search(kind, 1.0, -20.0, 1.0, 30, &mut |t| (1.0 - 10.0 * t).powi(2)).unwrap();
+            let s = search(kind, 1.0, -20.0, 1.0, 30, None, &mut |t| {
+                (1.0 - 10.0 * t).powi(2)
+            })
+            .unwrap();
             assert!(s.t < 0.2 && s.merit < 1.0, "{kind:?}: t = {}", s.t);
         }
     }
 
     #[test]
     fn non_finite_merits_are_never_returned() {
-        let s = search(NsnLineSearch::Armijo, 1.0, -2.0, 1.0, 5, &mut |t| {
+        let s = search(NsnLineSearch::Armijo, 1.0, -2.0, 1.0, 5, None, &mut |t| {
             if t > 0.1 {
                 f64::NAN
             } else {
@@ -140,9 +155,11 @@ mod tests {
             }
         });
         assert!(s.unwrap().merit == 0.9);
-        assert!(search(NsnLineSearch::None, 1.0, -2.0, 1.0, 5, &mut |_| {
-            f64::INFINITY
-        })
-        .is_none());
+        assert!(
+            search(NsnLineSearch::None, 1.0, -2.0, 1.0, 5, None, &mut |_| {
+                f64::INFINITY
+            })
+            .is_none()
+        );
     }
 }

@@ -230,6 +230,7 @@ impl NewtonSolver {
                 slope,
                 reference,
                 self.options.line_search_max_iter,
+                run.deadline(),
                 &mut trial_merit,
             );
             outcome.iterations = iteration;

@@ -75,6 +75,7 @@ fn tfp(
     let mut work = TrescaWorkspace::new(problem)?;
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
+    work.deadline = run.deadline();
     let tol = run.tolerance;
     let mut outer = OuterLoop::new(run, r);
     let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);

@@ -2,8 +2,11 @@
 //! (TFP), or on the disks with the normal reactions frozen (PFP's tangent problem), solved by
 //! Gauss-Seidel with exact one-contact solves, FP-VI-UPK or the projected gradient.
 
+use std::time::Instant;
+
 use super::local::{solve_disk_problem, solve_local_tresca};
 use super::settings::TrescaInnerSolver;
+use crate::contract::deadline_passed;
 use crate::error::Fc3dError;
 use crate::math::cone::{project_on_cylinder, project_on_disk};
 use crate::math::linalg::norm;
@@ -32,6 +35,8 @@ pub(crate) struct TrescaWorkspace {
     rho: f64,
     /// Initial step `1 / max_c max_i |W_cc,ii|`.
     rho0: f64,
+    /// The run's deadline: an inner solve stops at it whatever its iteration limit.
+    pub deadline: Option<Instant>,
 }
 
 /// Armijo parameter and backtracking cap of Algorithm 9.
@@ -56,6 +61,7 @@ impl TrescaWorkspace {
             u_trial: vec![0.0; n],
             rho: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
             rho0: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
+            deadline: None,
         })
     }
 
@@ -87,6 +93,9 @@ impl TrescaWorkspace {
         r: &mut [f64],
     ) -> usize {
         for it in 1..=max_iter {
+            if deadline_passed(self.deadline) {
+                return it - 1;
+            }
             let mut increment_sq = 0.0;
             for c in 0..self.rows.n_contacts() {
                 let lq = self.rows.local_q(c, q, r);
@@ -141,6 +150,9 @@ impl TrescaWorkspace {
             self.rho = self.rho0;
         }
         for it in 1..=max_iter {
+            if deadline_passed(self.deadline) {
+                return it - 1;
+            }
             let mut rho = self.rho;
             let mut accepted = false;
             let mut ratio = 0.0;

@@ -153,6 +153,10 @@ fn vi(
             StepSize::SelfAdaptive(s) => s.max_trials,
         };
         for t in 0..trials {
+            if t > 0 && run.out_of_time() {
+                // The iteration ends with this trial; the loop stops after it.
+                break;
+            }
             project_step(mu, r, &f, rho_k, &mut trial);
             evaluate(problem, &trial, &mut trial_u, &mut trial_f);
             let StepSize::SelfAdaptive(s) = options.step else {
@@ -181,7 +185,7 @@ fn vi(
         };
         if !bounded(new_r) || !bounded(new_f) {
             // Diverged (rho far too large for W): keep the last bounded iterate and stop.
-            return Ok(SolverOutcome::stopped(iteration, false));
+            return Ok(SolverOutcome::diverged(iteration));
         }
         let increment_sq = distance_sq(r, new_r);
         r.copy_from_slice(new_r);
