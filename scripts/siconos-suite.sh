@@ -1,0 +1,224 @@
+#!/usr/bin/env bash
+# Siconos 4.4.0's own friction tests, unmodified, run case by case against libfc3d and against the
+# installed Siconos in the same run (issue 12). Siconos' sources are downloaded (Debian's source
+# tarball, checksum pinned) and extracted at test time, never committed.
+#
+#   scripts/siconos-suite.sh [--lib DIR] [--include DIR]... [--jobs N] [--timeout SECONDS]
+#                            [--only REGEX] [--out DIR] [--report-only]
+#
+#  --lib DIR      directory holding libfc3d.so (default: target/release, built if missing)
+#  --include DIR  fc3d's include directories (default: capi/include/siconos-compat and capi/include)
+#  --jobs N       cases run in parallel (default: the number of cores)
+#  --timeout S    wall-clock limit per case and library (default 120 s)
+#  --only REGEX   only the collections or programs whose name matches
+#  --out DIR      where results.tsv and the logs go (default target/siconos-suite)
+#  --report-only  exit 0 even if a case that Siconos passes fails with fc3d
+#
+# Every case of a collection runs in its own process (scripts/siconos-suite/case_runner.c builds
+# the collection with Siconos' build_test_collection and runs one index through Siconos'
+# frictionContact_test_function). A case passes when that function returns 0 within the time limit.
+# The run fails when a case that Siconos passes does not pass with fc3d, unless the case is listed
+# in scripts/siconos-suite/known-differences.txt with the reason.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$(pwd)
+
+LIB=""
+INCLUDES=()
+JOBS=$(nproc)
+TIMEOUT=120
+ONLY=""
+OUT=$ROOT/target/siconos-suite
+REPORT_ONLY=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --lib) LIB=$2; shift 2 ;;
+    --include) INCLUDES+=("$2"); shift 2 ;;
+    --jobs) JOBS=$2; shift 2 ;;
+    --timeout) TIMEOUT=$2; shift 2 ;;
+    --only) ONLY=$2; shift 2 ;;
+    --out) OUT=$2; shift 2 ;;
+    --report-only) REPORT_ONLY=1; shift ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
+    *) echo "siconos-suite: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+[ ${#INCLUDES[@]} -gt 0 ] || INCLUDES=("$ROOT/capi/include/siconos-compat" "$ROOT/capi/include")
+if [ -z "$LIB" ]; then
+  cargo build --release -p fc3d >/dev/null
+  LIB=$ROOT/target/release
+fi
+[ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || {
+  echo "siconos-suite: needs libsiconos-numerics-dev (the reference library)" >&2; exit 2; }
+
+# --- Siconos 4.4.0's sources: Debian's orig tarball, the same release as the installed library ---
+TARBALL=siconos_4.4.0+dfsg.orig.tar.xz
+SHA256=df9445096559a7352b7a1f16897b4609c26e20caa440ecaf5375b2cdabcb6354
+CACHE=$ROOT/target/siconos-src
+SRC=$CACHE/siconos-4.4.0
+if [ ! -f "$SRC/numerics/numerics_tests.cmake" ]; then
+  mkdir -p "$CACHE"
+  if [ ! -f "$CACHE/$TARBALL" ] || ! echo "$SHA256  $CACHE/$TARBALL" | sha256sum -c --quiet - 2>/dev/null; then
+    echo "== downloading Siconos 4.4.0's sources ($TARBALL)"
+    curl -fsSL --retry 3 -o "$CACHE/$TARBALL.part" \
+      "http://deb.debian.org/debian/pool/main/s/siconos/$TARBALL"
+    mv "$CACHE/$TARBALL.part" "$CACHE/$TARBALL"
+  fi
+  echo "$SHA256  $CACHE/$TARBALL" | sha256sum -c --quiet -
+  tar xJf "$CACHE/$TARBALL" -C "$CACHE" siconos-4.4.0/numerics
+  [ -f "$SRC/numerics/numerics_tests.cmake" ] || { echo "siconos-suite: extraction failed" >&2; exit 1; }
+fi
+NUM=$SRC/numerics
+TESTDIR=$NUM/src/FrictionContact/test
+UTILS=("$NUM/src/tools/test-utils/test_utils.c" "$NUM/src/FrictionContact/test-utils/frictionContact_test_function.c")
+# Headers the tests include that Debian's package does not install are taken from the same tarball,
+# one by one as the Siconos build asks for them (see build_siconos).
+EXTRA=$CACHE/extra-include
+mkdir -p "$EXTRA"
+TEST_INC=(-I"$NUM/src/FrictionContact/test-utils" -I"$NUM/src/tools/test-utils")
+SIC_FLAGS=(-I/usr/include/siconos/numerics -I/usr/include/siconos -I"$EXTRA" "${TEST_INC[@]}")
+FC3D_FLAGS=()
+for d in "${INCLUDES[@]}"; do FC3D_FLAGS+=(-I"$d"); done
+FC3D_FLAGS+=("${TEST_INC[@]}")
+
+rm -rf "$OUT"
+mkdir -p "$OUT/bin" "$OUT/logs" "$OUT/run" "$OUT/lib"
+BIN=$OUT/bin
+# The programs load libfc3d by its SONAME; a cargo build directory has only libfc3d.so.
+if [ ! -e "$LIB/libfc3d.so.0" ]; then
+  ln -s "$(cd "$LIB" && pwd)/libfc3d.so" "$OUT/lib/libfc3d.so"
+  ln -s "$(cd "$LIB" && pwd)/libfc3d.so" "$OUT/lib/libfc3d.so.0"
+  LIB=$OUT/lib
+fi
+
+# --- the collections of numerics_tests.cmake, and the single-program friction tests ---
+# A collection line reads "DRIVER fc_test_collection.c.in FORMULATION fc3d COLLECTION <NAME>",
+# followed by "EXTRA_SOURCES <data_collection> <solvers>)".
+COLLECTIONS=$OUT/collections.txt
+awk '
+  /new_tests_collection\(/ { in_call = 1; text = "" }
+  in_call { text = text " " $0 }
+  in_call && /\)/ {
+    in_call = 0
+    if (text ~ /fc_test_collection\.c\.in/ && text ~ /FORMULATION (fc3d|fc2d)/ && text !~ /FCLIB/) {
+      gsub(/[()]/, " ", text)
+      n = split(text, w, /[ \t]+/)
+      form = ""; name = ""; srcs = ""
+      for (i = 1; i <= n; i++) {
+        if (w[i] == "FORMULATION") form = w[i + 1]
+        if (w[i] == "COLLECTION") name = w[i + 1]
+        if (w[i] == "EXTRA_SOURCES") { for (j = i + 1; j <= n && w[j] ~ /\.c$/; j++) srcs = srcs " " w[j] }
+      }
+      print form "_" name, name, srcs
+    }
+  }' "$NUM/numerics_tests.cmake" > "$COLLECTIONS"
+PROGRAMS=(fc3d_newFromFortranData fc3d_LmgcDriver_test1 fc3d_LmgcDriver_test2 fc3d_LmgcDriver_test3
+          fc3d_LmgcDriver_test4 fc3d_LmgcDriver_test5 fc3d_AlartCurnierFunctions_test)
+
+build() { # build <label> <output> <sources and flags...>
+  local label=$1 output=$2; shift 2
+  if cc -O2 -w "$@" -lm -o "$output" >"$OUT/logs/build-$label.log" 2>&1; then
+    echo ok
+  else
+    echo "build failed"
+  fi
+}
+build_siconos() { # as build, copying into $EXTRA each header of the tarball that is not installed
+  local label=$1 attempt missing found status
+  for attempt in 1 2 3 4 5 6 7 8; do
+    status=$(build "$@")
+    [ "$status" = ok ] && break
+    missing=$(sed -n 's/.*fatal error: \([^:]*\.h\): No such file.*/\1/p' "$OUT/logs/build-$label.log" | head -1)
+    [ -n "$missing" ] || break
+    found=$(find "$NUM/src" -name "$(basename "$missing")" | head -1)
+    [ -n "$found" ] || break
+    cp "$found" "$EXTRA/"
+  done
+  echo "$status"
+}
+
+TASKS=$OUT/tasks.txt
+: > "$TASKS"
+BUILD_REPORT=$OUT/build.tsv
+: > "$BUILD_REPORT"
+while read -r label name sources; do
+  [ -z "$ONLY" ] || [[ $label =~ $ONLY ]] || continue
+  srcs=()
+  for s in $sources; do srcs+=("$TESTDIR/$s"); done
+  for which in siconos fc3d; do
+    if [ $which = siconos ]; then flags=("${SIC_FLAGS[@]}"); link=(-lsiconos_numerics)
+    else flags=("${FC3D_FLAGS[@]}"); link=(-L"$LIB" -Wl,-rpath,"$LIB" -lfc3d); fi
+    builder=build; [ $which = siconos ] && builder=build_siconos
+    status=$($builder "$label-$which" "$BIN/$label-$which" -D"$name"=1 "${flags[@]}" \
+      "$ROOT/scripts/siconos-suite/case_runner.c" "${srcs[@]}" "${UTILS[@]}" "${link[@]}")
+    printf '%s\t%s\t%s\n' "$label" "$which" "$status" >> "$BUILD_REPORT"
+  done
+  # The case list comes from Siconos' build (the reference); fc3d's build must list the same.
+  if [ -x "$BIN/$label-siconos" ]; then
+    (cd "$TESTDIR" && "$BIN/$label-siconos" --list) > "$OUT/logs/list-$label.txt"
+    while IFS=$'\t' read -r index id sname file; do
+      printf '%s\t%s\t%s\t%s\t%s\n' "$label" "$index" "$id" "$sname" "$file" >> "$TASKS"
+    done < "$OUT/logs/list-$label.txt"
+  fi
+done < "$COLLECTIONS"
+for prog in "${PROGRAMS[@]}"; do
+  [ -z "$ONLY" ] || [[ $prog =~ $ONLY ]] || continue
+  src=$TESTDIR/$prog.c
+  [ -f "$src" ] || continue
+  status=$(build_siconos "$prog-siconos" "$BIN/$prog-siconos" "${SIC_FLAGS[@]}" "$src" -lsiconos_numerics)
+  printf '%s\t%s\t%s\n' "$prog" siconos "$status" >> "$BUILD_REPORT"
+  status=$(build "$prog-fc3d" "$BIN/$prog-fc3d" "${FC3D_FLAGS[@]}" "$src" -L"$LIB" -Wl,-rpath,"$LIB" -lfc3d)
+  printf '%s\t%s\t%s\n' "$prog" fc3d "$status" >> "$BUILD_REPORT"
+  printf '%s\t-\t-\t-\t-\n' "$prog" >> "$TASKS"
+done
+
+# --- run: every case in its own process and its own directory (the tests write checkinput.dat) ---
+run_one() { # run_one <label> <index> <library>: prints "pass|fail|timeout|crash|nobuild seconds"
+  local label=$1 index=$2 which=$3 exe=$BIN/$1-$3 dir rc start end
+  [ -x "$exe" ] || { echo "nobuild 0"; return; }
+  dir=$(mktemp -d "$OUT/run/$label-$index-$which.XXXX")
+  ln -s "$TESTDIR/data" "$dir/data"
+  start=$(date +%s.%N)
+  set +e
+  if [ "$index" = - ]; then
+    (cd "$dir" && timeout -k 5 "$TIMEOUT" "$exe") > "$OUT/logs/$label-$which.log" 2>&1
+  else
+    (cd "$dir" && timeout -k 5 "$TIMEOUT" "$exe" "$index") > "$OUT/logs/$label-$index-$which.log" 2>&1
+  fi
+  rc=$?
+  set -e
+  end=$(date +%s.%N)
+  rm -rf "$dir"
+  local outcome
+  case $rc in
+    0) outcome=pass ;;
+    124|137) outcome=timeout ;;
+    1) outcome=fail ;;
+    *) outcome="crash($rc)" ;;
+  esac
+  awk -v o="$outcome" -v a="$start" -v b="$end" 'BEGIN { printf "%s %.2f\n", o, b - a }'
+}
+export -f run_one
+export OUT BIN TESTDIR TIMEOUT
+
+RESULTS=$OUT/results.tsv
+printf 'collection\tcase\tsolver_id\tsolver\tdata\tsiconos\tsiconos_s\tfc3d\tfc3d_s\n' > "$RESULTS"
+total=$(wc -l < "$TASKS")
+echo "== $total cases (collections and programs), $JOBS at a time, ${TIMEOUT}s limit per case and library"
+# shellcheck disable=SC2016
+tr '\t' '\037' < "$TASKS" | xargs -d '\n' -P "$JOBS" -I{} bash -c '
+  IFS=$'"'"'\037'"'"' read -r label index id sname file <<< "$1"
+  read -r s st <<< "$(run_one "$label" "$index" siconos)"
+  read -r f ft <<< "$(run_one "$label" "$index" fc3d)"
+  printf "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n" "$label" "$index" "$id" "$sname" "$file" "$s" "$st" "$f" "$ft"
+' _ {} >> "$RESULTS"
+
+# --- report ---
+KNOWN=$ROOT/scripts/siconos-suite/known-differences.txt
+python3 "$ROOT/scripts/siconos-suite/report.py" "$RESULTS" "$BUILD_REPORT" "$KNOWN" | tee "$OUT/report.txt"
+status=${PIPESTATUS[0]}
+if [ "$status" -ne 0 ] && [ "$REPORT_ONLY" = 1 ]; then
+  echo "(--report-only: not failing)"
+  status=0
+fi
+exit "$status"
