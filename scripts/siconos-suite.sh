@@ -13,6 +13,8 @@
 #  --only REGEX   only the collections or programs whose name matches
 #  --out DIR      where results.tsv and the logs go (default target/siconos-suite)
 #  --report-only  exit 0 even if a case that Siconos passes fails with fc3d
+#  --write-open   rewrite scripts/siconos-suite/open-cases.txt from this run (the cases Siconos
+#                 passes and fc3d does not, minus those of known-differences.txt)
 #  --allow-unresolved  link the fc3d programs even if a function they call is missing from
 #                 libfc3d (a developer's aid while the surface is incomplete: a case that calls the
 #                 missing function crashes); never used by the test suite
@@ -21,7 +23,8 @@
 # the collection with Siconos' build_test_collection and runs one index through Siconos'
 # frictionContact_test_function). A case passes when that function returns 0 within the time limit.
 # The run fails when a case that Siconos passes does not pass with fc3d, unless the case is listed
-# in scripts/siconos-suite/known-differences.txt with the reason.
+# in scripts/siconos-suite/known-differences.txt with the reason or in open-cases.txt (the work
+# list, which only shrinks: a listed case that passes fails the run until its line is removed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
@@ -34,6 +37,7 @@ ONLY=""
 OUT=$ROOT/target/siconos-suite
 REPORT_ONLY=0
 UNRESOLVED=0
+WRITE_OPEN=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --lib) LIB=$2; shift 2 ;;
@@ -44,7 +48,8 @@ while [ $# -gt 0 ]; do
     --out) OUT=$2; shift 2 ;;
     --report-only) REPORT_ONLY=1; shift ;;
     --allow-unresolved) UNRESOLVED=1; shift ;;
-    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
+    --write-open) WRITE_OPEN=$ROOT/scripts/siconos-suite/open-cases.txt; shift ;;
+    -h|--help) sed -n '2,30p' "$0"; exit 0 ;;
     *) echo "siconos-suite: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -230,7 +235,8 @@ tr '\t' '\037' < "$TASKS" | xargs -d '\n' -P "$JOBS" -I{} bash -c '
 
 # --- report ---
 KNOWN=$ROOT/scripts/siconos-suite/known-differences.txt
-python3 "$ROOT/scripts/siconos-suite/report.py" "$RESULTS" "$BUILD_REPORT" "$KNOWN" | tee "$OUT/report.txt"
+OPEN=$ROOT/scripts/siconos-suite/open-cases.txt
+python3 "$ROOT/scripts/siconos-suite/report.py" "$RESULTS" "$BUILD_REPORT" "$KNOWN" "$OPEN" $WRITE_OPEN | tee "$OUT/report.txt"
 status=${PIPESTATUS[0]}
 if [ "$status" -ne 0 ] && [ "$REPORT_ONLY" = 1 ]; then
   echo "(--report-only: not failing)"
