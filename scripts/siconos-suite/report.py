@@ -79,7 +79,7 @@ def main(results_path, build_path, known_path, open_path, write_open=None):
                 regressions.append(r)
         elif key in known:
             stale.append(r)
-        elif key in open_cases:
+        elif key in open_cases and r["fc3d"] == "pass":
             fixed.append(r)
     both_fail = sum(1 for r in rows if r["siconos"] != "pass" and r["fc3d"] != "pass")
     only_fc3d = sum(1 for r in rows if r["siconos"] != "pass" and r["fc3d"] == "pass")
