@@ -14,7 +14,7 @@ mod prox;
 mod siconos;
 mod vi;
 
-pub(crate) use siconos::{solver_name, solver_name_to_id};
+pub(crate) use crate::names::{solver_name, solver_name_to_id};
 
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;
