@@ -8,19 +8,24 @@
 # libsiconos_numerics defines for those headers.
 #
 #   scripts/siconos-options.sh [--fc3d-cflags "FLAGS"] [--fc3d-libs "FLAGS"] [--keep DIR]
+#                              [--write-table]
 #
 # Defaults: the in-tree headers and target/release/libfc3d.so (built if missing).
+# --write-table regenerates capi/src/params/siconos_table.rs (the defaults fc3d returns) from
+# the Siconos side before comparing; the comparison then needs a rebuilt libfc3d.
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 FC3D_CFLAGS="-I$ROOT/capi/include/siconos-compat -I$ROOT/capi/include"
 FC3D_LIBS=""
 KEEP=""
+WRITE_TABLE=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --fc3d-cflags) FC3D_CFLAGS=$2; shift 2 ;;
     --fc3d-libs) FC3D_LIBS=$2; shift 2 ;;
     --keep) KEEP=$2; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    --write-table) WRITE_TABLE=1; shift ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "siconos-options: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -67,7 +72,12 @@ cc -std=c99 -Wall -Werror -I. $FC3D_CFLAGS options_defaults.c $FC3D_LIBS -lm -o 
 cc -std=c99 -Wall -Werror -I. -I"$SIC" -I/usr/include/siconos "${TARBALL_INC[@]}" options_defaults.c \
   -lsiconos_numerics -lm -o options_siconos
 status=0
-./options_siconos > siconos.txt 2> siconos.err || { echo "siconos-options: the Siconos build failed (status $?)" >&2; status=2; }
+./options_siconos > siconos.txt 2> siconos.err || { echo "siconos-options: the Siconos build failed (status $?)" >&2; exit 2; }
+if [ "$WRITE_TABLE" = 1 ]; then
+  awk -f "$ROOT/scripts/siconos-options/table.awk" siconos.txt > "$ROOT/capi/src/params/siconos_table.rs"
+  echo "siconos-options: wrote capi/src/params/siconos_table.rs; rebuild libfc3d before comparing" >&2
+  exit 0
+fi
 ./options_fc3d > fc3d.txt 2> fc3d.err || { echo "siconos-options: the fc3d build failed (status $?): $(tail -3 fc3d.err)" >&2; status=1; }
 [ -z "$KEEP" ] || { mkdir -p "$KEEP"; cp fc3d.txt fc3d.err siconos.txt options_ids.inc options_strs.inc "$KEEP/"; }
 [ "$status" = 0 ] || exit "$status"
