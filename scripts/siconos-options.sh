@@ -10,9 +10,12 @@
 #   scripts/siconos-options.sh [--fc3d-cflags "FLAGS"] [--fc3d-libs "FLAGS"] [--keep DIR]
 #                              [--write-table]
 #
-# Defaults: the in-tree headers and target/release/libfc3d.so (built if missing).
+# Defaults: the in-tree headers and target/release/libfc3d.so (cargo build --release -p fc3d
+# first).
 # --write-table regenerates capi/src/params/siconos_table.rs (the defaults fc3d returns) from
-# the Siconos side before comparing; the comparison then needs a rebuilt libfc3d.
+# the Siconos side and stops (rebuild, then compare).
+# Exit status: 0 identical, 1 differences, 2 usage or a build failure, 77 a prerequisite is
+# missing (Siconos' headers, ctags, Siconos' sources).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 FC3D_CFLAGS="-I$ROOT/capi/include/siconos-compat -I$ROOT/capi/include"
@@ -25,12 +28,13 @@ while [ $# -gt 0 ]; do
     --fc3d-libs) FC3D_LIBS=$2; shift 2 ;;
     --keep) KEEP=$2; shift 2 ;;
     --write-table) WRITE_TABLE=1; shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) echo "siconos-options: unknown argument $1" >&2; exit 2 ;;
   esac
 done
 if [ -z "$FC3D_LIBS" ]; then
-  [ -f "$ROOT/target/release/libfc3d.so" ] || (cd "$ROOT" && cargo build --release -p fc3d >/dev/null)
+  # Built now (a no-op when up to date), so the comparison never runs a stale library.
+  (cd "$ROOT" && cargo build --quiet --release -p fc3d)
   # The program loads libfc3d by its SONAME; a cargo build directory has only libfc3d.so.
   SONAME_DIR=$ROOT/target/siconos-options/lib
   mkdir -p "$SONAME_DIR"
@@ -38,9 +42,9 @@ if [ -z "$FC3D_LIBS" ]; then
   FC3D_LIBS="-L$ROOT/target/release -Wl,-rpath,$SONAME_DIR -lfc3d"
 fi
 SIC=/usr/include/siconos/numerics
-[ -f "$SIC/Friction_cst.h" ] || { echo "siconos-options: needs libsiconos-numerics-dev" >&2; exit 2; }
-command -v ctags >/dev/null || { echo "siconos-options: needs universal-ctags" >&2; exit 2; }
-SRC=$("$ROOT/scripts/siconos-src.sh")
+[ -f "$SIC/Friction_cst.h" ] || { echo "siconos-options: needs libsiconos-numerics-dev" >&2; exit 77; }
+command -v ctags >/dev/null || { echo "siconos-options: needs universal-ctags" >&2; exit 77; }
+SRC=$("$ROOT/scripts/siconos-src.sh") || { echo "siconos-options: needs Siconos 4.4.0's sources" >&2; exit 77; }
 # VI_cst.h, SOCLCP_cst.h and ConvexQP_cst.h are not installed by Debian: the tarball's.
 TARBALL_INC=(-I"$SRC/numerics/src/VI" -I"$SRC/numerics/src/SOCP" -I"$SRC/numerics/src/QP")
 

@@ -5,6 +5,8 @@
    friction solvers); fc3d_driver does not run them as top-level solvers. */
 #ifndef FC3D_COMPAT_CONVEXQP_CST_H
 #define FC3D_COMPAT_CONVEXQP_CST_H
+/* Siconos' include guard, defined too: code that tests it sees the header as included. */
+#define CONVEXQP_CST_H
 #include <fc3d.h>
 
 enum CONVEXQP_SOLVER

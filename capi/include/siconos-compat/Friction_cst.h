@@ -4,6 +4,8 @@
    fc3d: its variable siconos_includedir and its --cflags) and link with -lfc3d. */
 #ifndef FC3D_COMPAT_FRICTION_CST_H
 #define FC3D_COMPAT_FRICTION_CST_H
+/* Siconos' include guard, defined too: code that tests it sees the header as included. */
+#define FRICTION_CST_H
 #include <fc3d.h>
 
 /* Solver ids (ABI values). solver_options_create returns Siconos 4.4's defaults for every one.

@@ -113,8 +113,9 @@ pub(super) unsafe fn read_tfp(
 }
 
 /// PFP with no internal solver (fc3d's defaults), one (fc3d's layout: the tangent solver 500, 566
-/// or 567) or two (Siconos' layout: 202 PGS for the normal part, then 1201 ConvexQP VI FPP, read
-/// as FP-VI-UPK, or 1200 ConvexQP PG, read as the projected gradient, for the tangent part).
+/// or 567, whose iparam[0] bounds both inner solves) or two (Siconos' layout: 202 PGS for the
+/// normal part, then 1201 ConvexQP VI FPP, read as FP-VI-UPK, or 1200 ConvexQP PG, read as the
+/// projected gradient, for the tangent part, each bounded by its own iparam[0]).
 pub(super) unsafe fn read_pfp(p: &Params<'_>, o: &SolverOptions) -> CResult<PfpOptions> {
     require_no_extras(p)?;
     let mut t = PfpOptions::default();
@@ -123,6 +124,7 @@ pub(super) unsafe fn read_pfp(p: &Params<'_>, o: &SolverOptions) -> CResult<PfpO
         1 => {
             let i = internal_at(o, 0)?;
             (t.tangent, t.inner_max_iter) = tresca_inner(i)?;
+            t.normal_max_iter = t.inner_max_iter;
             Some(i)
         }
         2 => {
@@ -139,14 +141,10 @@ pub(super) unsafe fn read_pfp(p: &Params<'_>, o: &SolverOptions) -> CResult<PfpO
             } else {
                 TrescaInnerSolver::FixedPointViUpk
             };
-            let normal_max = Params::of(normal, "PFP normal solver options")?
+            t.normal_max_iter = Params::of(normal, "PFP normal solver options")?
                 .count(IPARAM_MAX_ITER, "PFP normal solver max iterations")?;
-            let tangent_max = Params::of(tangent, "PFP tangent solver options")?
+            t.inner_max_iter = Params::of(tangent, "PFP tangent solver options")?
                 .count(IPARAM_MAX_ITER, "PFP tangent solver max iterations")?;
-            if normal_max != tangent_max {
-                return Err(invalid(format!("PFP (522): fc3d bounds both inner solves by one limit; the normal solver's iparam[0] = {normal_max} and the tangent solver's = {tangent_max} differ")));
-            }
-            t.inner_max_iter = tangent_max;
             Some(normal)
         }
         n => {

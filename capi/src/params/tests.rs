@@ -190,3 +190,48 @@ fn rejected_settings_name_their_slot() {
         assert!(!setting.is_empty());
     }
 }
+
+/// Siconos' internal solvers of PFP, ACLMFP and SOCLCP are read (PFP's tangent solver by its id,
+/// each part bounded by its own limit); others are refused with their name.
+#[test]
+fn siconos_internal_solvers_of_the_fixed_points() {
+    unsafe {
+        let o = create_options(522).expect("created");
+        let normal = *(*o).internalSolvers;
+        let tangent = *(*o).internalSolvers.add(1);
+        *(*normal).iparam = 7;
+        (*tangent).solverId = 1200;
+        *(*tangent).iparam = 9;
+        let Method::Pfp(pfp) = config_from_c(&*o).expect("read").method else {
+            panic!("not PFP")
+        };
+        assert_eq!(pfp.tangent, fc3d_core::TrescaInnerSolver::ProjectedGradient);
+        assert_eq!((pfp.normal_max_iter, pfp.inner_max_iter), (7, 9));
+        (*tangent).solverId = 1202;
+        let e = config_from_c(&*o).expect_err("VI EG tangent solver");
+        assert!(e.message.contains("1202 (CONVEXQP VI EG)"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+
+        let o = create_options(516).expect("created");
+        let soclcp = *(*o).internalSolvers;
+        *(*soclcp).iparam = 123;
+        let Method::Aclm(aclm) = config_from_c(&*o).expect("read").method else {
+            panic!("not ACLMFP")
+        };
+        assert_eq!(aclm.inner_max_iter, 123);
+        (*soclcp).solverId = 1107;
+        let e = config_from_c(&*o).expect_err("SOCLCP VI EG");
+        assert!(e.message.contains("1107"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+
+        let o = create_options(517).expect("created");
+        assert!(config_from_c(&*o).is_ok());
+        (**(*o).internalSolvers).solverId = 1150;
+        let e = config_from_c(&*o).expect_err("another one-cone solver");
+        assert!(e.message.contains("1150"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+    }
+}
