@@ -55,9 +55,8 @@ enumerators() { # enumerators <header> <enum>: in the header's order
 }
 {
   enumerators "$SIC/Friction_cst.h" FRICTION_SOLVER
-  # The internal solver families of Siconos' friction tests (test_fp_1.c: SOCLCP_VI_EG/FPP);
-  # the box VI solvers (VI_BOX_*) are not friction solvers and stay out.
-  enumerators "$SRC/numerics/src/VI/VI_cst.h" VI_SOLVER | grep -v '^SICONOS_VI_BOX_'
+  # The internal solver families of Siconos' friction tests (test_fp_1.c: SOCLCP_VI_EG/FPP).
+  enumerators "$SRC/numerics/src/VI/VI_cst.h" VI_SOLVER
   enumerators "$SRC/numerics/src/SOCP/SOCLCP_cst.h" SOCLCP_SOLVER
   enumerators "$SRC/numerics/src/QP/ConvexQP_cst.h" CONVEXQP_SOLVER
 } | sed 's/.*/ID(&)/' > "$WORK/options_ids.inc"

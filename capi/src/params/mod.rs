@@ -99,11 +99,29 @@ pub(crate) fn invalid(msg: impl Into<String>) -> CError {
     CError::new(FC3D_ERR_INVALID_OPTION, msg)
 }
 
+/// `FC3D_ERR_UNSUPPORTED_SOLVER` for an id fc3d does not run where it was given, naming the
+/// solver and saying why.
 pub(crate) fn unsupported_solver(id: c_int) -> CError {
+    let why = match id {
+        514 | 515 | 518 | 519 | 608 | 609 => {
+            "is not provided by fc3d: it calls GAMS/PATH, a commercial solver fc3d does not link"
+        }
+        600..=615 | 5000 => {
+            "is a solver of the global formulation (gfc3d_driver), which fc3d does not provide"
+        }
+        3000..=3003 | 4000..=4002 => {
+            "is a rolling-friction solver (rolling_fc3d_driver), which fc3d does not provide"
+        }
+        400..=405 => "is a 2D solver: it runs through fc2d_driver, not fc3d_driver",
+        1000..=1299 => {
+            "is a VI, SOCLCP or ConvexQP solver: fc3d knows its options (the internal solvers of the friction solvers) but does not run it as a solver of its own"
+        }
+        _ => "is not implemented in fc3d",
+    };
     CError::new(
         FC3D_ERR_UNSUPPORTED_SOLVER,
         format!(
-            "solver id {id} ({}) is not implemented in fc3d",
+            "solver id {id} ({}) {why}",
             solver_name(id).to_string_lossy()
         ),
     )

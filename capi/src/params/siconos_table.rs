@@ -638,6 +638,34 @@ pub(super) const TABLE: &[Defaults] = &[
         ],
     },
     Defaults {
+        id: 1020,
+        iparam: &[(0, 1000), (5, 1), (10, 3)],
+        dparam: &[(0, 1e-10), (2, 9.9999999999999998e-17)],
+        internal: &[
+        ],
+    },
+    Defaults {
+        id: 1021,
+        iparam: &[(0, 100), (5, 1)],
+        dparam: &[(0, 9.9999999999999998e-13)],
+        internal: &[
+            Defaults {
+                id: 306,
+                iparam: &[(0, 10000)],
+                dparam: &[(0, 9.9999999999999998e-13)],
+                internal: &[
+                ],
+            },
+        ],
+    },
+    Defaults {
+        id: 1022,
+        iparam: &[(0, 10000)],
+        dparam: &[(0, 9.9999999999999998e-13)],
+        internal: &[
+        ],
+    },
+    Defaults {
         id: 1100,
         iparam: &[(0, 1000)],
         dparam: &[(0, 0.0001), (8, 1.0)],
