@@ -8,7 +8,8 @@
 //! The internal solvers Siconos' `solver_options_create` puts in are accepted as they are:
 //! PFP's pair (202 LCP PGS for the normal part, 1201 ConvexQP VI FPP or 1200 ConvexQP PG for the
 //! tangent part), ACLMFP's 1100 SOCLCP NSGS (its iparam[0] bounds each inner SOCLCP solve) with
-//! its one-cone solver 1151, and 517's one-cone solver 1151. fc3d solves each cone exactly, so
+//! its one-cone solver 1151 (or the SOCLCP VI solvers 1106/1107 Siconos' tests put there), and
+//! 517's one-cone solver 1151. fc3d solves each cone exactly, so
 //! the one-cone solver's own limits are not read; any other internal solver is refused.
 
 use super::{
@@ -29,6 +30,8 @@ const DPARAM_SOCLCP_RELAXATION: usize = 8;
 /// Siconos' solver ids of the internal solvers of its PFP, ACLMFP and SOCLCP defaults.
 const LCP_PGS: c_int = 202;
 const SOCLCP_NSGS: c_int = 1100;
+const SOCLCP_VI_FPP: c_int = 1106;
+const SOCLCP_VI_EG: c_int = 1107;
 const SOCLCP_ONE_CONE_PROJECTION_WITH_LOCAL_ITERATION: c_int = 1151;
 const CONVEXQP_PG: c_int = 1200;
 const CONVEXQP_VI_FPP: c_int = 1201;
@@ -157,8 +160,11 @@ pub(super) unsafe fn read_pfp(p: &Params<'_>, o: &SolverOptions) -> CResult<PfpO
     Ok(t)
 }
 
-/// ACLMFP with no internal solver or Siconos' 1100 SOCLCP NSGS (its iparam[0] bounds each inner
-/// solve; its own internal solver may be the one-cone solver 1151).
+/// ACLMFP with no internal solver or one of Siconos' SOCLCP solvers: 1100 NSGS (the default; its
+/// own internal solver may be the one-cone solver 1151), 1106 VI FPP or 1107 VI EG. fc3d solves
+/// each inner SOCLCP by its Gauss-Seidel with an exact one-cone solve whichever of the three is
+/// named: the inner problem and its stopping rule (tolerance, the internal solver's iparam[0])
+/// are the same, so is the fixed point ACLMFP converges to.
 pub(super) unsafe fn read_aclm(
     p: &Params<'_>,
     internal: Option<&SolverOptions>,
@@ -166,11 +172,15 @@ pub(super) unsafe fn read_aclm(
     require_no_extras(p)?;
     let mut a = AclmOptions::default();
     if let Some(i) = internal {
-        require_internal(i, "ACLMFP (516)", &[SOCLCP_NSGS])?;
+        require_internal(
+            i,
+            "ACLMFP (516)",
+            &[SOCLCP_NSGS, SOCLCP_VI_FPP, SOCLCP_VI_EG],
+        )?;
         let ip = Params::of(i, "ACLMFP internal solver options")?;
         a.inner_max_iter = ip.count(IPARAM_MAX_ITER, "ACLMFP internal max iterations")?;
         let relaxation = ip.dparam[DPARAM_SOCLCP_RELAXATION];
-        if relaxation != 1.0 && relaxation != 0.0 {
+        if i.solverId == SOCLCP_NSGS && relaxation != 1.0 && relaxation != 0.0 {
             return Err(invalid(format!("ACLMFP (516): relaxation of the inner SOCLCP sweep (internal solver's dparam[{DPARAM_SOCLCP_RELAXATION}]) = {relaxation} is not implemented in fc3d (only 1)")));
         }
         if let Some(local) = super::first_internal(i) {

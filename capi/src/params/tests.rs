@@ -221,8 +221,13 @@ fn siconos_internal_solvers_of_the_fixed_points() {
         };
         assert_eq!(aclm.inner_max_iter, 123);
         (*soclcp).solverId = 1107;
-        let e = config_from_c(&*o).expect_err("SOCLCP VI EG");
-        assert!(e.message.contains("1107"), "{}", e.message);
+        assert!(
+            config_from_c(&*o).is_ok(),
+            "SOCLCP VI EG as the inner solver"
+        );
+        (*soclcp).solverId = 1150;
+        let e = config_from_c(&*o).expect_err("a one-cone solver as the SOCLCP solver");
+        assert!(e.message.contains("1150"), "{}", e.message);
         delete_contents(o);
         crate::alloc::c_free(o);
 
