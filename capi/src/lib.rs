@@ -25,6 +25,8 @@ mod errors;
 mod fclib;
 mod lmgc;
 mod matrix;
+/// cbindgen:ignore
+mod names;
 mod native;
 mod options;
 mod params;

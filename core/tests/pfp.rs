@@ -57,6 +57,7 @@ fn iteration_limit_gives_honest_failure() {
     let p = load("Confeti-ex03-Fc3D-SBM.dat");
     let c = SolverConfig::new(PfpOptions {
         inner_max_iter: 1,
+        normal_max_iter: 1,
         ..Default::default()
     })
     .with_max_iter(1)

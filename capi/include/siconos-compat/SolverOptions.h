@@ -3,6 +3,8 @@
    fc3d: its variable siconos_includedir and its --cflags) and link with -lfc3d. */
 #ifndef FC3D_COMPAT_SOLVEROPTIONS_H
 #define FC3D_COMPAT_SOLVEROPTIONS_H
+/* Siconos' include guard, defined too: code that tests it sees the header as included. */
+#define SolverOptions_H
 #include <fc3d.h>
 /* Generic option indices (iparam / dparam). */
 enum SICONOS_IPARAM

@@ -7,7 +7,7 @@
 //! symmetrize W, i.e. solve another problem. iparam[13] (forced sparse storage) is what fc3d
 //! always does: any value is accepted.
 
-use super::{invalid, Encoded, Params, IPARAM_RESCALING};
+use super::{invalid, Params, IPARAM_RESCALING};
 use crate::CResult;
 use fc3d_core::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 
@@ -57,27 +57,4 @@ pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
     p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
     p.require(IPARAM_FULL_H, 0, "full H")?;
     Ok(a)
-}
-
-pub(super) fn write(a: &AdmmOptions) -> Encoded {
-    let mut e = Encoded::new(523);
-    e.iparam[IPARAM_RHO_STRATEGY] = match a.rho_strategy {
-        AdmmRhoStrategy::Constant => 0,
-        AdmmRhoStrategy::ResidualBalancing => 2,
-        AdmmRhoStrategy::ScaledResidualBalancing => 3,
-    };
-    e.iparam[IPARAM_INITIAL_RHO] = match a.initial_rho {
-        AdmmInitialRho::Given => 0,
-        AdmmInitialRho::NormInf => 1,
-        AdmmInitialRho::Eigenvalues => 2,
-    };
-    e.iparam[IPARAM_ACCELERATION] = match a.acceleration {
-        AdmmAcceleration::None => 0,
-        AdmmAcceleration::Accelerated => 1,
-    };
-    e.dparam[DPARAM_RHO] = a.rho;
-    e.dparam[DPARAM_RESTART_ETA] = a.restart_eta;
-    e.dparam[DPARAM_BALANCING_TAU] = a.balancing_tau;
-    e.dparam[DPARAM_BALANCING_PHI] = a.balancing_phi;
-    e
 }

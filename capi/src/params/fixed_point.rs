@@ -1,25 +1,64 @@
 //! The optimization-based fixed points: TFP 503, PFP 522, ACLMFP 516 and the SOCLCP relaxation
 //! 517. iparam[2] inner tolerance strategy (0 adaptive with ratio dparam[2], 1 the internal
-//! solver's dparam[0]); internal solver 0 of TFP/PFP picks the Tresca sub-problem solver (500
-//! NSGS on the cylinder with an exact one-contact solve, 566 FP-VI-UPK, 567 projected gradient)
-//! and its iparam[0] bounds each inner solve; dparam[8] the SOCLCP relaxation. They implement no
+//! solver's dparam[0]); internal solver 0 of TFP picks the Tresca sub-problem solver (500 NSGS on
+//! the cylinder with an exact one-contact solve, 566 FP-VI-UPK, 567 projected gradient) and its
+//! iparam[0] bounds each inner solve; dparam[8] the SOCLCP relaxation. They implement no
 //! rescaling, error evaluation option or evaluation frequency: those slots must stay 0.
-
-use std::os::raw::c_int;
+//!
+//! The internal solvers Siconos' `solver_options_create` puts in are accepted as they are:
+//! PFP's pair (202 LCP PGS for the normal part, 1201 ConvexQP VI FPP or 1200 ConvexQP PG for the
+//! tangent part), ACLMFP's 1100 SOCLCP NSGS (its iparam[0] bounds each inner SOCLCP solve) with
+//! its one-cone solver 1151 (or the SOCLCP VI solvers 1106/1107 Siconos' tests put there), and
+//! 517's one-cone solver 1151. fc3d solves each cone exactly, so
+//! the one-cone solver's own limits are not read; any other internal solver is refused.
 
 use super::{
-    invalid, solver_name, write_config, Encoded, Params, DPARAM_INTERNAL_ERROR_RATIO, DPARAM_TOL,
-    IPARAM_ERROR_EVALUATION, IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY,
-    IPARAM_MAX_ITER, IPARAM_RESCALING,
+    invalid, solver_name, Params, DPARAM_INTERNAL_ERROR_RATIO, DPARAM_TOL, IPARAM_ERROR_EVALUATION,
+    IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_MAX_ITER,
+    IPARAM_RESCALING,
 };
 use crate::types::SolverOptions;
 use crate::CResult;
+use std::os::raw::c_int;
+
 use fc3d_core::{
-    AclmOptions, InnerTolerance, NsgsOptions, PfpOptions, SoclcpOptions, SolverConfig,
-    TrescaInnerSolver, TrescaOptions,
+    AclmOptions, InnerTolerance, PfpOptions, SoclcpOptions, TrescaInnerSolver, TrescaOptions,
 };
 
 const DPARAM_SOCLCP_RELAXATION: usize = 8;
+
+/// Siconos' solver ids of the internal solvers of its PFP, ACLMFP and SOCLCP defaults.
+const LCP_PGS: c_int = 202;
+const SOCLCP_NSGS: c_int = 1100;
+const SOCLCP_VI_FPP: c_int = 1106;
+const SOCLCP_VI_EG: c_int = 1107;
+const SOCLCP_ONE_CONE_PROJECTION_WITH_LOCAL_ITERATION: c_int = 1151;
+const CONVEXQP_PG: c_int = 1200;
+const CONVEXQP_VI_FPP: c_int = 1201;
+
+/// Refuses an internal solver other than the ones listed, naming it.
+fn require_internal(i: &SolverOptions, owner: &str, accepted: &[c_int]) -> CResult<()> {
+    if accepted.contains(&i.solverId) {
+        return Ok(());
+    }
+    let list: Vec<String> = accepted
+        .iter()
+        .map(|&id| format!("{id} {}", solver_name(id).to_string_lossy()))
+        .collect();
+    Err(invalid(format!(
+        "{owner}: internal solver {} ({}) is not implemented in fc3d (accepted: {})",
+        i.solverId,
+        solver_name(i.solverId).to_string_lossy(),
+        list.join(", ")
+    )))
+}
+
+/// Internal solver `k` of `o` (the caller checked the count; the tree was checked).
+unsafe fn internal_at(o: &SolverOptions, k: usize) -> CResult<&SolverOptions> {
+    (*o.internalSolvers.add(k))
+        .as_ref()
+        .ok_or_else(|| invalid(format!("internalSolvers[{k}] is NULL")))
+}
 
 /// The options these solvers do not implement must keep their default (0).
 fn require_no_extras(p: &Params<'_>) -> CResult<()> {
@@ -76,31 +115,84 @@ pub(super) unsafe fn read_tfp(
     Ok(t)
 }
 
-pub(super) unsafe fn read_pfp(
-    p: &Params<'_>,
-    internal: Option<&SolverOptions>,
-) -> CResult<PfpOptions> {
+/// PFP with no internal solver (fc3d's defaults), one (fc3d's layout: the tangent solver 500, 566
+/// or 567, whose iparam[0] bounds both inner solves) or two (Siconos' layout: 202 PGS for the
+/// normal part, then 1201 ConvexQP VI FPP, read as FP-VI-UPK, or 1200 ConvexQP PG, read as the
+/// projected gradient, for the tangent part, each bounded by its own iparam[0]).
+pub(super) unsafe fn read_pfp(p: &Params<'_>, o: &SolverOptions) -> CResult<PfpOptions> {
     require_no_extras(p)?;
     let mut t = PfpOptions::default();
-    if let Some(i) = internal {
-        (t.tangent, t.inner_max_iter) = tresca_inner(i)?;
-    }
-    t.inner_tolerance = inner_tolerance(p, internal)?;
+    let first = match o.numberOfInternalSolvers {
+        0 => None,
+        1 => {
+            let i = internal_at(o, 0)?;
+            (t.tangent, t.inner_max_iter) = tresca_inner(i)?;
+            t.normal_max_iter = t.inner_max_iter;
+            Some(i)
+        }
+        2 => {
+            let normal = internal_at(o, 0)?;
+            let tangent = internal_at(o, 1)?;
+            require_internal(normal, "PFP (522) normal part", &[LCP_PGS])?;
+            require_internal(
+                tangent,
+                "PFP (522) tangent part",
+                &[CONVEXQP_VI_FPP, CONVEXQP_PG],
+            )?;
+            t.tangent = if tangent.solverId == CONVEXQP_PG {
+                TrescaInnerSolver::ProjectedGradient
+            } else {
+                TrescaInnerSolver::FixedPointViUpk
+            };
+            t.normal_max_iter = Params::of(normal, "PFP normal solver options")?
+                .count(IPARAM_MAX_ITER, "PFP normal solver max iterations")?;
+            t.inner_max_iter = Params::of(tangent, "PFP tangent solver options")?
+                .count(IPARAM_MAX_ITER, "PFP tangent solver max iterations")?;
+            Some(normal)
+        }
+        n => {
+            return Err(invalid(format!(
+                "PFP (522) takes at most 2 internal solvers, not {n}"
+            )))
+        }
+    };
+    t.inner_tolerance = inner_tolerance(p, first)?;
     Ok(t)
 }
 
+/// ACLMFP with no internal solver or one of Siconos' SOCLCP solvers: 1100 NSGS (the default; its
+/// own internal solver may be the one-cone solver 1151), 1106 VI FPP or 1107 VI EG. fc3d solves
+/// each inner SOCLCP by its Gauss-Seidel with an exact one-cone solve whichever of the three is
+/// named: the inner problem and its stopping rule (tolerance, the internal solver's iparam[0])
+/// are the same, so is the fixed point ACLMFP converges to.
 pub(super) unsafe fn read_aclm(
     p: &Params<'_>,
     internal: Option<&SolverOptions>,
 ) -> CResult<AclmOptions> {
     require_no_extras(p)?;
-    if internal.is_some() {
-        return Err(invalid("ACLMFP (516) takes no internal solver in fc3d (its SOCLCP is solved by its own Gauss-Seidel)"));
+    let mut a = AclmOptions::default();
+    if let Some(i) = internal {
+        require_internal(
+            i,
+            "ACLMFP (516)",
+            &[SOCLCP_NSGS, SOCLCP_VI_FPP, SOCLCP_VI_EG],
+        )?;
+        let ip = Params::of(i, "ACLMFP internal solver options")?;
+        a.inner_max_iter = ip.count(IPARAM_MAX_ITER, "ACLMFP internal max iterations")?;
+        let relaxation = ip.dparam[DPARAM_SOCLCP_RELAXATION];
+        if i.solverId == SOCLCP_NSGS && relaxation != 1.0 && relaxation != 0.0 {
+            return Err(invalid(format!("ACLMFP (516): relaxation of the inner SOCLCP sweep (internal solver's dparam[{DPARAM_SOCLCP_RELAXATION}]) = {relaxation} is not implemented in fc3d (only 1)")));
+        }
+        if let Some(local) = super::first_internal(i) {
+            require_internal(
+                local,
+                "ACLMFP's SOCLCP NSGS",
+                &[SOCLCP_ONE_CONE_PROJECTION_WITH_LOCAL_ITERATION],
+            )?;
+        }
     }
-    Ok(AclmOptions {
-        inner_tolerance: inner_tolerance(p, None)?,
-        ..AclmOptions::default()
-    })
+    a.inner_tolerance = inner_tolerance(p, internal)?;
+    Ok(a)
 }
 
 pub(super) fn read_soclcp(
@@ -113,70 +205,14 @@ pub(super) fn read_soclcp(
         0,
         "internal error strategy (SOCLCP has no internal solver)",
     )?;
-    if internal.is_some() {
-        return Err(invalid("SOCLCP (517) takes no internal solver in fc3d"));
+    if let Some(i) = internal {
+        require_internal(
+            i,
+            "SOCLCP (517)",
+            &[SOCLCP_ONE_CONE_PROJECTION_WITH_LOCAL_ITERATION],
+        )?;
     }
     Ok(SoclcpOptions {
         relaxation: p.dparam[DPARAM_SOCLCP_RELAXATION],
     })
-}
-
-/// The strategy slots of an inner tolerance; `Given` writes its tolerance into `internal`.
-fn write_inner_tolerance(t: InnerTolerance, e: &mut Encoded) {
-    match t {
-        InnerTolerance::Adaptive { ratio } => {
-            e.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] = 0;
-            e.dparam[DPARAM_INTERNAL_ERROR_RATIO] = ratio;
-        }
-        InnerTolerance::Given(tolerance) => {
-            e.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] = 1;
-            if let Some(i) = e.internal.first_mut() {
-                i.dparam[DPARAM_TOL] = tolerance;
-            }
-        }
-    }
-}
-
-/// Internal solver 0 of TFP/PFP: NSGS with its defaults (as Siconos creates it) or the named
-/// sub-problem solver, with the inner iteration limit.
-fn write_tresca_inner(solver: TrescaInnerSolver, max_iter: usize) -> CResult<Encoded> {
-    let mut i = match solver {
-        TrescaInnerSolver::GaussSeidel => write_config(&SolverConfig::new(NsgsOptions::default()))?,
-        other => Encoded::new(other.siconos_id()),
-    };
-    i.iparam[IPARAM_MAX_ITER] = c_int::try_from(max_iter).unwrap_or(c_int::MAX);
-    Ok(i)
-}
-
-pub(super) fn write_tfp(t: &TrescaOptions) -> CResult<Encoded> {
-    let mut e = Encoded::new(503);
-    e.internal
-        .push(write_tresca_inner(t.inner, t.inner_max_iter)?);
-    write_inner_tolerance(t.inner_tolerance, &mut e);
-    Ok(e)
-}
-
-/// PFP's Siconos defaults have no internal solver: one is written only when the tangent solver
-/// or its limit differ from the defaults.
-pub(super) fn write_pfp(t: &PfpOptions) -> CResult<Encoded> {
-    let mut e = Encoded::new(522);
-    let d = PfpOptions::default();
-    if (t.tangent, t.inner_max_iter) != (d.tangent, d.inner_max_iter) {
-        e.internal
-            .push(write_tresca_inner(t.tangent, t.inner_max_iter)?);
-    }
-    write_inner_tolerance(t.inner_tolerance, &mut e);
-    Ok(e)
-}
-
-pub(super) fn write_aclm(t: &AclmOptions) -> Encoded {
-    let mut e = Encoded::new(516);
-    write_inner_tolerance(t.inner_tolerance, &mut e);
-    e
-}
-
-pub(super) fn write_soclcp(t: &SoclcpOptions) -> Encoded {
-    let mut e = Encoded::new(517);
-    e.dparam[DPARAM_SOCLCP_RELAXATION] = t.relaxation;
-    e
 }

@@ -12,9 +12,10 @@ mod nsgs;
 mod nsn;
 mod prox;
 mod siconos;
+mod siconos_table;
 mod vi;
 
-pub(crate) use siconos::{solver_name, solver_name_to_id};
+pub(crate) use crate::names::{solver_name, solver_name_to_id};
 
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;
@@ -98,11 +99,29 @@ pub(crate) fn invalid(msg: impl Into<String>) -> CError {
     CError::new(FC3D_ERR_INVALID_OPTION, msg)
 }
 
+/// `FC3D_ERR_UNSUPPORTED_SOLVER` for an id fc3d does not run where it was given, naming the
+/// solver and saying why.
 pub(crate) fn unsupported_solver(id: c_int) -> CError {
+    let why = match id {
+        514 | 515 | 518 | 519 | 608 | 609 => {
+            "is not provided by fc3d: it calls GAMS/PATH, a commercial solver fc3d does not link"
+        }
+        600..=615 | 5000 => {
+            "is a solver of the global formulation (gfc3d_driver), which fc3d does not provide"
+        }
+        3000..=3003 | 4000..=4002 => {
+            "is a rolling-friction solver (rolling_fc3d_driver), which fc3d does not provide"
+        }
+        400..=405 => "is a 2D solver: it runs through fc2d_driver, not fc3d_driver",
+        1000..=1299 => {
+            "is a VI, SOCLCP or ConvexQP solver: fc3d knows its options (the internal solvers of the friction solvers) but does not run it as a solver of its own"
+        }
+        _ => "is not implemented in fc3d",
+    };
     CError::new(
         FC3D_ERR_UNSUPPORTED_SOLVER,
         format!(
-            "solver id {id} ({}) is not implemented in fc3d",
+            "solver id {id} ({}) {why}",
             solver_name(id).to_string_lossy()
         ),
     )
@@ -209,7 +228,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         504 | 513 | 520 => Method::Nsn(nsn::read(id, &p)?),
         502 => Method::Prox(prox::read(&p, internal)?),
         503 => Method::Tresca(fixed_point::read_tfp(&p, internal)?),
-        522 => Method::Pfp(fixed_point::read_pfp(&p, internal)?),
+        522 => Method::Pfp(fixed_point::read_pfp(&p, o)?),
         516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
         517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
         523 => Method::Admm(admm::read(&p)?),
@@ -261,58 +280,28 @@ impl Encoded {
             internal: Vec::new(),
         }
     }
-
-    /// The common limits.
-    fn write_limits(&mut self, config: &SolverConfig) {
-        self.iparam[IPARAM_MAX_ITER] = c_int::try_from(config.max_iter).unwrap_or(c_int::MAX);
-        self.dparam[DPARAM_TOL] = config.tolerance;
-        self.dparam[DPARAM_TIME_BUDGET] = config.time_budget.map_or(0.0, |b| b.as_secs_f64());
-    }
 }
 
-/// The options `solver_options_create(id)` returns: for an id fc3d implements, its typed
-/// defaults (the core's `SolverConfig::new` of the id's preset, or the local solver's
-/// `LocalSolverOptions::new`) written into the slots, then the values Siconos sets in slots that
-/// carry no fc3d setting; for an id fc3d only names, Siconos' defaults as data.
+/// The options `solver_options_create(id)` returns: Siconos 4.4's defaults for every solver id
+/// of the friction headers (implemented or not: `fc3d_driver` rejects the others), and for
+/// fc3d's own one-contact ids the local solver's `LocalSolverOptions::new` written into the slots.
 pub(crate) fn defaults(id: c_int) -> CResult<Encoded> {
-    let mut e = if let Some(kind) = LocalSolverKind::from_siconos_id(id) {
-        local::write(&fc3d_core::LocalSolverOptions::new(kind))
-    } else if let Some(method) = fc3d_core::Method::preset(&id.to_string()) {
-        write_config(&SolverConfig::new(method))?
-    } else if siconos::has_defaults(id) {
-        Encoded::new(id)
-    } else {
-        return Err(CError::new(
-            FC3D_ERR_UNSUPPORTED_SOLVER,
-            format!(
-                "unknown fc3d solver id {id} ({})",
-                solver_name(id).to_string_lossy()
-            ),
-        ));
-    };
-    siconos::apply_defaults(&mut e);
-    Ok(e)
+    if let Some(e) = siconos::defaults(id) {
+        return Ok(e);
+    }
+    if let Some(kind) = LocalSolverKind::from_siconos_id(id) {
+        return Ok(local::write(&fc3d_core::LocalSolverOptions::new(kind)));
+    }
+    Err(CError::new(
+        FC3D_ERR_UNSUPPORTED_SOLVER,
+        format!(
+            "unknown solver id {id} ({}): not a solver of Siconos 4.4's friction headers nor of fc3d",
+            solver_name(id).to_string_lossy()
+        ),
+    ))
 }
 
 /// The slots of a configuration (and its internal solvers').
-pub(crate) fn write_config(config: &SolverConfig) -> CResult<Encoded> {
-    let mut e = match &config.method {
-        Method::Nsgs(o) => nsgs::write(o),
-        Method::Vi(o) => vi::write(o),
-        Method::Nsn(o) => nsn::write(o),
-        Method::Prox(o) => prox::write(o)?,
-        Method::Tresca(o) => fixed_point::write_tfp(o)?,
-        Method::Pfp(o) => fixed_point::write_pfp(o)?,
-        Method::Aclm(o) => fixed_point::write_aclm(o),
-        Method::Soclcp(o) => fixed_point::write_soclcp(o),
-        Method::Admm(o) => admm::write(o),
-    };
-    e.write_limits(config);
-    if let Method::Nsgs(_) = config.method {
-        nsgs::write_rescaling(config.rescaling, &mut e);
-    }
-    Ok(e)
-}
-
+#[cfg(test)]
 #[cfg(test)]
 mod tests;

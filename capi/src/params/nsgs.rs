@@ -4,10 +4,8 @@
 //! its seed, iparam[8] evaluation frequency, iparam[19] freezing; internal solver 0 is the local
 //! solver.
 
-use std::os::raw::c_int;
-
 use super::{
-    invalid, local, Encoded, Params, DPARAM_INTERNAL_ERROR_RATIO, IPARAM_ERROR_EVALUATION,
+    invalid, local, Params, DPARAM_INTERNAL_ERROR_RATIO, IPARAM_ERROR_EVALUATION,
     IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_RESCALING,
 };
 use crate::types::SolverOptions;
@@ -94,57 +92,4 @@ pub(super) fn read_rescaling(p: &Params<'_>) -> CResult<Rescaling> {
         1 => Ok(Rescaling::Scalar),
         other => Err(invalid(format!("rescaling (iparam[3]) = {other} is not 0 (none) or 1 (scalar); balancing (2-4) applies to the global formulation only"))),
     }
-}
-
-pub(super) fn write_rescaling(rescaling: Rescaling, e: &mut Encoded) {
-    e.iparam[IPARAM_RESCALING] = match rescaling {
-        Rescaling::None => 0,
-        Rescaling::Scalar => 1,
-    };
-}
-
-pub(super) fn write(n: &NsgsOptions) -> Encoded {
-    let mut e = Encoded::new(500);
-    e.iparam[IPARAM_ERROR_EVALUATION] = match n.error_evaluation {
-        ErrorEvaluation::Full => 0,
-        ErrorEvaluation::Light => 1,
-        ErrorEvaluation::LightWithFullFinal => 2,
-        ErrorEvaluation::DumontCriterion => FC3D_ERROR_EVALUATION_DUMONT,
-    };
-    e.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] = match n.local_tolerance {
-        LocalTolerance::Adaptive { ratio } => {
-            e.dparam[DPARAM_INTERNAL_ERROR_RATIO] = ratio;
-            0
-        }
-        LocalTolerance::Given => 1,
-        LocalTolerance::AdaptivePerContact { ratio } => {
-            e.dparam[DPARAM_INTERNAL_ERROR_RATIO] = ratio;
-            2
-        }
-    };
-    if let Some(omega) = n.relaxation {
-        e.iparam[IPARAM_RELAXATION] = 1;
-        e.dparam[DPARAM_RELAXATION_VALUE] = omega;
-    }
-    match n.order {
-        ContactOrder::Natural => {}
-        ContactOrder::ShuffledOnce { seed } | ContactOrder::ShuffledEachSweep { seed } => {
-            e.iparam[IPARAM_SHUFFLE] = if matches!(n.order, ContactOrder::ShuffledOnce { .. }) {
-                1
-            } else {
-                2
-            };
-            e.iparam[IPARAM_SHUFFLE_SEED] = seed as i64 as c_int;
-        }
-    }
-    // Siconos writes 0 for "every sweep".
-    if n.evaluation_frequency > 1 {
-        e.iparam[IPARAM_ERROR_EVALUATION_FREQUENCY] =
-            c_int::try_from(n.evaluation_frequency).unwrap_or(c_int::MAX);
-    }
-    e.iparam[IPARAM_FREEZING_CONTACT] = n
-        .freezing
-        .map_or(0, |k| c_int::try_from(k).unwrap_or(c_int::MAX));
-    e.internal.push(local::write(&n.local));
-    e
 }

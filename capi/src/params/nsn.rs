@@ -8,7 +8,7 @@
 
 use std::os::raw::c_int;
 
-use super::{invalid, Encoded, Params};
+use super::{invalid, Params};
 use crate::CResult;
 use fc3d_core::{NsnFormulation, NsnLineSearch, NsnOptions, RhoRule};
 
@@ -62,37 +62,4 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
     Ok(n)
-}
-
-pub(super) fn write(n: &NsnOptions) -> Encoded {
-    let mut e = Encoded::new(n.formulation.siconos_id());
-    // Siconos' default formulation code for 504 is the "generated" Alart-Curnier (2).
-    e.iparam[IPARAM_FORMULATION] = match n.formulation {
-        NsnFormulation::AlartCurnier => 2,
-        NsnFormulation::JeanMoreau => 3,
-        NsnFormulation::FischerBurmeister | NsnFormulation::NaturalMap => 0,
-    };
-    e.iparam[IPARAM_RHO_STRATEGY] = match n.rho_rule {
-        RhoRule::Constant(rho) => {
-            e.dparam[DPARAM_RHO] = rho;
-            0
-        }
-        RhoRule::SpectralNorm => 1,
-        RhoRule::SplitSpectralNormCond => 2,
-        RhoRule::SplitSpectralNorm => 3,
-        // Not a rule of Siconos' NSN: the nearest one it has.
-        RhoRule::Dumont(alpha) => {
-            e.dparam[DPARAM_RHO] = alpha;
-            0
-        }
-    };
-    e.iparam[IPARAM_LINESEARCH] = match n.line_search {
-        NsnLineSearch::None => -1,
-        NsnLineSearch::GoldsteinPrice => 0,
-        // The non-monotone search has no Siconos code; Armijo is its monotone version.
-        NsnLineSearch::Armijo | NsnLineSearch::NonMonotone => 1,
-    };
-    e.iparam[IPARAM_LINESEARCH_MAX_ITER] =
-        c_int::try_from(n.line_search_max_iter).unwrap_or(c_int::MAX);
-    e
 }

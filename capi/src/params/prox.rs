@@ -3,10 +3,10 @@
 //! tolerance is replaced by the proximal rule). Rejected: iparam[2] (internal error strategy
 //! other than error / 10), iparam[8] (relaxation), iparam[9] (other proximal strategies).
 
-use super::{config_from_node, write_config, Encoded, Params};
+use super::{config_from_node, Params};
 use crate::types::SolverOptions;
 use crate::{CError, CResult, FC3D_ERR_UNSUPPORTED_SOLVER};
-use fc3d_core::{Method, NsnFormulation, ProxInternal, ProxOptions, SolverConfig};
+use fc3d_core::{Method, NsnFormulation, ProxInternal, ProxOptions};
 
 const IPARAM_ERROR_STRATEGY: usize = 2;
 const IPARAM_RELAXATION: usize = 8;
@@ -63,21 +63,4 @@ pub(super) unsafe fn read(
             (inner.max_iter != inner.method.default_limits().1).then_some(inner.max_iter);
     }
     Ok(x)
-}
-
-pub(super) fn write(x: &ProxOptions) -> CResult<Encoded> {
-    let mut e = Encoded::new(502);
-    e.dparam[DPARAM_ALPHA] = x.alpha;
-    e.dparam[DPARAM_SIGMA] = x.sigma;
-    e.dparam[DPARAM_NU] = x.nu;
-    let internal = match x.internal {
-        ProxInternal::NsnAc(n) => SolverConfig::new(n),
-        ProxInternal::Nsgs(g) => SolverConfig::new(g),
-    };
-    let internal = match x.internal_max_iter {
-        Some(m) => internal.with_max_iter(m),
-        None => internal,
-    };
-    e.internal.push(write_config(&internal)?);
-    Ok(e)
 }

@@ -1,6 +1,7 @@
-//! The defaults `solver_options_create` returns, checked against Siconos 4.4's (read off the
-//! Debian build's `solver_options_create(id)`, kept here as data), and the round trip from the
-//! core's typed defaults to the slots and back.
+//! The defaults `solver_options_create` returns: Siconos 4.4's for its ids (the generated table;
+//! `scripts/siconos-options.sh` and the capi-tests `siconos_options` test compare them with the
+//! installed library), fc3d's own one-contact ids written from the core's defaults; and, read
+//! back, the core's default configuration of every id fc3d implements.
 
 use std::os::raw::c_int;
 
@@ -14,224 +15,8 @@ struct Reference {
     internal: &'static [c_int],
 }
 
-const SICONOS: &[Reference] = &[
-    Reference {
-        id: 500,
-        iparam: &[(0, 1000), (2, 1), (7, 2)],
-        dparam: &[(0, 1e-4), (2, 10.0)],
-        internal: &[565],
-    },
-    Reference {
-        id: 501,
-        iparam: &[(0, 1000), (2, 1), (7, 2)],
-        dparam: &[(0, 1e-4), (2, 10.0)],
-        internal: &[565],
-    },
-    Reference {
-        id: 502,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4), (2, 10.0), (3, 1e4), (4, 5.0), (5, 1.0)],
-        internal: &[504],
-    },
-    Reference {
-        id: 503,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4), (2, 10.0)],
-        internal: &[500],
-    },
-    Reference {
-        id: 504,
-        iparam: &[
-            (0, 200),
-            (3, 100000),
-            (5, 1),
-            (8, 1),
-            (9, 1),
-            (10, 2),
-            (12, 100),
-            (13, 1),
-            (18, -1),
-        ],
-        dparam: &[(0, 1e-3), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 505,
-        iparam: &[(0, 20000)],
-        dparam: &[(0, 1e-3), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 506,
-        iparam: &[(0, 20000), (7, 1)],
-        dparam: &[
-            (0, 1e-3),
-            (3, -1.0),
-            (4, 2.0 / 3.0),
-            (5, 1.5),
-            (6, 0.9),
-            (7, 0.3),
-        ],
-        internal: &[],
-    },
-    Reference {
-        id: 507,
-        iparam: &[(0, 20000), (7, 1)],
-        dparam: &[
-            (0, 1e-3),
-            (3, -1.0),
-            (4, 2.0 / 3.0),
-            (5, 1.5),
-            (6, 0.9),
-            (7, 0.3),
-        ],
-        internal: &[],
-    },
-    Reference {
-        id: 511,
-        iparam: &[(0, 20000)],
-        dparam: &[(0, 1e-3), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 512,
-        iparam: &[(0, 20000)],
-        dparam: &[(0, 1e-3), (3, -1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 513,
-        iparam: &[
-            (0, 200),
-            (1, 1),
-            (3, 100000),
-            (5, 1),
-            (8, 1),
-            (12, 100),
-            (13, 1),
-            (18, -1),
-        ],
-        dparam: &[(0, 1e-3), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 516,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4), (2, 10.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 517,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4), (8, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 520,
-        iparam: &[
-            (0, 1),
-            (1, 1),
-            (3, 100000),
-            (5, 1),
-            (8, 1),
-            (12, 100),
-            (13, 1),
-            (18, -1),
-        ],
-        dparam: &[(0, 1e-3), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 522,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4), (2, 10.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 523,
-        iparam: &[(0, 20000), (10, 2), (11, 1)],
-        dparam: &[(0, 1e-6), (3, 1.0), (4, 0.999), (5, 2.0), (6, 2.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 550,
-        iparam: &[(0, 10), (9, 2), (11, -1), (14, 1), (15, 1), (16, 10)],
-        dparam: &[(0, 1e-14), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 551,
-        iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)],
-        dparam: &[(0, 1e-14), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 565,
-        iparam: &[(0, 10), (9, 3), (12, 10), (14, 2), (15, 1), (16, 100)],
-        dparam: &[(0, 1e-14), (3, 1.0)],
-        internal: &[],
-    },
-    Reference {
-        id: 552,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 553,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 554,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 555,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 557,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 558,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    Reference {
-        id: 561,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-12)],
-        internal: &[],
-    },
-    Reference {
-        id: 562,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-12)],
-        internal: &[],
-    },
-    Reference {
-        id: 563,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-12)],
-        internal: &[],
-    },
-    Reference {
-        id: 564,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-14)],
-        internal: &[],
-    },
-    // fc3d's own one-contact solvers (ids Siconos does not use).
+/// fc3d's own one-contact solvers (ids Siconos does not use).
+const FC3D_OWN: &[Reference] = &[
     Reference {
         id: 570,
         iparam: &[(0, 1000), (9, 1)],
@@ -250,22 +35,10 @@ const SICONOS: &[Reference] = &[
         dparam: &[(0, 1e-14), (3, 1.0)],
         internal: &[],
     },
-    Reference {
-        id: 508,
-        iparam: &[(0, 20000)],
-        dparam: &[(0, 1e-3)],
-        internal: &[],
-    },
-    Reference {
-        id: 510,
-        iparam: &[(0, 1000)],
-        dparam: &[(0, 1e-4)],
-        internal: &[],
-    },
 ];
 
 fn reference(id: c_int) -> &'static Reference {
-    SICONOS
+    FC3D_OWN
         .iter()
         .find(|r| r.id == id)
         .expect("a reference row")
@@ -292,25 +65,81 @@ fn check_against_reference(e: &Encoded) {
 }
 
 #[test]
-fn defaults_are_siconos_slot_for_slot() {
-    for r in SICONOS {
+fn defaults_of_fc3d_own_ids_are_the_local_solvers() {
+    for r in FC3D_OWN {
         check_against_reference(&defaults(r.id).expect("defaults"));
+    }
+}
+
+/// Every id of Siconos' table is created as the table says, internal solvers included; an id
+/// of neither Siconos nor fc3d is refused.
+#[test]
+fn defaults_are_siconos_table() {
+    fn same(e: &Encoded, d: &siconos::Defaults) {
+        assert_eq!(e.id, d.id);
+        for k in 0..SIZE {
+            let i = d
+                .iparam
+                .iter()
+                .find(|(j, _)| *j == k)
+                .map_or(0, |(_, v)| *v);
+            let f = d.dparam.iter().find(|(j, _)| *j == k).map_or(
+                if k == DPARAM_RESIDU {
+                    f64::INFINITY
+                } else {
+                    0.0
+                },
+                |(_, v)| *v,
+            );
+            assert_eq!(e.iparam[k], i, "iparam[{k}] of {}", d.id);
+            assert_eq!(
+                e.dparam[k].to_bits(),
+                f.to_bits(),
+                "dparam[{k}] of {}",
+                d.id
+            );
+        }
+        assert_eq!(
+            e.internal.len(),
+            d.internal.len(),
+            "internal solvers of {}",
+            d.id
+        );
+        for (e, d) in e.internal.iter().zip(d.internal) {
+            same(e, d);
+        }
+    }
+    let mut n = 0;
+    for d in siconos_table::TABLE {
+        same(&defaults(d.id).expect("defaults"), d);
+        n += 1;
+    }
+    // Every id of Friction_cst.h's FRICTION_SOLVER, and the VI, SOCLCP and ConvexQP solvers.
+    assert_eq!(n, 83, "{n} ids");
+    for id in [500, 521, 523, 600, 615, 3000, 5000] {
+        assert!(siconos::ids().any(|i| i == id), "{id}");
     }
     assert!(defaults(4242).is_err());
 }
 
-/// What the C API reads from its own defaults is the core's default configuration of the id:
-/// one place holds the defaults. The one exception is Siconos' single Newton step of 520.
+/// What the C API reads from its own defaults (Siconos') is the core's default configuration of
+/// the id, except where the core's preset departs from Siconos 4.4, listed here: Siconos' single
+/// Newton step of 520, ACLMFP's 10000 inner SOCLCP sweeps (the core's preset: 1000) and ADMM's
+/// given initial rho (the core's preset: from the eigenvalues).
 #[test]
 fn defaults_read_back_as_the_cores() {
+    let mut failures = Vec::new();
     for method in Method::presets() {
         let id = method.siconos_id();
         if Method::preset(&id.to_string()) != Some(method) {
             continue; // a second preset of the same id (NSN-JM, PROX-NSGS): not a default
         }
         let mut expected = SolverConfig::new(method);
-        if id == 520 {
-            expected.max_iter = 1;
+        match &mut expected.method {
+            Method::Nsn(_) if id == 520 => expected.max_iter = 1,
+            Method::Aclm(a) => a.inner_max_iter = 10000,
+            Method::Admm(a) => a.initial_rho = fc3d_core::AdmmInitialRho::Given,
+            _ => {}
         }
         let o = create_options(id).expect("created");
         let read = unsafe { config_from_c(&*o) };
@@ -318,7 +147,11 @@ fn defaults_read_back_as_the_cores() {
             delete_contents(o);
             crate::alloc::c_free(o);
         }
-        assert_eq!(read.expect("valid defaults"), expected, "id {id}");
+        match read {
+            Ok(read) if read == expected => {}
+            Ok(read) => failures.push(format!("id {id}: read {read:?}\n  core {expected:?}")),
+            Err(e) => failures.push(format!("id {id}: {}", e.message)),
+        }
     }
     for kind in LocalSolverKind::ALL {
         let o = create_options(kind.siconos_id()).expect("created");
@@ -327,12 +160,14 @@ fn defaults_read_back_as_the_cores() {
             delete_contents(o);
             crate::alloc::c_free(o);
         }
-        assert_eq!(
-            read.expect("valid defaults"),
-            fc3d_core::LocalSolverOptions::new(kind),
-            "{kind:?}"
-        );
+        let expected = fc3d_core::LocalSolverOptions::new(kind);
+        match read {
+            Ok(read) if read == expected => {}
+            Ok(read) => failures.push(format!("{kind:?}: read {read:?}\n  core {expected:?}")),
+            Err(e) => failures.push(format!("{kind:?}: {}", e.message)),
+        }
     }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// A setting the core rejects is reported with the slot it came from.
@@ -353,5 +188,55 @@ fn rejected_settings_name_their_slot() {
     }
     for (setting, _) in SETTING_SLOTS {
         assert!(!setting.is_empty());
+    }
+}
+
+/// Siconos' internal solvers of PFP, ACLMFP and SOCLCP are read (PFP's tangent solver by its id,
+/// each part bounded by its own limit); others are refused with their name.
+#[test]
+fn siconos_internal_solvers_of_the_fixed_points() {
+    unsafe {
+        let o = create_options(522).expect("created");
+        let normal = *(*o).internalSolvers;
+        let tangent = *(*o).internalSolvers.add(1);
+        *(*normal).iparam = 7;
+        (*tangent).solverId = 1200;
+        *(*tangent).iparam = 9;
+        let Method::Pfp(pfp) = config_from_c(&*o).expect("read").method else {
+            panic!("not PFP")
+        };
+        assert_eq!(pfp.tangent, fc3d_core::TrescaInnerSolver::ProjectedGradient);
+        assert_eq!((pfp.normal_max_iter, pfp.inner_max_iter), (7, 9));
+        (*tangent).solverId = 1202;
+        let e = config_from_c(&*o).expect_err("VI EG tangent solver");
+        assert!(e.message.contains("1202 (CONVEXQP VI EG)"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+
+        let o = create_options(516).expect("created");
+        let soclcp = *(*o).internalSolvers;
+        *(*soclcp).iparam = 123;
+        let Method::Aclm(aclm) = config_from_c(&*o).expect("read").method else {
+            panic!("not ACLMFP")
+        };
+        assert_eq!(aclm.inner_max_iter, 123);
+        (*soclcp).solverId = 1107;
+        assert!(
+            config_from_c(&*o).is_ok(),
+            "SOCLCP VI EG as the inner solver"
+        );
+        (*soclcp).solverId = 1150;
+        let e = config_from_c(&*o).expect_err("a one-cone solver as the SOCLCP solver");
+        assert!(e.message.contains("1150"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+
+        let o = create_options(517).expect("created");
+        assert!(config_from_c(&*o).is_ok());
+        (**(*o).internalSolvers).solverId = 1150;
+        let e = config_from_c(&*o).expect_err("another one-cone solver");
+        assert!(e.message.contains("1150"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
     }
 }

@@ -6,7 +6,7 @@
 
 use std::os::raw::c_int;
 
-use super::{invalid, unsupported_solver, Encoded, Params, IPARAM_ERROR_EVALUATION};
+use super::{invalid, unsupported_solver, Params, IPARAM_ERROR_EVALUATION};
 use crate::CResult;
 use fc3d_core::{ErrorEvaluation, SelfAdaptiveStep, StepRatio, StepSize, ViOptions, ViSolver};
 
@@ -72,32 +72,4 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<ViOptions> {
     p.require(IPARAM_DECREASE_RHO, 0, "rho decrease rule")?;
     p.require(IPARAM_ACTIVATE_UPDATE, 0, "update inside the line search")?;
     Ok(v)
-}
-
-pub(super) fn write(v: &ViOptions) -> Encoded {
-    let mut e = Encoded::new(v.solver.siconos_id());
-    e.iparam[IPARAM_ERROR_EVALUATION] = match v.error_evaluation {
-        ErrorEvaluation::Full | ErrorEvaluation::DumontCriterion => 0,
-        ErrorEvaluation::LightWithFullFinal => 1,
-        ErrorEvaluation::Light => 2,
-    };
-    match v.step {
-        StepSize::Fixed(rho) => e.dparam[DPARAM_RHO] = rho,
-        StepSize::SelfAdaptive(s) => {
-            e.dparam[DPARAM_RHO] = -s.initial_rho;
-            e.iparam[IPARAM_LINESEARCH_METHOD] = match s.ratio {
-                StepRatio::Khobotov => 0,
-                StepRatio::SolodovTseng => 1,
-            };
-            e.dparam[DPARAM_LS_TAU] = s.nu;
-            e.dparam[DPARAM_LS_TAUINV] = s.increase;
-            e.dparam[DPARAM_LS_L] = s.l;
-            e.dparam[DPARAM_LS_LMIN] = s.l_min;
-            // Siconos writes 0 for its built-in number of trials.
-            if s.max_trials != SelfAdaptiveStep::default().max_trials {
-                e.iparam[IPARAM_LS_MAX_ITER] = c_int::try_from(s.max_trials).unwrap_or(c_int::MAX);
-            }
-        }
-    }
-    e
 }

@@ -26,8 +26,12 @@ use crate::solvers::tresca::TrescaInnerSolver;
 pub struct PfpOptions {
     /// Solver of the tangent (Tresca-on-disks) problem (default FP-VI-UPK).
     pub tangent: TrescaInnerSolver,
-    /// Maximum iterations of each inner solve, PGS sweeps or tangent iterations (default 1000).
+    /// Maximum iterations of each tangent solve (default 1000; Siconos' tangent internal solver,
+    /// `internalSolvers[1]`, iparam[0]).
     pub inner_max_iter: usize,
+    /// Maximum PGS sweeps of each normal solve (default 1000; Siconos' normal internal solver,
+    /// `internalSolvers[0]`, iparam[0]).
+    pub normal_max_iter: usize,
     /// Inner tolerance strategy (default adaptive with ratio 10, iparam[2] = 0, dparam[2] = 10).
     pub inner_tolerance: InnerTolerance,
 }
@@ -37,6 +41,7 @@ impl Default for PfpOptions {
         PfpOptions {
             tangent: TrescaInnerSolver::FixedPointViUpk,
             inner_max_iter: 1000,
+            normal_max_iter: 1000,
             inner_tolerance: InnerTolerance::Adaptive { ratio: 10.0 },
         }
     }
@@ -134,7 +139,7 @@ fn pfp(
             &work.rows,
             q,
             inner_tol,
-            options.inner_max_iter,
+            options.normal_max_iter,
             run.deadline(),
             r,
         );
