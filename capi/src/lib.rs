@@ -18,6 +18,7 @@
 
 pub mod types;
 
+mod alart_curnier;
 mod alloc;
 mod codes;
 mod driver;
@@ -25,10 +26,12 @@ mod errors;
 mod fclib;
 mod lmgc;
 mod matrix;
+mod measures;
 mod native;
 mod options;
 mod params;
 mod problem;
+mod solver_entries;
 mod stream;
 
 use std::os::raw::c_int;

@@ -287,11 +287,13 @@ pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delas
 // ---------------------------------------------------------------------------------------------
 // Building C matrices from core ones.
 
+/// Siconos' `NM_null` state: unknown storage, sizes -1, no storage. `destructible` must then be
+/// set to the matrix's own address (`own_destructible`) once it has one.
 fn null_matrix() -> NumericsMatrix {
     NumericsMatrix {
         storageType: NM_UNKNOWN,
-        size0: 0,
-        size1: 0,
+        size0: -1,
+        size1: -1,
         matrix0: null_mut(),
         matrix1: null_mut(),
         matrix2: null_mut(),
@@ -347,8 +349,16 @@ pub(crate) fn matrix_to_c(w: &Delassus<'_>) -> CResult<*mut NumericsMatrix> {
     }
     let out = out.into_raw();
     // SAFETY: out is a fresh allocation for one NumericsMatrix.
-    unsafe { out.write(m) };
+    unsafe {
+        out.write(m);
+        own_destructible(out);
+    }
     Ok(out)
+}
+
+/// Siconos' default: a matrix is its own "destructible" matrix (`NM_destructible` is true).
+pub(crate) unsafe fn own_destructible(m: *mut NumericsMatrix) {
+    (*m).destructible = m;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -390,5 +400,11 @@ pub(crate) unsafe fn nm_clear_impl(m: *mut NumericsMatrix) {
         c_free(mm.internalData);
         mm.internalData = null_mut();
     }
-    mm.destructible = null_mut();
+    // As Siconos' NM_clear: a matrix whose destructible copy is another matrix (made by
+    // Siconos' NM_preserve) releases that copy's storage too, then is its own again.
+    let other = mm.destructible;
+    mm.destructible = m;
+    if !other.is_null() && other != m && (*other).destructible == other {
+        nm_clear_impl(other);
+    }
 }

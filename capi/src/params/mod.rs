@@ -12,9 +12,11 @@ mod nsgs;
 mod nsn;
 mod prox;
 mod siconos;
+mod tolerance;
 mod vi;
 
 pub(crate) use siconos::{solver_name, solver_name_to_id};
+pub(crate) use tolerance::{internal_solver_tolerance, set_tolerance};
 
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;
