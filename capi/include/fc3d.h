@@ -303,10 +303,12 @@ void computeAlartCurnierSTDOld(double *R,
                                double *A,
                                double *B);
 
-// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`. As in Siconos, `A[0,1]`,
-// `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]` are not written. (On the boundary cases `R_N <
-// 0`, `R_N - rho_N u_N = 0` and `|R_T - rho_T u_T| < 1e-20` Siconos' branch choices differ from
-// the radius `mu (R_N)_+` used here.)
+// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`, and `R_N - rho_N u_N = 0`
+// counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]`
+// are not written. Two differences remain: for `R_N < 0` (outside the cone's half-space)
+// Siconos uses the negative radius `mu R_N` where fc3d, like Siconos' generated Jean-Moreau
+// function, uses 0; and Siconos takes `|R_T - rho_T u_T| < 1e-20` as sticking whatever the
+// radius.
 void computeAlartCurnierJeanMoreau(double *R,
                                    double *velocity,
                                    double mu,
@@ -937,18 +939,16 @@ void fc3d_nonsmooth_Newton_FischerBurmeister(struct FrictionContactProblem *prob
                                              int *info,
                                              struct SolverOptions *options);
 
-// Siconos' GAMS PATH entry (`SICONOS_FRICTION_3D_GAMS_PATH`, 514): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-// As `fc3d_driver` for options of id 514 (another id is refused with
-// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+// Siconos' GAMS entry for id 514: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 void fc3d_AVI_gams_path(struct FrictionContactProblem *problem,
                         double *reaction,
                         double *velocity,
                         int *info,
                         struct SolverOptions *options);
 
-// Siconos' GAMS PATHVI entry (`SICONOS_FRICTION_3D_GAMS_PATHVI`, 515): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-// As `fc3d_driver` for options of id 515 (another id is refused with
-// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+// Siconos' GAMS entry for id 515: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 void fc3d_AVI_gams_pathvi(struct FrictionContactProblem *problem,
                           double *reaction,
                           double *velocity,
@@ -973,18 +973,16 @@ void fc3d_SOCLCP(struct FrictionContactProblem *problem,
                  int *info,
                  struct SolverOptions *options);
 
-// Siconos' GAMS LCP PATH entry (`SICONOS_FRICTION_3D_GAMS_LCP_PATH`, 518): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-// As `fc3d_driver` for options of id 518 (another id is refused with
-// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+// Siconos' GAMS entry for id 518: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 void fc3d_lcp_gams_path(struct FrictionContactProblem *problem,
                         double *reaction,
                         double *velocity,
                         int *info,
                         struct SolverOptions *options);
 
-// Siconos' GAMS LCP PATHVI entry (`SICONOS_FRICTION_3D_GAMS_LCP_PATHVI`, 519): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-// As `fc3d_driver` for options of id 519 (another id is refused with
-// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+// Siconos' GAMS entry for id 519: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 void fc3d_lcp_gams_pathvi(struct FrictionContactProblem *problem,
                           double *reaction,
                           double *velocity,

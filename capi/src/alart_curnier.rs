@@ -25,7 +25,7 @@ enum Variant {
     /// `computeAlartCurnierSTDOld`: as Standard, but `R_N - rho_N u_N = 0` counts as active
     /// (`F_N = rho_N u_N`, `dF_N/du_N = rho_N`).
     StandardOld,
-    /// `computeAlartCurnierJeanMoreau`: radius `mu R_N`; Siconos leaves `A[0,1]`, `A[0,2]`,
+    /// `computeAlartCurnierJeanMoreau`: radius `mu (R_N)_+`, `R_N - rho_N u_N = 0` active; Siconos leaves `A[0,1]`, `A[0,2]`,
     /// `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]` untouched.
     JeanMoreau,
     /// `fc3d_AlartCurnierFunctionGenerated`: `rho_T1` and `rho_T2` apart, all entries written.
@@ -76,8 +76,14 @@ unsafe fn evaluate(
             row[2] *= rho[2];
         }
     }
-    if variant == Variant::StandardOld && r[0] - rho[0] * u[0] == 0.0 {
+    // Siconos' earlier function and its Jean-Moreau one take `R_N - rho_N u_N = 0` as active.
+    let active_at_zero = matches!(variant, Variant::StandardOld | Variant::JeanMoreau)
+        && r[0] - rho[0] * u[0] == 0.0;
+    let (mut du, mut dr) = (du, dr);
+    if active_at_zero {
         f[0] = rho[0] * u[0];
+        du[0][0] = rho[0];
+        dr[0][0] = 0.0;
     }
     if !F.is_null() {
         std::ptr::copy_nonoverlapping(f.as_ptr(), F, 3);
@@ -85,12 +91,6 @@ unsafe fn evaluate(
     let both = !A.is_null() && !B.is_null();
     match variant {
         Variant::Standard | Variant::StandardOld | Variant::Generated { .. } if both => {
-            let mut du = du;
-            let mut dr = dr;
-            if variant == Variant::StandardOld && r[0] - rho[0] * u[0] == 0.0 {
-                du[0] = [rho[0], 0.0, 0.0];
-                dr[0] = [0.0, 0.0, 0.0];
-            }
             write_all(A, &du);
             write_all(B, &dr);
         }
@@ -173,10 +173,12 @@ pub unsafe extern "C" fn computeAlartCurnierSTDOld(
     );
 }
 
-/// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`. As in Siconos, `A[0,1]`,
-/// `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]` are not written. (On the boundary cases `R_N <
-/// 0`, `R_N - rho_N u_N = 0` and `|R_T - rho_T u_T| < 1e-20` Siconos' branch choices differ from
-/// the radius `mu (R_N)_+` used here.)
+/// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`, and `R_N - rho_N u_N = 0`
+/// counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]`
+/// are not written. Two differences remain: for `R_N < 0` (outside the cone's half-space)
+/// Siconos uses the negative radius `mu R_N` where fc3d, like Siconos' generated Jean-Moreau
+/// function, uses 0; and Siconos takes `|R_T - rho_T u_T| < 1e-20` as sticking whatever the
+/// radius.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn computeAlartCurnierJeanMoreau(

@@ -3,8 +3,9 @@
 //!
 //! Siconos' `fc3d_driver` dispatches on `options->solverId` to one of these; a host may also call
 //! one directly with options made for its id. Here each entry runs `fc3d_driver`'s path for the
-//! ids it stands for, so an entry and the driver give the same answer; the ids fc3d does not solve
-//! (GAMS ones, ...) are refused by the driver with `FC3D_ERR_UNSUPPORTED_SOLVER` and a message.
+//! ids it stands for, so an entry and the driver give the same answer. The entries of what fc3d
+//! does not provide (the GAMS ones, the Tresca sub-solvers) refuse with
+//! `FC3D_ERR_UNSUPPORTED_SOLVER` and a message.
 
 #![allow(non_snake_case)]
 
@@ -269,9 +270,8 @@ pub unsafe extern "C" fn fc3d_nonsmooth_Newton_FischerBurmeister(
     );
 }
 
-/// Siconos' GAMS PATH entry (`SICONOS_FRICTION_3D_GAMS_PATH`, 514): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-/// As `fc3d_driver` for options of id 514 (another id is refused with
-/// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+/// Siconos' GAMS entry for id 514: it needs GAMS, a commercial solver fc3d does not ship.
+/// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_AVI_gams_path(
@@ -281,20 +281,12 @@ pub unsafe extern "C" fn fc3d_AVI_gams_path(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    solver_entry(
-        "fc3d_AVI_gams_path",
-        &[514],
-        problem,
-        reaction,
-        velocity,
-        info,
-        options,
-    );
+    let _ = (problem, reaction, velocity, options);
+    refuse_entry("fc3d_AVI_gams_path", GAMS, info);
 }
 
-/// Siconos' GAMS PATHVI entry (`SICONOS_FRICTION_3D_GAMS_PATHVI`, 515): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-/// As `fc3d_driver` for options of id 515 (another id is refused with
-/// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+/// Siconos' GAMS entry for id 515: it needs GAMS, a commercial solver fc3d does not ship.
+/// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_AVI_gams_pathvi(
@@ -304,15 +296,8 @@ pub unsafe extern "C" fn fc3d_AVI_gams_pathvi(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    solver_entry(
-        "fc3d_AVI_gams_pathvi",
-        &[515],
-        problem,
-        reaction,
-        velocity,
-        info,
-        options,
-    );
+    let _ = (problem, reaction, velocity, options);
+    refuse_entry("fc3d_AVI_gams_pathvi", GAMS, info);
 }
 
 /// Siconos' ACLM fixed point (`SICONOS_FRICTION_3D_ACLMFP`, 516).
@@ -361,9 +346,8 @@ pub unsafe extern "C" fn fc3d_SOCLCP(
     );
 }
 
-/// Siconos' GAMS LCP PATH entry (`SICONOS_FRICTION_3D_GAMS_LCP_PATH`, 518): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-/// As `fc3d_driver` for options of id 518 (another id is refused with
-/// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+/// Siconos' GAMS entry for id 518: it needs GAMS, a commercial solver fc3d does not ship.
+/// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_lcp_gams_path(
@@ -373,20 +357,12 @@ pub unsafe extern "C" fn fc3d_lcp_gams_path(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    solver_entry(
-        "fc3d_lcp_gams_path",
-        &[518],
-        problem,
-        reaction,
-        velocity,
-        info,
-        options,
-    );
+    let _ = (problem, reaction, velocity, options);
+    refuse_entry("fc3d_lcp_gams_path", GAMS, info);
 }
 
-/// Siconos' GAMS LCP PATHVI entry (`SICONOS_FRICTION_3D_GAMS_LCP_PATHVI`, 519): needs the commercial GAMS, refused with `FC3D_ERR_UNSUPPORTED_SOLVER`.
-/// As `fc3d_driver` for options of id 519 (another id is refused with
-/// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+/// Siconos' GAMS entry for id 519: it needs GAMS, a commercial solver fc3d does not ship.
+/// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn fc3d_lcp_gams_pathvi(
@@ -396,15 +372,8 @@ pub unsafe extern "C" fn fc3d_lcp_gams_pathvi(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    solver_entry(
-        "fc3d_lcp_gams_pathvi",
-        &[519],
-        problem,
-        reaction,
-        velocity,
-        info,
-        options,
-    );
+    let _ = (problem, reaction, velocity, options);
+    refuse_entry("fc3d_lcp_gams_pathvi", GAMS, info);
 }
 
 /// Siconos' natural-map nonsmooth Newton (`SICONOS_FRICTION_3D_NSN_NM`, 520).
@@ -525,16 +494,20 @@ pub unsafe extern "C" fn fc3d_unitary_enumerative(
 // Siconos' Tresca sub-solvers take the cylinder radii from `options->dWork` and solve a Tresca
 // problem, not FC(W, q, mu): fc3d has no Tresca problem, so both entries refuse.
 
-/// The refusal of a Tresca sub-solver entry, written to `*info`.
-unsafe fn tresca_entry(name: &str, info: *mut c_int) {
+const GAMS: &str = "needs GAMS, a commercial solver fc3d does not ship";
+const TRESCA: &str =
+    "solves Siconos' Tresca sub-problem (radii in options->dWork), which fc3d does not provide";
+
+/// The refusal of an entry fc3d does not provide, written to `*info`.
+unsafe fn refuse_entry(name: &str, reason: &str, info: *mut c_int) {
     let code = ffi_guard(
         name,
         |c| c,
         || -> CResult<c_int> {
             Err(CError::new(
-            FC3D_ERR_UNSUPPORTED_SOLVER,
-            format!("{name} solves Siconos' Tresca sub-problem (radii in options->dWork), which fc3d does not provide"),
-        ))
+                FC3D_ERR_UNSUPPORTED_SOLVER,
+                format!("{name} {reason}"),
+            ))
         },
     );
     if !info.is_null() {
@@ -555,7 +528,7 @@ pub unsafe extern "C" fn fc3d_VI_FixedPointProjection_Cylinder(
     options: *mut SolverOptions,
 ) {
     let _ = (problem, reaction, velocity, options);
-    tresca_entry("fc3d_VI_FixedPointProjection_Cylinder", info);
+    refuse_entry("fc3d_VI_FixedPointProjection_Cylinder", TRESCA, info);
 }
 
 /// Siconos' Tresca sub-solver entry for id 567 (cylinder radii in `options->dWork`). Not
@@ -571,7 +544,7 @@ pub unsafe extern "C" fn fc3d_ConvexQP_ProjectedGradient_Cylinder(
     options: *mut SolverOptions,
 ) {
     let _ = (problem, reaction, velocity, options);
-    tresca_entry("fc3d_ConvexQP_ProjectedGradient_Cylinder", info);
+    refuse_entry("fc3d_ConvexQP_ProjectedGradient_Cylinder", TRESCA, info);
 }
 
 /// Siconos' take-off test: when every `q_N >= -DBL_EPSILON`, `r = 0, u = q` solves the problem:

@@ -1,0 +1,285 @@
+/* The small Siconos functions fc3d reimplements, called side by side with the installed Siconos
+   4.4 in one process (each library opened with dlopen, RTLD_LOCAL) on the same inputs: every
+   output value, and every output slot a function leaves alone, must agree.
+   Usage: siconos_side_by_side <path of libfc3d.so> <path or name of libsiconos_numerics.so>
+   Compiled against fc3d's compat headers for the struct layouts (identical to Siconos'). */
+#include <dlfcn.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "FrictionContactProblem.h"
+#include "NumericsMatrix.h"
+#include "SolverOptions.h"
+
+typedef void (*ac_fn)(double*, double*, double, double*, double*, double*, double*);
+typedef void (*add_error_fn)(double*, double*, double, double*, double*);
+typedef int (*trivial_fn)(FrictionContactProblem*, double*, double*, SolverOptions*);
+typedef int (*error_velocity_fn)(FrictionContactProblem*, double*, double*, double, SolverOptions*, double*);
+typedef int (*tresca_error_fn)(FrictionContactProblem*, double*, double*, double, SolverOptions*, double, double*);
+typedef void (*tolerance_fn)(FrictionContactProblem*, SolverOptions*, SolverOptions*, double);
+
+static void* libs[2];
+static const char* lib_names[2] = {"fc3d", "Siconos"};
+static int failures = 0;
+
+static void* sym(int which, const char* name) {
+  void* f = dlsym(libs[which], name);
+  if (!f) {
+    fprintf(stderr, "%s: %s not found\n", lib_names[which], name);
+    exit(2);
+  }
+  return f;
+}
+
+static unsigned long long rng = 88172645463325252ULL;
+static double uniform(double a, double b) {
+  rng ^= rng << 13;
+  rng ^= rng >> 7;
+  rng ^= rng << 17;
+  return a + (b - a) * (double)(rng >> 11) / 9007199254740992.0;
+}
+
+/* Equal, or both NaN, or within a relative 1e-12 (the libraries may round differently). */
+static int same(double a, double b) {
+  if (isnan(a) || isnan(b)) return isnan(a) && isnan(b);
+  return fabs(a - b) <= 1e-12 * fmax(1.0, fmax(fabs(a), fabs(b)));
+}
+
+static void compare(const char* what, int k, const double* ours, const double* theirs, int n) {
+  for (int i = 0; i < n; i++)
+    if (!same(ours[i], theirs[i])) {
+      if (failures < 40)
+        fprintf(stderr, "%s, case %d, value %d: fc3d %.17g, Siconos %.17g\n", what, k, i, ours[i], theirs[i]);
+      failures++;
+    }
+}
+
+#define SENTINEL 12345.0
+
+/* `reaction_in_half_space`: R_N >= 0 only (Siconos' computeAlartCurnierJeanMoreau takes a negative
+   disk radius mu R_N when R_N < 0, where fc3d uses mu (R_N)_+: documented in fc3d.h). */
+static void check_alart_curnier(const char* name, int two_rhos, int reaction_in_half_space) {
+  ac_fn f[2] = {(ac_fn)sym(0, name), (ac_fn)sym(1, name)};
+  for (int k = 0; k < 20000; k++) {
+    double R[3], u[3], rho[3], mu = k % 7 == 0 ? 0.0 : uniform(0.05, 1.0);
+    for (int i = 0; i < 3; i++) {
+      R[i] = uniform(-1.0, 1.0);
+      u[i] = uniform(-1.0, 1.0);
+    }
+    if (reaction_in_half_space) R[0] = fabs(R[0]);
+    /* Some cases on the axis. */
+    if (k % 11 == 0) R[1] = R[2] = 0.0;
+    if (k % 13 == 0) u[1] = u[2] = 0.0;
+    rho[0] = uniform(0.1, 3.0);
+    rho[1] = uniform(0.1, 3.0);
+    rho[2] = two_rhos ? uniform(0.1, 3.0) : rho[1];
+    /* The boundaries: R_N - rho_N u_N = 0, and R_T - rho_T u_T = 0. */
+    if (k % 17 == 0) {
+      rho[0] = 1.0;
+      u[0] = R[0];
+    }
+    if (k % 19 == 0) {
+      rho[1] = rho[2] = 1.0;
+      u[1] = R[1];
+      u[2] = R[2];
+    }
+    /* The outputs of each library, [F | A | B], and which blocks are passed (all, or F alone). */
+    for (int mode = 0; mode < 2; mode++) {
+      double out[2][21];
+      for (int w = 0; w < 2; w++) {
+        for (int i = 0; i < 21; i++) out[w][i] = SENTINEL;
+        double Rc[3], uc[3], rhoc[3];
+        memcpy(Rc, R, sizeof R);
+        memcpy(uc, u, sizeof u);
+        memcpy(rhoc, rho, sizeof rho);
+        f[w](Rc, uc, mu, rhoc, out[w], mode == 0 ? out[w] + 3 : NULL, mode == 0 ? out[w] + 12 : NULL);
+      }
+      compare(name, 2 * k + mode, out[0], out[1], 21);
+    }
+  }
+}
+
+static void check_unitary_errors(void) {
+  add_error_fn coulomb[2] = {(add_error_fn)sym(0, "fc3d_unitary_compute_and_add_error"),
+                             (add_error_fn)sym(1, "fc3d_unitary_compute_and_add_error")};
+  add_error_fn tresca[2] = {(add_error_fn)sym(0, "fc3d_Tresca_unitary_compute_and_add_error"),
+                            (add_error_fn)sym(1, "fc3d_Tresca_unitary_compute_and_add_error")};
+  for (int k = 0; k < 20000; k++) {
+    double r[3], u[3], mu = k % 7 == 0 ? 0.0 : uniform(0.05, 1.0);
+    for (int i = 0; i < 3; i++) {
+      r[i] = uniform(-1.0, 1.0);
+      u[i] = uniform(-1.0, 1.0);
+    }
+    double out[2][4];
+    for (int w = 0; w < 2; w++) {
+      out[w][0] = 0.25; /* the running sum */
+      coulomb[w](r, u, mu, &out[w][0], &out[w][1]);
+    }
+    compare("fc3d_unitary_compute_and_add_error", k, out[0], out[1], 4);
+    /* Siconos' cylinder routine is the projection when z_N - w_N >= 0. */
+    if (r[0] - u[0] >= 0.0) {
+      for (int w = 0; w < 2; w++) {
+        out[w][0] = 0.25;
+        tresca[w](r, u, mu, &out[w][0], &out[w][1]);
+      }
+      compare("fc3d_Tresca_unitary_compute_and_add_error", k, out[0], out[1], 4);
+    }
+  }
+}
+
+/* A dense problem with nc contacts: W = B^T B + I, q and mu random. */
+typedef struct {
+  FrictionContactProblem p;
+  NumericsMatrix M;
+  double* W;
+  double* q;
+  double* mu;
+} Dense;
+
+static void dense_problem(Dense* d, int nc) {
+  int n = 3 * nc;
+  memset(d, 0, sizeof *d);
+  d->W = calloc((size_t)n * n, sizeof(double));
+  d->q = malloc(sizeof(double) * n);
+  d->mu = malloc(sizeof(double) * nc);
+  double* B = malloc(sizeof(double) * n * n);
+  for (int i = 0; i < n * n; i++) B[i] = uniform(-1.0, 1.0);
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < n; j++) {
+      double s = i == j ? 1.0 : 0.0;
+      for (int k = 0; k < n; k++) s += B[k + n * i] * B[k + n * j];
+      d->W[i + n * j] = s;
+    }
+  free(B);
+  for (int i = 0; i < n; i++) d->q[i] = uniform(-1.0, 1.0);
+  for (int c = 0; c < nc; c++) d->mu[c] = uniform(0.1, 0.9);
+  d->M.storageType = NM_DENSE;
+  d->M.size0 = d->M.size1 = n;
+  d->M.matrix0 = d->W;
+  d->M.destructible = &d->M;
+  d->p.dimension = 3;
+  d->p.numberOfContacts = nc;
+  d->p.M = &d->M;
+  d->p.q = d->q;
+  d->p.mu = d->mu;
+}
+
+static void check_problem_functions(void) {
+  trivial_fn trivial[2] = {(trivial_fn)sym(0, "fc3d_checkTrivialCase"), (trivial_fn)sym(1, "fc3d_checkTrivialCase")};
+  error_velocity_fn ev[2] = {(error_velocity_fn)sym(0, "fc3d_compute_error_velocity"),
+                             (error_velocity_fn)sym(1, "fc3d_compute_error_velocity")};
+  tresca_error_fn te[2] = {(tresca_error_fn)sym(0, "fc3d_Tresca_compute_error"),
+                           (tresca_error_fn)sym(1, "fc3d_Tresca_compute_error")};
+  tolerance_fn tol[2] = {(tolerance_fn)sym(0, "fc3d_set_internalsolver_tolerance"),
+                         (tolerance_fn)sym(1, "fc3d_set_internalsolver_tolerance")};
+  for (int k = 0; k < 200; k++) {
+    int nc = 1 + k % 5, n = 3 * nc;
+    Dense d;
+    dense_problem(&d, nc);
+    /* Take-off: every q_N >= 0 (half the cases), or not. */
+    if (k % 2 == 0)
+      for (int c = 0; c < nc; c++) d.q[3 * c] = fabs(d.q[3 * c]);
+    double out[2][1 + 2 * 15];
+    for (int w = 0; w < 2; w++) {
+      for (int i = 0; i < 1 + 2 * n; i++) out[w][i] = SENTINEL;
+      out[w][0] = trivial[w](&d.p, out[w] + 1, out[w] + 1 + n, NULL);
+    }
+    compare("fc3d_checkTrivialCase", k, out[0], out[1], 1 + 2 * n);
+
+    /* The error on velocities: w is the argument, z is overwritten with q + M w. */
+    double z[2][15], wv[15], e[2], info[2];
+    for (int i = 0; i < n; i++) wv[i] = uniform(-1.0, 1.0);
+    for (int w = 0; w < 2; w++) {
+      double wc[15];
+      memcpy(wc, wv, sizeof wc);
+      for (int i = 0; i < n; i++) z[w][i] = SENTINEL;
+      info[w] = ev[w](&d.p, z[w], wc, 1e-3, NULL, &e[w]);
+    }
+    compare("fc3d_compute_error_velocity z", k, z[0], z[1], n);
+    compare("fc3d_compute_error_velocity error", k, e, e + 1, 1);
+    compare("fc3d_compute_error_velocity info", k, info, info + 1, 1);
+
+    /* The Tresca error: radii in options->dWork. */
+    SolverOptions o;
+    memset(&o, 0, sizeof o);
+    double radii[5], zr[15], wt[2][15];
+    for (int c = 0; c < nc; c++) radii[c] = uniform(0.0, 0.5);
+    for (int i = 0; i < n; i++) zr[i] = uniform(0.0, 1.0);
+    o.dWork = radii;
+    o.dWorkSize = (size_t)nc;
+    for (int w = 0; w < 2; w++) {
+      for (int i = 0; i < n; i++) wt[w][i] = SENTINEL;
+      double zc[15];
+      memcpy(zc, zr, sizeof zc);
+      info[w] = te[w](&d.p, zc, wt[w], 1e-2, &o, k % 3 == 0 ? 0.0 : 2.5, &e[w]);
+    }
+    /* Siconos' cylinder routine is the projection when z_N - w_N >= 0: compare those cases. */
+    int projection = 1;
+    for (int c = 0; c < nc; c++)
+      if (zr[3 * c] - wt[1][3 * c] < 0.0) projection = 0;
+    compare("fc3d_Tresca_compute_error w", k, wt[0], wt[1], n);
+    if (projection) {
+      compare("fc3d_Tresca_compute_error error", k, e, e + 1, 1);
+      compare("fc3d_Tresca_compute_error info", k, info, info + 1, 1);
+    }
+
+    /* The internal solver's tolerance, for each strategy. */
+    int ip[20] = {0};
+    double dp[20] = {0}, inner_d[2][20];
+    int inner_i[2][20];
+    SolverOptions outer, inner[2];
+    memset(&outer, 0, sizeof outer);
+    outer.iSize = outer.dSize = 20;
+    outer.iparam = ip;
+    outer.dparam = dp;
+    ip[2] = k % 3; /* adaptive, given value, adaptive per contact */
+    dp[0] = uniform(1e-10, 1e-4);
+    dp[2] = uniform(1.0, 20.0);
+    double err = uniform(1e-8, 1.0);
+    for (int w = 0; w < 2; w++) {
+      memset(&inner[w], 0, sizeof inner[w]);
+      for (int i = 0; i < 20; i++) {
+        inner_d[w][i] = SENTINEL;
+        inner_i[w][i] = 7;
+      }
+      inner[w].iSize = inner[w].dSize = 20;
+      inner[w].iparam = inner_i[w];
+      inner[w].dparam = inner_d[w];
+      tol[w](&d.p, &outer, &inner[w], err);
+    }
+    compare("fc3d_set_internalsolver_tolerance", k, inner_d[0], inner_d[1], 20);
+    free(d.W);
+    free(d.q);
+    free(d.mu);
+  }
+}
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
+    return 2;
+  }
+  for (int w = 0; w < 2; w++) {
+    libs[w] = dlopen(argv[1 + w], RTLD_NOW | RTLD_LOCAL);
+    if (!libs[w]) {
+      fprintf(stderr, "dlopen %s: %s\n", argv[1 + w], dlerror());
+      return 2;
+    }
+  }
+  check_alart_curnier("computeAlartCurnierSTD", 0, 0);
+  check_alart_curnier("computeAlartCurnierSTDOld", 0, 0);
+  check_alart_curnier("computeAlartCurnierJeanMoreau", 0, 1);
+  check_alart_curnier("fc3d_AlartCurnierFunctionGenerated", 1, 0);
+  check_alart_curnier("fc3d_AlartCurnierJeanMoreauFunctionGenerated", 1, 0);
+  check_unitary_errors();
+  check_problem_functions();
+  if (failures) {
+    fprintf(stderr, "%d values differ\n", failures);
+    return 1;
+  }
+  printf("all values agree\n");
+  return 0;
+}

@@ -1,0 +1,189 @@
+/* Siconos' direct solver entries of fc3d_Solvers.h, called as a Siconos host calls them: each one
+ * gives fc3d_driver's answer for options of its id, refuses options of another id, and the ids
+ * fc3d does not provide (GAMS, the Tresca sub-solvers) end with FC3D_ERR_UNSUPPORTED_SOLVER and a
+ * message. Also fc3d_checkTrivialCase and fc3d_set_internalsolver_tolerance on a real problem. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "FrictionContactProblem.h"
+#include "Friction_cst.h"
+#include "NonSmoothDrivers.h"
+#include "SolverOptions.h"
+#include "fc3d_Solvers.h"
+#include "fc3d_compute_error.h"
+
+#define FAIL(...)                                                                  \
+  do {                                                                             \
+    fprintf(stderr, "%s:%d: ", __FILE__, __LINE__);                                \
+    fprintf(stderr, __VA_ARGS__);                                                  \
+    fprintf(stderr, " [last fc3d error: %s]\n", fc3d_last_error_message());        \
+    return 1;                                                                      \
+  } while (0)
+#define CHECK(cond, ...)            \
+  do {                              \
+    if (!(cond)) FAIL(__VA_ARGS__); \
+  } while (0)
+
+typedef void (*entry_fn)(FrictionContactProblem*, double*, double*, int*, SolverOptions*);
+
+/* Runs `entry` and fc3d_driver from r = 0 with fresh options of `id`: same info, iterations,
+ * reaction and velocity. */
+static int same_as_driver(FrictionContactProblem* p, const char* name, entry_fn entry, int id) {
+  int n = 3 * p->numberOfContacts;
+  double* r1 = calloc(n, sizeof(double));
+  double* u1 = calloc(n, sizeof(double));
+  double* r2 = calloc(n, sizeof(double));
+  double* u2 = calloc(n, sizeof(double));
+  SolverOptions* o1 = solver_options_create(id);
+  SolverOptions* o2 = solver_options_create(id);
+  CHECK(o1 && o2, "%s: options of id %d", name, id);
+  o1->iparam[0] = o2->iparam[0] = 200;
+  int info1 = -100;
+  entry(p, r1, u1, &info1, o1);
+  int info2 = fc3d_driver(p, r2, u2, o2);
+  CHECK(info1 == info2, "%s: info %d, fc3d_driver %d", name, info1, info2);
+  CHECK(info1 >= 0, "%s: refused (%d)", name, info1);
+  CHECK(o1->iparam[1] == o2->iparam[1], "%s: %d iterations, fc3d_driver %d", name, o1->iparam[1], o2->iparam[1]);
+  CHECK(memcmp(r1, r2, n * sizeof(double)) == 0 && memcmp(u1, u2, n * sizeof(double)) == 0,
+        "%s: another reaction or velocity than fc3d_driver's", name);
+  CHECK(o1->dparam[1] == o2->dparam[1], "%s: error %g, fc3d_driver %g", name, o1->dparam[1], o2->dparam[1]);
+  /* Options of another id are refused, nothing written. */
+  double r3[3] = {7, 7, 7};
+  SolverOptions* other = solver_options_create(id == SICONOS_FRICTION_3D_NSGS ? SICONOS_FRICTION_3D_DSFP
+                                                                              : SICONOS_FRICTION_3D_NSGS);
+  int info3 = 0;
+  double* r4 = malloc(n * sizeof(double));
+  for (int i = 0; i < n; i++) r4[i] = 7.0;
+  entry(p, r4, u2, &info3, other);
+  CHECK(info3 == FC3D_ERR_INVALID_OPTION && fc3d_last_error_code() == FC3D_ERR_INVALID_OPTION,
+        "%s with options of id %d: info %d", name, other->solverId, info3);
+  CHECK(strstr(fc3d_last_error_message(), name) != NULL, "%s: the message does not name it", name);
+  CHECK(r4[0] == 7.0 && r4[n - 1] == 7.0, "%s wrote the reaction while refusing", name);
+  (void)r3;
+  /* A NULL info: recorded, nothing else happens. */
+  entry(p, r1, u1, NULL, o1);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "%s with info NULL", name);
+  solver_options_delete(other);
+  solver_options_delete(o1);
+  solver_options_delete(o2);
+  free(r1);
+  free(u1);
+  free(r2);
+  free(u2);
+  free(r4);
+  return 0;
+}
+
+static int refused(FrictionContactProblem* p, const char* name, entry_fn entry, int id) {
+  int n = 3 * p->numberOfContacts;
+  double* r = calloc(n, sizeof(double));
+  double* u = calloc(n, sizeof(double));
+  r[0] = 5.0;
+  SolverOptions* o = solver_options_create(id);
+  int info = 0;
+  fc3d_clear_last_error();
+  entry(p, r, u, &info, o);
+  CHECK(info == FC3D_ERR_UNSUPPORTED_SOLVER && fc3d_last_error_code() == FC3D_ERR_UNSUPPORTED_SOLVER,
+        "%s: info %d", name, info);
+  CHECK(strlen(fc3d_last_error_message()) > 0, "%s: no message", name);
+  CHECK(r[0] == 5.0 && r[1] == 0.0, "%s wrote the reaction while refusing", name);
+  if (o) solver_options_delete(o);
+  free(r);
+  free(u);
+  return 0;
+}
+
+int capi_check_solver_entries(const char* data_dir) {
+  char path[4096];
+  snprintf(path, sizeof path, "%s/Capsules-i101-404.dat", data_dir);
+  FrictionContactProblem* p = frictionContact_new_from_filename(path);
+  CHECK(p != NULL, "reading %s", path);
+  struct {
+    const char* name;
+    entry_fn entry;
+    int id;
+  } solved[] = {
+      {"fc3d_nsgs", fc3d_nsgs, SICONOS_FRICTION_3D_NSGS},
+      {"fc3d_DeSaxceFixedPoint", fc3d_DeSaxceFixedPoint, SICONOS_FRICTION_3D_DSFP},
+      {"fc3d_fixedPointProjection", fc3d_fixedPointProjection, SICONOS_FRICTION_3D_FPP},
+      {"fc3d_ExtraGradient", fc3d_ExtraGradient, SICONOS_FRICTION_3D_EG},
+      {"fc3d_VI_FixedPointProjection", fc3d_VI_FixedPointProjection, SICONOS_FRICTION_3D_VI_FPP},
+      {"fc3d_VI_ExtraGradient", fc3d_VI_ExtraGradient, SICONOS_FRICTION_3D_VI_EG},
+      {"fc3d_nonsmooth_Newton_AlartCurnier", fc3d_nonsmooth_Newton_AlartCurnier, SICONOS_FRICTION_3D_NSN_AC},
+      {"fc3d_nonsmooth_Newton_FischerBurmeister", fc3d_nonsmooth_Newton_FischerBurmeister, SICONOS_FRICTION_3D_NSN_FB},
+      {"fc3d_nonsmooth_Newton_NaturalMap", fc3d_nonsmooth_Newton_NaturalMap, SICONOS_FRICTION_3D_NSN_NM},
+      {"fc3d_admm", fc3d_admm, SICONOS_FRICTION_3D_ADMM},
+      {"fc3d_proximal", fc3d_proximal, SICONOS_FRICTION_3D_PROX},
+      {"fc3d_TrescaFixedPoint", fc3d_TrescaFixedPoint, SICONOS_FRICTION_3D_TFP},
+      {"fc3d_Panagiotopoulos_FixedPoint", fc3d_Panagiotopoulos_FixedPoint, SICONOS_FRICTION_3D_PFP},
+      {"fc3d_SOCLCP", fc3d_SOCLCP, SICONOS_FRICTION_3D_SOCLCP},
+      {"fc3d_ACLMFixedPoint", fc3d_ACLMFixedPoint, SICONOS_FRICTION_3D_ACLMFP},
+  };
+  for (size_t k = 0; k < sizeof solved / sizeof solved[0]; k++)
+    if (same_as_driver(p, solved[k].name, solved[k].entry, solved[k].id)) return 1;
+  struct {
+    const char* name;
+    entry_fn entry;
+    int id;
+  } rejected[] = {
+      {"fc3d_AVI_gams_path", fc3d_AVI_gams_path, SICONOS_FRICTION_3D_GAMS_PATH},
+      {"fc3d_AVI_gams_pathvi", fc3d_AVI_gams_pathvi, SICONOS_FRICTION_3D_GAMS_PATHVI},
+      {"fc3d_lcp_gams_path", fc3d_lcp_gams_path, SICONOS_FRICTION_3D_GAMS_LCP_PATH},
+      {"fc3d_lcp_gams_pathvi", fc3d_lcp_gams_pathvi, SICONOS_FRICTION_3D_GAMS_LCP_PATHVI},
+      {"fc3d_VI_FixedPointProjection_Cylinder", fc3d_VI_FixedPointProjection_Cylinder, SICONOS_FRICTION_3D_VI_FPP_Cylinder},
+      {"fc3d_ConvexQP_ProjectedGradient_Cylinder", fc3d_ConvexQP_ProjectedGradient_Cylinder, SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER},
+  };
+  for (size_t k = 0; k < sizeof rejected / sizeof rejected[0]; k++)
+    if (refused(p, rejected[k].name, rejected[k].entry, rejected[k].id)) return 1;
+
+  /* fc3d_checkTrivialCase: Capsules has q_N < 0 somewhere: -1, nothing written. */
+  int n = 3 * p->numberOfContacts;
+  double* r = malloc(n * sizeof(double));
+  double* u = malloc(n * sizeof(double));
+  for (int i = 0; i < n; i++) r[i] = u[i] = 3.0;
+  int has_negative = 0;
+  for (int c = 0; c < p->numberOfContacts; c++) has_negative |= p->q[3 * c] < 0.0;
+  CHECK(has_negative, "the problem was expected to have a q_N < 0");
+  CHECK(fc3d_checkTrivialCase(p, u, r, NULL) == -1 && r[0] == 3.0 && u[0] == 3.0, "not a take-off");
+  /* With q_N >= 0 everywhere: r = 0, u = q, 0 returned. */
+  double* q_saved = malloc(n * sizeof(double));
+  memcpy(q_saved, p->q, n * sizeof(double));
+  for (int c = 0; c < p->numberOfContacts; c++) p->q[3 * c] = fabs(p->q[3 * c]);
+  CHECK(fc3d_checkTrivialCase(p, u, r, NULL) == 0, "take-off");
+  for (int i = 0; i < n; i++) CHECK(r[i] == 0.0 && u[i] == p->q[i], "take-off: r[%d] = %g, u = %g", i, r[i], u[i]);
+  /* ... and it is a solution: Siconos' error is 0. */
+  double err = 1.0;
+  CHECK(fc3d_compute_error(p, r, u, 1e-14, NULL, 1.0, &err) == 0 && err == 0.0, "take-off error %g", err);
+  memcpy(p->q, q_saved, n * sizeof(double));
+  CHECK(fc3d_checkTrivialCase(NULL, u, r, NULL) == FC3D_ERR_NULL_POINTER, "NULL problem");
+
+  /* fc3d_set_internalsolver_tolerance for the three strategies. */
+  SolverOptions* outer = solver_options_create(SICONOS_FRICTION_3D_TFP);
+  SolverOptions* inner = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  outer->dparam[0] = 1e-6;
+  outer->dparam[2] = 10.0;
+  double nc = p->numberOfContacts;
+  outer->iparam[2] = SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_ADAPTIVE;
+  fc3d_set_internalsolver_tolerance(p, outer, inner, 1e-2);
+  CHECK(inner->dparam[0] == fmax(1e-2 / 10.0, 1e-6 / nc), "adaptive: %g", inner->dparam[0]);
+  outer->iparam[2] = SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_ADAPTIVE_N_CONTACT;
+  fc3d_set_internalsolver_tolerance(p, outer, inner, 1e-2);
+  CHECK(inner->dparam[0] == 1e-2 / (10.0 * nc), "adaptive per contact: %g", inner->dparam[0]);
+  inner->dparam[0] = 0.125;
+  outer->iparam[2] = SICONOS_FRICTION_3D_INTERNAL_ERROR_STRATEGY_GIVEN_VALUE;
+  fc3d_set_internalsolver_tolerance(p, outer, inner, 1e-2);
+  CHECK(inner->dparam[0] == 0.125, "given value: %g", inner->dparam[0]);
+  outer->iparam[2] = 9;
+  fc3d_clear_last_error();
+  fc3d_set_internalsolver_tolerance(p, outer, inner, 1e-2);
+  CHECK(inner->dparam[0] == 0.125 && fc3d_last_error_code() == FC3D_ERR_INVALID_OPTION, "unknown strategy");
+  solver_options_delete(outer);
+  solver_options_delete(inner);
+  free(q_saved);
+  free(r);
+  free(u);
+  frictionContactProblem_free(p);
+  return 0;
+}
