@@ -13,6 +13,8 @@
 #include "SolverOptions.h"
 #include "fc3d_Solvers.h"
 #include "fc3d_compute_error.h"
+#include "fc3d_AlartCurnier_functions.h"
+#include "AlartCurnierGenerated.h"
 
 #define FAIL(...)                                                                  \
   do {                                                                             \
@@ -68,6 +70,9 @@ static int same_as_driver(FrictionContactProblem* p, const char* name, entry_fn 
   solver_options_delete(other);
   solver_options_delete(o1);
   solver_options_delete(o2);
+  free(other);
+  free(o1);
+  free(o2);
   free(r1);
   free(u1);
   free(r2);
@@ -89,9 +94,84 @@ static int refused(FrictionContactProblem* p, const char* name, entry_fn entry, 
         "%s: info %d", name, info);
   CHECK(strlen(fc3d_last_error_message()) > 0, "%s: no message", name);
   CHECK(r[0] == 5.0 && r[1] == 0.0, "%s wrote the reaction while refusing", name);
-  if (o) solver_options_delete(o);
+  if (o) {
+    solver_options_delete(o);
+    free(o);
+  }
   free(r);
   free(u);
+  return 0;
+}
+
+/* NULL where Siconos' functions need data: a code and a message, nothing written, no crash. */
+static int null_inputs(FrictionContactProblem* p) {
+  double R[3] = {1, 0.1, 0}, u[3] = {-1, 0.2, 0.1}, rho[3] = {1, 1, 1};
+  double F[3] = {9, 9, 9}, A[9], B[9];
+  for (int i = 0; i < 9; i++) A[i] = B[i] = 9;
+  fc3d_clear_last_error();
+  computeAlartCurnierSTD(NULL, u, 0.3, rho, F, A, B);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && F[0] == 9 && A[0] == 9, "AC with R NULL");
+  fc3d_clear_last_error();
+  computeAlartCurnierJeanMoreau(R, u, 0.3, NULL, F, A, B);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && F[0] == 9 && B[0] == 9, "JM with rho NULL");
+  fc3d_clear_last_error();
+  fc3d_AlartCurnierFunctionGenerated(R, NULL, 0.3, rho, F, A, B);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && F[0] == 9, "generated with velocity NULL");
+  fc3d_clear_last_error();
+  computeAlartCurnierSTD(R, u, 0.3, rho, NULL, A, B);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && A[0] == 9, "STD with F NULL");
+  /* The generated function computes A and B alone when F is NULL. */
+  fc3d_clear_last_error();
+  fc3d_AlartCurnierFunctionGenerated(R, u, 0.3, rho, NULL, A, B);
+  CHECK(fc3d_last_error_code() == FC3D_OK && A[0] != 9, "generated A and B alone");
+  /* F alone when A or B is NULL. */
+  computeAlartCurnierSTD(R, u, 0.3, rho, F, NULL, NULL);
+  CHECK(fc3d_last_error_code() == FC3D_OK && F[0] != 9, "STD F alone");
+
+  double e = 0.5, work[3] = {7, 7, 7};
+  fc3d_clear_last_error();
+  fc3d_unitary_compute_and_add_error(R, u, 0.3, NULL, work);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && work[0] == 7, "add_error with error NULL");
+  fc3d_Tresca_unitary_compute_and_add_error(R, u, 0.3, &e, NULL);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER && e == 0.5, "Tresca add_error with worktmp NULL");
+
+  int n = 3 * p->numberOfContacts;
+  double* z = calloc(n, sizeof(double));
+  double* w = calloc(n, sizeof(double));
+  e = -1.0;
+  CHECK(fc3d_compute_error_velocity(NULL, z, w, 1e-3, NULL, &e) == FC3D_ERR_NULL_POINTER && e == -1.0,
+        "error_velocity with problem NULL");
+  CHECK(fc3d_compute_error_velocity(p, NULL, w, 1e-3, NULL, &e) == FC3D_ERR_NULL_POINTER && e == -1.0,
+        "error_velocity with z NULL");
+  CHECK(fc3d_compute_error_velocity(p, z, w, 1e-3, NULL, NULL) == FC3D_ERR_NULL_POINTER, "error_velocity, error NULL");
+  /* The Tresca error needs the radii in options->dWork, one per contact. */
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  CHECK(fc3d_Tresca_compute_error(p, z, w, 1e-3, NULL, 1.0, &e) == FC3D_ERR_NULL_POINTER && e == -1.0,
+        "Tresca error with options NULL");
+  CHECK(fc3d_Tresca_compute_error(p, z, w, 1e-3, o, 1.0, &e) == FC3D_ERR_INVALID_OPTION && e == -1.0,
+        "Tresca error without radii");
+  double* radii = calloc(p->numberOfContacts, sizeof(double));
+  o->dWork = radii;
+  o->dWorkSize = (size_t)p->numberOfContacts;
+  /* At z = 0 with radii 0: w = q and the error is |(q_N)_-| (Capsules has q_N < 0). */
+  double expected = 0.0;
+  for (int c = 0; c < p->numberOfContacts; c++)
+    if (p->q[3 * c] < 0.0) expected += p->q[3 * c] * p->q[3 * c];
+  expected = sqrt(expected);
+  CHECK(fc3d_Tresca_compute_error(p, z, w, 1e-3, o, 1.0, &e) == 1 && fabs(e - expected) <= 1e-14 * expected &&
+            memcmp(w, p->q, n * sizeof(double)) == 0,
+        "Tresca error at z = 0: %g, expected %g", e, expected);
+  o->dWork = NULL;
+  o->dWorkSize = 0;
+  free(radii);
+  solver_options_delete(o);
+  free(o);
+  free(z);
+  free(w);
+
+  fc3d_clear_last_error();
+  fc3d_set_internalsolver_tolerance(p, NULL, NULL, 1e-2);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "set_internalsolver_tolerance with NULL options");
   return 0;
 }
 
@@ -181,6 +261,9 @@ int capi_check_solver_entries(const char* data_dir) {
   CHECK(inner->dparam[0] == 0.125 && fc3d_last_error_code() == FC3D_ERR_INVALID_OPTION, "unknown strategy");
   solver_options_delete(outer);
   solver_options_delete(inner);
+  free(outer);
+  free(inner);
+  if (null_inputs(p)) return 1;
   free(q_saved);
   free(r);
   free(u);

@@ -39,6 +39,8 @@ unsafe fn read3(p: *const c_double, what: &str) -> CResult<Vec3> {
     Ok([*p, *p.add(1), *p.add(2)])
 }
 
+// Siconos' seven arguments and the variant.
+#[allow(clippy::too_many_arguments)]
 unsafe fn evaluate(
     variant: Variant,
     R: *const c_double,

@@ -177,7 +177,7 @@ pub unsafe extern "C" fn fc3d_Tresca_compute_error(
             let zv = c_slice(z as *const c_double, n, "z")?;
             c_slice(w as *const c_double, n, "w")?;
             let o = &*options;
-            if (o.dWorkSize as usize) < p.n_contacts() {
+            if o.dWorkSize < p.n_contacts() {
                 return Err(CError::new(
                     super::FC3D_ERR_INVALID_OPTION,
                     format!(
