@@ -20,6 +20,8 @@ typedef int (*trivial_fn)(FrictionContactProblem*, double*, double*, SolverOptio
 typedef int (*error_velocity_fn)(FrictionContactProblem*, double*, double*, double, SolverOptions*, double*);
 typedef int (*tresca_error_fn)(FrictionContactProblem*, double*, double*, double, SolverOptions*, double, double*);
 typedef void (*tolerance_fn)(FrictionContactProblem*, SolverOptions*, SolverOptions*, double);
+typedef void (*statistics_fn)(FrictionContactProblem*, double*, double*, double, int);
+typedef void (*verbose_fn)(int);
 
 static void* libs[2];
 static const char* lib_names[2] = {"fc3d", "Siconos"};
@@ -257,6 +259,36 @@ static void check_problem_functions(void) {
   }
 }
 
+/* frictionContactProblem_compute_statistics prints one line per call to stdout: each library's
+   line for the same input must be the same (the Rust test checks that every line printed comes
+   in pairs). */
+static void check_statistics(void) {
+  statistics_fn st[2] = {(statistics_fn)sym(0, "frictionContactProblem_compute_statistics"),
+                         (statistics_fn)sym(1, "frictionContactProblem_compute_statistics")};
+  verbose_fn set_verbose[2] = {(verbose_fn)sym(0, "numerics_set_verbose"), (verbose_fn)sym(1, "numerics_set_verbose")};
+  for (int w = 0; w < 2; w++) set_verbose[w](1);
+  for (int k = 0; k < 50; k++) {
+    Dense d;
+    int nc = 1 + k % 9;
+    dense_problem(&d, nc);
+    double r[27], u[27];
+    for (int i = 0; i < 3 * nc; i++) {
+      r[i] = (k % 3 == 0) ? uniform(-1e-6, 1e-6) : uniform(-1.0, 1.0);
+      u[i] = uniform(-1.0, 1.0);
+    }
+    for (int w = 0; w < 2; w++) {
+      st[w](&d.p, r, u, 1e-7, 1);
+      fflush(stdout);
+    }
+    /* do_print above the verbosity: nothing printed. */
+    for (int w = 0; w < 2; w++) st[w](&d.p, r, u, 1e-7, 2);
+    free(d.W);
+    free(d.q);
+    free(d.mu);
+  }
+  for (int w = 0; w < 2; w++) set_verbose[w](0);
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
@@ -276,10 +308,11 @@ int main(int argc, char** argv) {
   check_alart_curnier("fc3d_AlartCurnierJeanMoreauFunctionGenerated", 1, 0);
   check_unitary_errors();
   check_problem_functions();
+  check_statistics();
   if (failures) {
     fprintf(stderr, "%d values differ\n", failures);
     return 1;
   }
-  printf("all values agree\n");
+  fprintf(stderr, "all values agree\n");
   return 0;
 }

@@ -63,4 +63,19 @@ fn small_functions_agree_with_siconos() {
         String::from_utf8_lossy(&run.stdout),
         String::from_utf8_lossy(&run.stderr)
     );
+    // frictionContactProblem_compute_statistics: both libraries print the same line for each of
+    // the 50 inputs (and nothing when do_print is above the verbosity).
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    let lines: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains("FC3D - STAT"))
+        .collect();
+    assert_eq!(lines.len(), 100, "{stdout}");
+    let mut counts = std::collections::BTreeMap::new();
+    for l in &lines {
+        *counts.entry(*l).or_insert(0) += 1;
+    }
+    for (line, count) in counts {
+        assert!(count % 2 == 0, "printed by one library only: {line}");
+    }
 }

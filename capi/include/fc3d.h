@@ -622,6 +622,18 @@ int fc3d_Tresca_compute_error(struct FrictionContactProblem *problem,
                               double norm,
                               double *error);
 
+// Siconos' contact statistics: with `tol`, counts the contacts that take off (`u_N > tol`;
+// "ambiguous" when also `|r_N| > tol`), the closed ones (`r_N > tol`; ambiguous when also
+// `|u_N| > tol`), and among the closed ones those sticking (`|r_T|^2 < mu^2 r_N^2`) or sliding.
+// Prints them on one line to stdout, in Siconos' words, when the verbosity
+// (`numerics_set_verbose`) is at least `do_print`; nothing else is written. Invalid input:
+// nothing printed, the reason in `fc3d_last_error_message`.
+void frictionContactProblem_compute_statistics(struct FrictionContactProblem *problem,
+                                               double *reaction,
+                                               double *velocity,
+                                               double tol,
+                                               int do_print);
+
 // The library's version, e.g. "0.2.0" (a static string, do not free).
 const char *fc3d_version(void);
 

@@ -206,3 +206,68 @@ pub unsafe extern "C" fn fc3d_Tresca_compute_error(
         },
     )
 }
+
+/// Siconos' contact statistics: with `tol`, counts the contacts that take off (`u_N > tol`;
+/// "ambiguous" when also `|r_N| > tol`), the closed ones (`r_N > tol`; ambiguous when also
+/// `|u_N| > tol`), and among the closed ones those sticking (`|r_T|^2 < mu^2 r_N^2`) or sliding.
+/// Prints them on one line to stdout, in Siconos' words, when the verbosity
+/// (`numerics_set_verbose`) is at least `do_print`; nothing else is written. Invalid input:
+/// nothing printed, the reason in `fc3d_last_error_message`.
+#[cfg(feature = "siconos-abi")]
+#[no_mangle]
+pub unsafe extern "C" fn frictionContactProblem_compute_statistics(
+    problem: *mut FrictionContactProblem,
+    reaction: *mut c_double,
+    velocity: *mut c_double,
+    tol: c_double,
+    do_print: c_int,
+) {
+    ffi_guard(
+        "frictionContactProblem_compute_statistics",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let nc = usize::try_from((*problem).numberOfContacts).map_err(|_| {
+                CError::new(
+                    super::FC3D_ERR_INVALID_SIZE,
+                    format!("numberOfContacts = {}", (*problem).numberOfContacts),
+                )
+            })?;
+            let n = nc.checked_mul(3).ok_or_else(|| {
+                CError::new(super::FC3D_ERR_INVALID_SIZE, "3 numberOfContacts overflows")
+            })?;
+            let mu = c_slice((*problem).mu as *const c_double, nc, "problem->mu")?;
+            let r = c_slice(reaction as *const c_double, n, "reaction")?;
+            let u = c_slice(velocity as *const c_double, n, "velocity")?;
+            let (mut take_off, mut closed, mut sticking, mut sliding) = (0, 0, 0, 0);
+            let (mut ambiguous_take_off, mut ambiguous_closed) = (0, 0);
+            for c in 0..nc {
+                let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
+                if uc[0] > tol {
+                    take_off += 1;
+                    if rc[0].abs() > tol {
+                        ambiguous_take_off += 1;
+                    }
+                } else if rc[0] > tol {
+                    closed += 1;
+                    if uc[0].abs() > tol {
+                        ambiguous_closed += 1;
+                    }
+                    if rc[1] * rc[1] + rc[2] * rc[2] - mu[c] * mu[c] * rc[0] * rc[0] < 0.0 {
+                        sticking += 1;
+                    } else {
+                        sliding += 1;
+                    }
+                }
+            }
+            if super::verbose() >= do_print {
+                println!(
+                    "[Numerics] ---- FC3D - STAT  - Number of contact = {nc}\t,  take off = {take_off}\t, closed = {closed}\t, sliding = {sliding}\t,sticking = {sticking}\t, ambiguous take off = {ambiguous_take_off}\t, ambiguous closed = {ambiguous_closed}"
+                );
+            }
+            Ok(())
+        },
+    )
+}
