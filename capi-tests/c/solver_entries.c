@@ -1,7 +1,8 @@
 /* Siconos' direct solver entries of fc3d_Solvers.h, called as a Siconos host calls them: each one
  * gives fc3d_driver's answer for options of its id, refuses options of another id, and the ids
  * fc3d does not provide (GAMS, the Tresca sub-solvers) end with FC3D_ERR_UNSUPPORTED_SOLVER and a
- * message. Also fc3d_checkTrivialCase and fc3d_set_internalsolver_tolerance on a real problem. */
+ * message. Also fc3d_checkTrivialCase and fc3d_set_internalsolver_tolerance on a real problem, and
+ * frictionContact_copy / frictionContact_rescaling in the three storages. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,6 +13,8 @@
 #include "NonSmoothDrivers.h"
 #include "SolverOptions.h"
 #include "fc3d_Solvers.h"
+#include "NumericsMatrix.h"
+#include "SparseBlockMatrix.h"
 #include "fc3d_compute_error.h"
 #include "fc3d_AlartCurnier_functions.h"
 #include "AlartCurnierGenerated.h"
@@ -268,5 +271,115 @@ int capi_check_solver_entries(const char* data_dir) {
   free(r);
   free(u);
   frictionContactProblem_free(p);
+  return 0;
+}
+
+/* Every entry of M (n x n) times `factor` equals the entry of C. */
+static int same_entries(NumericsMatrix* M, NumericsMatrix* C, double factor, const char* what) {
+  for (int i = 0; i < M->size0; i++)
+    for (int j = 0; j < M->size1; j++) {
+      double a = NM_get_value(M, i, j), b = NM_get_value(C, i, j);
+      CHECK(a * factor == b, "%s: entry (%d, %d) %g, expected %g", what, i, j, b, a * factor);
+    }
+  return 0;
+}
+
+/* frictionContact_copy keeps the storage and its layout, shares nothing; frictionContact_rescaling
+ * scales M by alpha gamma^2 and q by alpha gamma, a sparse M ending in CSC form. */
+static int copy_and_rescale(FrictionContactProblem* p, const char* what) {
+  int n = 3 * p->numberOfContacts;
+  FrictionContactProblem* c = frictionContact_copy(p);
+  CHECK(c != NULL, "%s: copy", what);
+  CHECK(c->M != p->M && c->q != p->q && c->mu != p->mu, "%s: the copy shares arrays", what);
+  CHECK(c->dimension == p->dimension && c->numberOfContacts == p->numberOfContacts, "%s: sizes", what);
+  CHECK(c->M->storageType == p->M->storageType && c->M->size0 == p->M->size0 && c->M->size1 == p->M->size1,
+        "%s: storage %d, expected %d", what, c->M->storageType, p->M->storageType);
+  CHECK(memcmp(c->q, p->q, n * sizeof(double)) == 0, "%s: q", what);
+  CHECK(memcmp(c->mu, p->mu, p->numberOfContacts * sizeof(double)) == 0, "%s: mu", what);
+  if (same_entries(p->M, c->M, 1.0, what)) return 1;
+  switch (p->M->storageType) {
+    case NM_DENSE:
+      CHECK(c->M->matrix0 != p->M->matrix0, "%s: shared matrix0", what);
+      break;
+    case NM_SPARSE_BLOCK: {
+      SparseBlockStructuredMatrix *a = p->M->matrix1, *b = c->M->matrix1;
+      CHECK(a != b && a->nbblocks == b->nbblocks && a->filled1 == b->filled1 && a->filled2 == b->filled2,
+            "%s: SBM counts", what);
+      CHECK(memcmp(a->index1_data, b->index1_data, a->filled1 * sizeof(size_t)) == 0 &&
+                memcmp(a->index2_data, b->index2_data, a->filled2 * sizeof(size_t)) == 0,
+            "%s: SBM index arrays", what);
+      for (unsigned k = 0; k < a->nbblocks; k++)
+        CHECK(a->block[k] != b->block[k] && memcmp(a->block[k], b->block[k], 9 * sizeof(double)) == 0,
+              "%s: SBM block %u", what, k);
+      break;
+    }
+    default:
+      CHECK(c->M->matrix2 != p->M->matrix2 && c->M->matrix2->origin == p->M->matrix2->origin,
+            "%s: sparse origin %d", what, c->M->matrix2->origin);
+  }
+  /* The copy solves as the original. */
+  double* r1 = calloc(n, sizeof(double));
+  double* u1 = calloc(n, sizeof(double));
+  double* r2 = calloc(n, sizeof(double));
+  double* u2 = calloc(n, sizeof(double));
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  o->dparam[0] = 1e-8;
+  o->iparam[0] = 100000;
+  int i1 = fc3d_driver(p, r1, u1, o), i2 = fc3d_driver(c, r2, u2, o);
+  CHECK(i1 == i2 && memcmp(r1, r2, n * sizeof(double)) == 0, "%s: the copy solves differently (%d, %d)", what, i1, i2);
+  CHECK(i1 == 0, "%s: not solved to 1e-8 (info %d, error %g)", what, i1, o->dparam[1]);
+
+  /* Rescaling the copy: M * alpha gamma^2, q * alpha gamma; the original untouched. */
+  fc3d_clear_last_error();
+  frictionContact_rescaling(c, 2.0, 4.0);
+  CHECK(fc3d_last_error_code() == FC3D_OK, "%s: rescaling", what);
+  if (same_entries(p->M, c->M, 32.0, what)) return 1;
+  for (int i = 0; i < n; i++) CHECK(c->q[i] == 8.0 * p->q[i], "%s: q[%d] not rescaled", what, i);
+  if (p->M->storageType == NM_SPARSE) {
+    CHECK(c->M->matrix2->origin == NSM_CSC && c->M->matrix2->csc && !c->M->matrix2->triplet,
+          "%s: a rescaled sparse matrix is in CSC form", what);
+  }
+  /* With W' = alpha gamma^2 W and q' = alpha gamma q, r / gamma solves the rescaled problem
+   * (u' = alpha gamma u; the cones are scale-invariant): its error there is small too (not the
+   * same: the natural map weighs r and u alike, and they scale apart). */
+  double err = 1.0;
+  for (int i = 0; i < n; i++) r2[i] = r1[i] / 4.0;
+  fc3d_compute_error(c, r2, u2, 1e-8, NULL, 1.0, &err);
+  CHECK(err <= 1e-6, "%s: r / gamma has error %g on the rescaled problem", what, err);
+  /* A non-finite factor is refused, nothing changed. */
+  double q0 = c->q[0];
+  frictionContact_rescaling(c, NAN, 1.0);
+  CHECK(fc3d_last_error_code() == FC3D_ERR_NON_FINITE && c->q[0] == q0, "%s: NaN alpha", what);
+  solver_options_delete(o);
+  free(o);
+  free(r1);
+  free(u1);
+  free(r2);
+  free(u2);
+  frictionContactProblem_free(c);
+  return 0;
+}
+
+int capi_check_problem_copy(const char* data_dir) {
+  char path[4096];
+  const char* files[] = {"FC3D_Example1.dat", "FC3D_Example1_SBM.dat", "NESpheres_10_1.dat"};
+  for (int f = 0; f < 3; f++) {
+    snprintf(path, sizeof path, "%s/%s", data_dir, files[f]);
+    FrictionContactProblem* p = frictionContact_new_from_filename(path);
+    CHECK(p != NULL, "reading %s", path);
+    if (copy_and_rescale(p, files[f])) return 1;
+    /* The same problem with a sparse (triplet) M. */
+    NumericsMatrix* sparse = NM_new();
+    fc3d_clear_last_error();
+    NM_copy_to_sparse(p->M, sparse, 0.0);
+    CHECK(fc3d_last_error_code() == FC3D_OK && sparse->storageType == NM_SPARSE, "sparse copy");
+    NumericsMatrix* dense_M = p->M;
+    p->M = sparse;
+    if (copy_and_rescale(p, "sparse")) return 1;
+    p->M = dense_M;
+    NM_free(sparse);
+    frictionContactProblem_free(p);
+  }
+  CHECK(frictionContact_copy(NULL) == NULL && fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "copy of NULL");
   return 0;
 }

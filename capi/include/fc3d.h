@@ -812,6 +812,20 @@ int solver_options_name_to_id(const char *pName);
 // `fc3d_last_error_message`) for a tree `solver_options_copy` refuses.
 void solver_options_print(struct SolverOptions *options);
 
+// Siconos' deep copy of a problem: a new problem with the same dimension and contacts, `M`
+// copied in its storage and layout (`NM_copy`: the dense values, the sparse-block structure and
+// blocks, or the sparse origin form), `q` and `mu` copied. The source is checked first as the
+// solvers check it; NULL and the reason in `fc3d_last_error_message` when it is refused.
+// Release with `frictionContactProblem_free`.
+struct FrictionContactProblem *frictionContact_copy(struct FrictionContactProblem *problem);
+
+// Siconos' rescaling of a problem in place: `M <- alpha gamma^2 M` (as Siconos' `NM_scal`: a
+// sparse M is scaled in its CSC form, which becomes its origin, the other forms released) and
+// `q <- alpha gamma q`. The problem is checked first as the solvers check it, and a non-finite
+// `alpha` or `gamma` is refused; nothing is changed then (the reason in
+// `fc3d_last_error_message`).
+void frictionContact_rescaling(struct FrictionContactProblem *problem, double alpha, double gamma);
+
 // An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
 struct FrictionContactProblem *frictionContactProblem_new(void);
 

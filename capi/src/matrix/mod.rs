@@ -408,3 +408,86 @@ pub(crate) unsafe fn nm_clear_impl(m: *mut NumericsMatrix) {
         nm_clear_impl(other);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Copying.
+
+/// A deep C-allocated copy of a host NumericsMatrix in the same storage and layout, as Siconos'
+/// `NM_copy` into a new matrix: the dense values, the sparse-block structure with its blocks, or
+/// the sparse origin form (the other forms and the factorisation caches are not copied; a
+/// sparse copy's `nzmax` is its entry count). Checked first as the solvers check it. Nothing is
+/// left allocated on failure.
+pub(crate) unsafe fn nm_duplicate(m: &NumericsMatrix) -> CResult<*mut NumericsMatrix> {
+    delassus_from_c(m)?;
+    let (rows, cols) = matrix_dims(m)?;
+    let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
+    let mut copy = null_matrix();
+    copy.storageType = m.storageType;
+    copy.size0 = m.size0;
+    copy.size1 = m.size1;
+    copy.version = m.version;
+    match m.storageType {
+        NM_DENSE => {
+            let values = c_slice(m.matrix0 as *const c_double, rows * cols, "matrix0")?;
+            copy.matrix0 = CBuf::copy(values, "dense matrix")?.into_raw();
+        }
+        NM_SPARSE_BLOCK => copy.matrix1 = sbm::sbm_duplicate(&*m.matrix1)?,
+        _ => {
+            let s = &*m.matrix2;
+            let (cs, kind) = sparse_source(s)?;
+            let nsm = CBuf::<NumericsSparseMatrix>::zeroed(1, "sparse storage")?;
+            let form = csparse::cs_duplicate(cs, kind, rows, cols)?;
+            let mut v = empty_nsm();
+            v.origin = kind;
+            v.versions = s.versions;
+            match kind {
+                NSM_TRIPLET => v.triplet = form,
+                NSM_CSR => v.csr = form,
+                _ => v.csc = form,
+            }
+            let nsm = nsm.into_raw();
+            nsm.write(v);
+            copy.matrix2 = nsm;
+        }
+    }
+    let out = out.into_raw();
+    out.write(copy);
+    own_destructible(out);
+    Ok(out)
+}
+
+/// Scales a host NumericsMatrix in place by `factor`, as Siconos' `NM_scal`: the dense values or
+/// every block, the version raised past the matrix's newest; a sparse matrix is scaled in its CSC
+/// form, which becomes the origin (`csparse::nsm_scale_to_csc`). The matrix is checked first as
+/// the solvers check it; nothing is changed on failure.
+pub(crate) unsafe fn nm_scale_in_place(m: &mut NumericsMatrix, factor: f64) -> CResult<()> {
+    delassus_from_c(m)?;
+    let (rows, cols) = matrix_dims(m)?;
+    match m.storageType {
+        NM_DENSE => {
+            if rows * cols > 0 {
+                for v in std::slice::from_raw_parts_mut(m.matrix0, rows * cols) {
+                    *v *= factor;
+                }
+            }
+            m.version.number = m.version.number.saturating_add(1);
+        }
+        NM_SPARSE_BLOCK => {
+            let s = &mut *m.matrix1;
+            // Checked above: nbblocks 3x3 blocks behind non-NULL pointers.
+            let ptrs = c_slice(
+                s.block as *const *mut c_double,
+                s.nbblocks as usize,
+                "SBM block array",
+            )?;
+            for &b in ptrs {
+                for v in std::slice::from_raw_parts_mut(b, 9) {
+                    *v *= factor;
+                }
+            }
+            s.version.number = s.version.number.saturating_add(1);
+        }
+        _ => csparse::nsm_scale_to_csc(&mut *m.matrix2, rows, cols, factor)?,
+    }
+    Ok(())
+}

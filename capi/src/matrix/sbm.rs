@@ -582,3 +582,64 @@ pub unsafe extern "C" fn SBM_free_from_SBCM(M: *mut SparseBlockStructuredMatrix)
         },
     )
 }
+
+/// A deep C-allocated copy of a host SBM that `block_sparse_from_sbm` accepted (3x3 blocks), as
+/// Siconos' `SBM_copy` with blocks: the same counts, sizes, `filled1`/`filled2` entries of the
+/// index arrays and block order, every block copied, `diagonal_blocks` (one entry per block
+/// row) when the source has one, the version. Nothing is left allocated on failure.
+pub(super) unsafe fn sbm_duplicate(
+    s: &SparseBlockStructuredMatrix,
+) -> CResult<*mut SparseBlockStructuredMatrix> {
+    let (nbr, nbc, nb) = (
+        s.blocknumber0 as usize,
+        s.blocknumber1 as usize,
+        s.nbblocks as usize,
+    );
+    let copy = |p: *const c_uint, n: usize, what: &str| -> CResult<CBuf<c_uint>> {
+        CBuf::copy(c_slice(p, n, what)?, what)
+    };
+    let bs0 = copy(s.blocksize0, nbr, "SBM blocksize0")?;
+    let bs1 = copy(s.blocksize1, nbc, "SBM blocksize1")?;
+    let i1 = CBuf::copy(
+        c_slice(s.index1_data, s.filled1, "SBM index1_data")?,
+        "SBM index1_data",
+    )?;
+    let i2 = CBuf::copy(
+        c_slice(s.index2_data, s.filled2, "SBM index2_data")?,
+        "SBM index2_data",
+    )?;
+    let diag = if s.diagonal_blocks.is_null() {
+        None
+    } else {
+        Some(copy(s.diagonal_blocks, nbr, "SBM diagonal_blocks")?)
+    };
+    let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
+    let mut blocks = Vec::new();
+    blocks
+        .try_reserve_exact(nb)
+        .map_err(|_| size_err(format!("cannot hold {nb} block copies")))?;
+    for (k, &b) in ptrs.iter().enumerate() {
+        let what = format!("SBM block {k}");
+        blocks.push(CBuf::copy(c_slice(b as *const c_double, 9, &what)?, &what)?);
+    }
+    let mut block_array = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?;
+    let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "SBM")?.into_raw();
+    for (slot, b) in block_array.as_mut_slice().iter_mut().zip(blocks) {
+        *slot = b.into_raw();
+    }
+    out.write(SparseBlockStructuredMatrix {
+        nbblocks: s.nbblocks,
+        block: block_array.into_raw(),
+        blocknumber0: s.blocknumber0,
+        blocknumber1: s.blocknumber1,
+        blocksize0: bs0.into_raw(),
+        blocksize1: bs1.into_raw(),
+        filled1: s.filled1,
+        filled2: s.filled2,
+        index1_data: i1.into_raw(),
+        index2_data: i2.into_raw(),
+        diagonal_blocks: diag.map_or(null_mut(), CBuf::into_raw),
+        version: s.version,
+    });
+    Ok(out)
+}
