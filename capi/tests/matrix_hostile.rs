@@ -1178,7 +1178,7 @@ proptest! {
         // last row holding a block): the rows past it are empty, and index1_data[filled1 - 1]
         // must count every block.
         let given = index1.len().min(nbr + 1);
-        let counts_agree = !(index1.len() > nbr + 1 && nbr > 0) && !(given == 0 && nbblocks != 0);
+        let counts_agree = !(index1.len() > nbr + 1 && nbr > 0 || given == 0 && nbblocks != 0);
         let last = if given == 0 { 0 } else { index1[given - 1] };
         let mut ptr = index1[..given].to_vec();
         ptr.resize(nbr + 1, last);
