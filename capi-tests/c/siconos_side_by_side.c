@@ -13,6 +13,7 @@
 #include "FrictionContactProblem.h"
 #include "NumericsMatrix.h"
 #include "SolverOptions.h"
+#include "SparseBlockMatrix.h"
 
 typedef void (*ac_fn)(double*, double*, double, double*, double*, double*, double*);
 typedef void (*add_error_fn)(double*, double*, double, double*, double*);
@@ -22,6 +23,9 @@ typedef int (*tresca_error_fn)(FrictionContactProblem*, double*, double*, double
 typedef void (*tolerance_fn)(FrictionContactProblem*, SolverOptions*, SolverOptions*, double);
 typedef void (*statistics_fn)(FrictionContactProblem*, double*, double*, double, int);
 typedef void (*verbose_fn)(int);
+typedef FrictionContactProblem* (*copy_fn)(FrictionContactProblem*);
+typedef void (*rescale_fn)(FrictionContactProblem*, double, double);
+typedef void (*free_problem_fn)(FrictionContactProblem*);
 
 static void* libs[2];
 static const char* lib_names[2] = {"fc3d", "Siconos"};
@@ -289,6 +293,114 @@ static void check_statistics(void) {
   for (int w = 0; w < 2; w++) set_verbose[w](0);
 }
 
+/* A 2x2-block sparse-block problem (blocks (0,0), (0,1), (1,1)), every array malloc'd. */
+static FrictionContactProblem* sbm_problem(void) {
+  SparseBlockStructuredMatrix* s = calloc(1, sizeof *s);
+  s->nbblocks = 3;
+  s->blocknumber0 = s->blocknumber1 = 2;
+  s->blocksize0 = malloc(2 * sizeof(unsigned));
+  s->blocksize1 = malloc(2 * sizeof(unsigned));
+  s->blocksize0[0] = s->blocksize1[0] = 3;
+  s->blocksize0[1] = s->blocksize1[1] = 6;
+  s->filled1 = 3;
+  s->filled2 = 3;
+  s->index1_data = malloc(3 * sizeof(size_t));
+  s->index1_data[0] = 0;
+  s->index1_data[1] = 2;
+  s->index1_data[2] = 3;
+  s->index2_data = malloc(3 * sizeof(size_t));
+  s->index2_data[0] = 0;
+  s->index2_data[1] = 1;
+  s->index2_data[2] = 1;
+  s->block = malloc(3 * sizeof(double*));
+  for (int k = 0; k < 3; k++) {
+    s->block[k] = malloc(9 * sizeof(double));
+    for (int i = 0; i < 9; i++) s->block[k][i] = (i % 4 == 0 ? 3.0 : 0.0) + uniform(-0.2, 0.2);
+  }
+  NumericsMatrix* M = calloc(1, sizeof *M);
+  M->storageType = NM_SPARSE_BLOCK;
+  M->size0 = M->size1 = 6;
+  M->matrix1 = s;
+  M->destructible = M;
+  FrictionContactProblem* p = calloc(1, sizeof *p);
+  p->dimension = 3;
+  p->numberOfContacts = 2;
+  p->M = M;
+  p->q = malloc(6 * sizeof(double));
+  p->mu = malloc(2 * sizeof(double));
+  for (int i = 0; i < 6; i++) p->q[i] = uniform(-1.0, 1.0);
+  p->mu[0] = 0.3;
+  p->mu[1] = 0.7;
+  return p;
+}
+
+/* The values of a problem: q, mu, then M's (dense values, or every block in order). */
+static int problem_values(FrictionContactProblem* p, double* out) {
+  int k = 0, n = 3 * p->numberOfContacts;
+  for (int i = 0; i < n; i++) out[k++] = p->q[i];
+  for (int c = 0; c < p->numberOfContacts; c++) out[k++] = p->mu[c];
+  out[k++] = p->M->storageType;
+  if (p->M->storageType == NM_DENSE) {
+    for (int i = 0; i < n * n; i++) out[k++] = p->M->matrix0[i];
+  } else {
+    SparseBlockStructuredMatrix* s = p->M->matrix1;
+    out[k++] = s->nbblocks;
+    out[k++] = s->filled1;
+    out[k++] = s->filled2;
+    for (size_t i = 0; i < s->filled1; i++) out[k++] = (double)s->index1_data[i];
+    for (size_t i = 0; i < s->filled2; i++) out[k++] = (double)s->index2_data[i];
+    for (unsigned i = 0; i < s->blocknumber0; i++) out[k++] = s->blocksize0[i];
+    for (unsigned i = 0; i < s->blocknumber1; i++) out[k++] = s->blocksize1[i];
+    for (unsigned b = 0; b < s->nbblocks; b++)
+      for (int i = 0; i < 9; i++) out[k++] = s->block[b][i];
+  }
+  return k;
+}
+
+/* frictionContact_copy and frictionContact_rescaling: the same values and structure. */
+static void check_copy_and_rescaling(void) {
+  copy_fn cp[2] = {(copy_fn)sym(0, "frictionContact_copy"), (copy_fn)sym(1, "frictionContact_copy")};
+  rescale_fn rs[2] = {(rescale_fn)sym(0, "frictionContact_rescaling"), (rescale_fn)sym(1, "frictionContact_rescaling")};
+  free_problem_fn fr[2] = {(free_problem_fn)sym(0, "frictionContactProblem_free"),
+                           (free_problem_fn)sym(1, "frictionContactProblem_free")};
+  static double v[2][400];
+  for (int k = 0; k < 20; k++) {
+    FrictionContactProblem* source;
+    Dense d;
+    if (k % 2 == 0) {
+      dense_problem(&d, 1 + k % 4);
+      source = &d.p;
+    } else {
+      source = sbm_problem();
+    }
+    int len[2];
+    for (int w = 0; w < 2; w++) {
+      FrictionContactProblem* c = cp[w](source);
+      if (!c) {
+        fprintf(stderr, "%s: frictionContact_copy returned NULL\n", lib_names[w]);
+        failures++;
+        return;
+      }
+      rs[w](c, 1.5, 0.75);
+      len[w] = problem_values(c, v[w]);
+      fr[w](c);
+    }
+    if (len[0] != len[1]) {
+      fprintf(stderr, "copy and rescaling, case %d: %d values, Siconos %d\n", k, len[0], len[1]);
+      failures++;
+    } else {
+      compare("frictionContact_copy + frictionContact_rescaling", k, v[0], v[1], len[0]);
+    }
+    if (k % 2 == 0) {
+      free(d.W);
+      free(d.q);
+      free(d.mu);
+    } else {
+      fr[1](source);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
@@ -309,6 +421,7 @@ int main(int argc, char** argv) {
   check_unitary_errors();
   check_problem_functions();
   check_statistics();
+  check_copy_and_rescaling();
   if (failures) {
     fprintf(stderr, "%d values differ\n", failures);
     return 1;
