@@ -89,7 +89,14 @@ TEST_INC=(-I"$NUM/src/FrictionContact/test-utils" -I"$NUM/src/tools/test-utils")
 SIC_FLAGS=(-I/usr/include/siconos/numerics -I/usr/include/siconos -I"$EXTRA" "${TEST_INC[@]}")
 FC3D_FLAGS=()
 for d in "${INCLUDES[@]}"; do FC3D_FLAGS+=(-I"$d"); done
-FC3D_FLAGS+=("${TEST_INC[@]}")
+# Helper headers of Siconos' tests that are not friction API (3x3 macros, timers, cycle
+# counters): the fc3d build takes them from the same tarball, after fc3d's own headers. Nothing
+# else is taken: a friction header missing from fc3d's compat set must fail the fc3d build.
+HELPERS=$CACHE/test-helpers
+mkdir -p "$HELPERS"
+cp "$NUM/src/tools/op3x3.h" "$NUM/src/tools/internal/timers_interf.h" "$NUM/src/tools/internal/fftw_cycle.h" \
+  "$HELPERS/"
+FC3D_FLAGS+=("${TEST_INC[@]}" -I"$HELPERS")
 
 rm -rf "$OUT"
 mkdir -p "$OUT/bin" "$OUT/logs" "$OUT/run" "$OUT/lib"

@@ -131,7 +131,7 @@ static SbmBuild sbm_matrix(const double* W, int nc) {
   b.values = malloc(sizeof(double) * 9 * (size_t)nc * nc);
   b.rows = malloc(sizeof(unsigned) * (size_t)nc * nc);
   b.cols = malloc(sizeof(unsigned) * (size_t)nc * nc);
-  for (int bj = nc - 1; bj >= 0; bj--) /* reverse order: SBCM_to_SBM must sort */
+  for (int bj = nc - 1; bj >= 0; bj--) /* reverse order: SBCM_to_SBM groups them by row */
     for (int bi = 0; bi < nc; bi++) {
       int nonzero = (bi == bj);
       double blk[9];
@@ -158,6 +158,7 @@ static void sbm_release(SbmBuild* b) {
   b->M->matrix1 = NULL;
   NM_free(b->M);
   SBCM_free_3x3(b->coo);
+  free(b->coo); /* Siconos: SBCM_free_3x3 frees the arrays, not the struct */
   free(b->values);
   free(b->rows);
   free(b->cols);
@@ -468,6 +469,7 @@ int capi_check_bad_input(const char* data_dir) {
     EXPECT_CODE(fc3d_driver(&p2, r2, u2, o), FC3D_ERR_INVALID_PROBLEM);
     SBM_free_from_SBCM(sbm);
     SBCM_free_3x3(coo);
+    free(coo); /* Siconos: SBCM_free_3x3 frees the arrays, not the struct */
   }
   /* CSC with unsorted and duplicate entries is accepted: W = I stored as 0.5 + 0.5 on (0,0) */
   {
@@ -668,6 +670,7 @@ static int check_matrix_files(const char* scratch_dir) {
   S->matrix1 = NULL;
   NM_free(S);
   SBCM_free_3x3(coo);
+  free(coo); /* Siconos: SBCM_free_3x3 frees the arrays, not the struct */
   return 0;
 }
 
@@ -766,7 +769,7 @@ int capi_check_ownership(const char* data_dir, const char* scratch_dir) {
     memcpy(blocks + 9, tmp, sizeof tmp);
     SparseBlockCoordinateMatrix* coo = SBCM_new_3x3(2, 2, 2, row, col, blocks);
     SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(coo);
-    CHECK(sbm->index2_data[0] == 0 && sbm->index2_data[1] == 1, "SBCM_to_SBM sorts blocks");
+    CHECK(sbm->index2_data[0] == 0 && sbm->index2_data[1] == 1, "SBCM_to_SBM groups blocks by block row");
     NumericsMatrix* M = NM_new_SBM(6, 6, sbm);
     CHECK(NM_get_value(M, 0, 0) == 2.0 && NM_get_value(M, 4, 4) == 1.0 && NM_get_value(M, 0, 4) == 0.0,
           "NM_get_value on SBM");
@@ -780,6 +783,7 @@ int capi_check_ownership(const char* data_dir, const char* scratch_dir) {
     M->matrix1 = NULL;
     NM_free(M);
     SBCM_free_3x3(coo);
+    free(coo); /* Siconos: SBCM_free_3x3 frees the arrays, not the struct */
   }
   /* LMGC90-style entry point, solving in place */
   {

@@ -213,13 +213,23 @@ static int check_coordinates_and_release(void) {
         "3 n overflows");
   CHECK(SBCM_new_3x3(2, 2, 2, NULL, col, blocks) == NULL && fc3d_last_error_code() == FC3D_ERR_NULL_POINTER,
         "NULL rows");
+  col[1] = 0;
+  CHECK(SBCM_new_3x3(2, 2, 2, row, col, blocks) == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_SIZE,
+        "1-based column 0");
+  col[1] = 3;
+  CHECK(SBCM_new_3x3(2, 2, 2, row, col, blocks) == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_SIZE,
+        "column past the grid");
+  col[1] = 2;
   SparseBlockCoordinateMatrix* coo = SBCM_new_3x3(2, 2, 2, row, col, blocks);
   CHECK(coo != NULL, "SBCM_new_3x3");
-  col[1] = 0;
-  CHECK(SBCM_to_SBM(coo) == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_SIZE, "column 0");
-  col[1] = 3;
-  CHECK(SBCM_to_SBM(coo) == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_SIZE, "column past the grid");
-  col[1] = 2;
+  /* Siconos' ownership: row and column copied, 0-based; the blocks point into the caller's values. */
+  CHECK(coo->row != row && coo->column != col && coo->row[1] == 1 && coo->column[0] == 0 &&
+            coo->block[1] == blocks + 9 && coo->blocksize0[1] == 6,
+        "SBCM_new_3x3 copies the coordinates 0-based");
+  /* A host editing the coordinate matrix afterwards is checked again by SBCM_to_SBM. */
+  coo->column[1] = 2;
+  CHECK(SBCM_to_SBM(coo) == NULL && fc3d_last_error_code() == FC3D_ERR_INVALID_SIZE, "0-based column past the grid");
+  coo->column[1] = 1;
   double* b1 = coo->block[1];
   coo->block[1] = NULL;
   CHECK(SBCM_to_SBM(coo) == NULL && fc3d_last_error_code() == FC3D_ERR_NULL_POINTER, "NULL block");
@@ -229,6 +239,9 @@ static int check_coordinates_and_release(void) {
   coo->blocksize1[1] = 6;
   SparseBlockStructuredMatrix* sbm = SBCM_to_SBM(coo);
   CHECK(sbm != NULL, "SBCM_to_SBM");
+  CHECK(sbm->blocksize0 == coo->blocksize0 && sbm->blocksize1 == coo->blocksize1 && sbm->block[0] == blocks &&
+            sbm->filled1 == 3 && sbm->index1_data[2] == 2 && sbm->diagonal_blocks == NULL,
+        "SBCM_to_SBM shares the sizes and the blocks as Siconos does");
   NumericsMatrix* M = NM_new_SBM(6, 6, sbm);
   double q[6] = {-2, 0, 0, -2, 0, 0}, mu[2] = {0.3, 0.3}, r[6] = {0}, u[6] = {0};
   FrictionContactProblem p = {3, 2, M, q, mu};
@@ -245,6 +258,7 @@ static int check_coordinates_and_release(void) {
   NM_free(M);
   SBM_free_from_SBCM(sbm);
   SBCM_free_3x3(coo);
+  free(coo); /* Siconos: SBCM_free_3x3 frees the arrays, not the struct */
 
   /* Release with a block count beyond the block array: refused, nothing freed or read. */
   SparseBlockStructuredMatrix* s = sbm_one_row(1);

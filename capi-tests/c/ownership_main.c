@@ -13,6 +13,7 @@ int capi_check_vi_admm_options(void);
 int opt5_check_single_contacts_and_options(void);
 int capi_check_newton_and_prox(void);
 int capi_check_hostile_matrices(void);
+int capi_check_problem_copy(const char* data_dir);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   failed += opt5_check_single_contacts_and_options() != 0;
   failed += capi_check_newton_and_prox() != 0;
   failed += capi_check_hostile_matrices() != 0;
-  printf("%d passed, %d failed\n", 11 - failed, failed);
+  failed += capi_check_problem_copy(data) != 0;
+  printf("%d passed, %d failed\n", 12 - failed, failed);
   return failed != 0;
 }

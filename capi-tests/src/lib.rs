@@ -76,6 +76,8 @@ extern "C" {
     pub fn capi_check_newton_and_prox() -> c_int;
     /// The matrix helpers against hostile structs (c/matrix_hostile.c).
     pub fn capi_check_hostile_matrices() -> c_int;
+    pub fn capi_check_solver_entries(data_dir: *const c_char) -> c_int;
+    pub fn capi_check_problem_copy(data_dir: *const c_char) -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.

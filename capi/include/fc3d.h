@@ -282,6 +282,63 @@ extern "C" {
 // Siconos' verbosity switch: > 0 prints rejected calls and solver summaries to stderr.
 void numerics_set_verbose(int newVerboseMode);
 
+// Siconos' Alart-Curnier function: `F_N = R_N - (R_N - rho_N u_N)_+`, `F_T = R_T - P_D(mu (R_N -
+// rho_N u_N)_+)(R_T - rho_T u_T)` (`rho_T = rho[1]`), `A = dF/du`, `B = dF/dR` column-major (all
+// 18 entries when both are given).
+void computeAlartCurnierSTD(double *R,
+                            double *velocity,
+                            double mu,
+                            double *rho,
+                            double *F,
+                            double *A,
+                            double *B);
+
+// Siconos' earlier `computeAlartCurnierSTD` (exported by Siconos, declared by its tests): the same
+// function, with `R_N - rho_N u_N = 0` taken as the active side of the normal part.
+void computeAlartCurnierSTDOld(double *R,
+                               double *velocity,
+                               double mu,
+                               double *rho,
+                               double *F,
+                               double *A,
+                               double *B);
+
+// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`, and `R_N - rho_N u_N = 0`
+// counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]`
+// are not written. Two differences remain: for `R_N < 0` (outside the cone's half-space)
+// Siconos uses the negative radius `mu R_N` where fc3d, like Siconos' generated Jean-Moreau
+// function, uses 0; and Siconos takes `|R_T - rho_T u_T| < 1e-20` as sticking whatever the
+// radius.
+void computeAlartCurnierJeanMoreau(double *R,
+                                   double *velocity,
+                                   double mu,
+                                   double *rho,
+                                   double *F,
+                                   double *A,
+                                   double *B);
+
+// Siconos' generated Alart-Curnier function: as `computeAlartCurnierSTD` with `rho_T1 = rho[1]`
+// and `rho_T2 = rho[2]` for the two tangential components; `F` alone when `A` or `B` is NULL, `A`
+// and `B` alone when `F` is NULL. (Siconos' generated code floors the disk radius at DBL_EPSILON,
+// which changes `F_T` by at most 2.2e-16.)
+void fc3d_AlartCurnierFunctionGenerated(double *R,
+                                        double *velocity,
+                                        double mu,
+                                        double *rho,
+                                        double *F,
+                                        double *A,
+                                        double *B);
+
+// Siconos' generated Jean-Moreau function: radius `mu (R_N)_+`, `rho_T1`, `rho_T2` apart, every
+// entry of `A` and `B` written.
+void fc3d_AlartCurnierJeanMoreauFunctionGenerated(double *R,
+                                                  double *velocity,
+                                                  double mu,
+                                                  double *rho,
+                                                  double *F,
+                                                  double *A,
+                                                  double *B);
+
 // Solves the problem with the solver `options->solverId`, starting from `reaction`.
 // Returns 0 when converged (error <= dparam[0]), 1 when the solver stopped above the
 // tolerance at its iteration limit (reaction, velocity hold its last iterate), 2
@@ -372,10 +429,12 @@ int fc3d_LmgcDriver(double *reaction,
                     int freq_output,
                     int ndof);
 
-// A new empty matrix (storage NM_UNKNOWN, sizes 0). Release with `NM_free`.
+// A new empty matrix in Siconos' `NM_null` state (storage NM_UNKNOWN, sizes -1, its own
+// destructible matrix). Release with `NM_free`.
 struct NumericsMatrix *NM_new(void);
 
-// Resets every field of `A` (frees nothing).
+// Resets every field of `A` as Siconos does (storage NM_UNKNOWN, sizes -1, NULL storage,
+// version 0, `destructible = A`); frees nothing.
 void NM_null(struct NumericsMatrix *A);
 
 // A matrix of the given storage: dense is zero-filled, sparse-block and sparse are empty
@@ -441,10 +500,14 @@ struct SparseBlockStructuredMatrix *SBM_new(void);
 void SBM_clear(struct SparseBlockStructuredMatrix *blmat);
 
 // Coordinate block matrix of `nbblocks` 3x3 blocks at 1-based block coordinates
-// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks.
-// Keeps `row`, `column` and `block` without copying (they stay the caller's); release with
-// `SBCM_free_3x3`. NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n` exceeds a C int or a
-// coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a NULL array.
+// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks,
+// with Siconos' ownership: `row` and `column` are copied and made 0-based, the block pointers
+// point into `block` (the caller's values, not copied), and `blocksize0`/`blocksize1` are the
+// cumulative sizes 3, 6, 9, ... (at least `nbblocks` entries, as Siconos allocates them, and
+// at least `m`/`n`, so that the grid is always described). Release with `SBCM_free_3x3` (the
+// arrays) and then `free` (the struct). NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n`
+// exceeds a C int or a coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a
+// NULL array.
 struct SparseBlockCoordinateMatrix *SBCM_new_3x3(unsigned int m,
                                                  unsigned int n,
                                                  unsigned int nbblocks,
@@ -452,16 +515,26 @@ struct SparseBlockCoordinateMatrix *SBCM_new_3x3(unsigned int m,
                                                  unsigned int *column,
                                                  double *block);
 
-// Frees what `SBCM_new_3x3` allocated (not the caller's row, column and block arrays).
+// Frees the arrays `SBCM_new_3x3` allocated (`block`, `blocksize0`, `blocksize1`, `row`,
+// `column`), not the struct itself (the caller frees it, as in Siconos) nor the block values.
+// An SBM made by `SBCM_to_SBM` shares `blocksize0`/`blocksize1`: release it first. NULL is a
+// no-op.
 void SBCM_free_3x3(struct SparseBlockCoordinateMatrix *MC);
 
-// A sparse-block matrix (block-CSR, sorted) whose blocks point into the coordinate matrix's
-// values (no copy). Release with `SBM_free_from_SBCM` before the coordinate data goes away.
-// Checks what a host may have filled: NULL arrays and block pointers, cumulative sizes that do
-// not increase, coordinates outside `1..=blocknumber0` x `1..=blocknumber1` (NULL and a code).
+// A sparse-block matrix (block-CSR) built from the coordinate matrix as Siconos builds it:
+// blocks grouped by block row in their coordinate order (columns are not sorted within a row),
+// `blocksize0`/`blocksize1` and the block pointers shared with `MC` (nothing copied),
+// `index1_data` (`blocknumber0 + 1` entries), `index2_data` and the block-pointer array
+// allocated, `filled1` one past the last block row that holds a block (at least 2), no
+// `diagonal_blocks`. Release with `SBM_free_from_SBCM` (or `free` of `index1_data`,
+// `index2_data`, `block` and the struct) before `SBCM_free_3x3`. Checks what a host may have
+// changed in `MC`: NULL arrays and block pointers, cumulative sizes that do not increase,
+// 0-based coordinates outside the grid (NULL and a code).
 struct SparseBlockStructuredMatrix *SBCM_to_SBM(struct SparseBlockCoordinateMatrix *MC);
 
-// Frees an SBM made by `SBCM_to_SBM` (structure and struct, not the block values).
+// Frees an SBM made by `SBCM_to_SBM`: its `index1_data`, `index2_data`, block-pointer array
+// and the struct, not what it shares with the coordinate matrix (`blocksize0`, `blocksize1`,
+// the block values). NULL is a no-op.
 void SBM_free_from_SBCM(struct SparseBlockStructuredMatrix *M);
 
 // A matrix read from an open stream, as written by `NM_write_in_file` (`storageType size0
@@ -507,6 +580,59 @@ void NM_write_in_filename(const struct NumericsMatrix *M, const char *filename);
 // Release with `SBM_clear` + `free` (or through `NM_free` once wrapped by `NM_new_SBM`).
 // NULL on failure (`FC3D_ERR_PARSE` for malformed text).
 struct SparseBlockStructuredMatrix *SBM_new_from_file(FILE *file);
+
+// Siconos' per-contact error term: adds `|r - P_K(r - (u_N + mu |u_T|, u_T))|^2` to `*error`
+// and leaves `r - P_K(...)` in `worktmp[0..3]`.
+void fc3d_unitary_compute_and_add_error(double *r,
+                                        double *u,
+                                        double mu,
+                                        double *error,
+                                        double *worktmp);
+
+// Siconos' Tresca per-contact term: adds `|z - P_C(R)(z - w)|^2` to `*error` (C(R) the cylinder
+// `{x_N >= 0, |x_T| <= R}`) and leaves `z - P_C(R)(z - w)` in `worktmp[0..3]`. (Siconos'
+// cylinder routine also pushes `x_T` out to the radius when `x_N < 0`, which is not the
+// projection; here it is the projection.)
+void fc3d_Tresca_unitary_compute_and_add_error(double *z,
+                                               double *w,
+                                               double R,
+                                               double *error,
+                                               double *worktmp);
+
+// Siconos' error on velocities: overwrites `z` with `q + M w` (as Siconos does: `w` is the
+// argument, `z` the result), then `error = sqrt(sum_c |d_c|^2) / (|q| + 1)` with
+// `d_c = w_c - (P_N - mu |P_T|, P_T)` and `P` the projection on the dual cone `K*_mu` of
+// `(w_N + mu |w_T|, w_T) - z_c`. Returns 0 when `error <= tolerance`, else 1.
+int fc3d_compute_error_velocity(struct FrictionContactProblem *problem,
+                                double *z,
+                                double *w,
+                                double tolerance,
+                                struct SolverOptions *options,
+                                double *error);
+
+// Siconos' Tresca error: overwrites `w` with `M z + q`, then
+// `error = sqrt(sum_c |z_c - P_C(R_c)(z_c - w_c)|^2)`, divided by `norm` when
+// `|norm| > DBL_EPSILON`, with the radii `R_c = options->dWork[c]`. Returns 0 when
+// `error <= tolerance`, else 1.
+int fc3d_Tresca_compute_error(struct FrictionContactProblem *problem,
+                              double *z,
+                              double *w,
+                              double tolerance,
+                              struct SolverOptions *options,
+                              double norm,
+                              double *error);
+
+// Siconos' contact statistics: with `tol`, counts the contacts that take off (`u_N > tol`;
+// "ambiguous" when also `|r_N| > tol`), the closed ones (`r_N > tol`; ambiguous when also
+// `|u_N| > tol`), and among the closed ones those sticking (`|r_T|^2 < mu^2 r_N^2`) or sliding.
+// Prints them on one line to stdout, in Siconos' words, when the verbosity
+// (`numerics_set_verbose`) is at least `do_print`; nothing else is written. Invalid input:
+// nothing printed, the reason in `fc3d_last_error_message`.
+void frictionContactProblem_compute_statistics(struct FrictionContactProblem *problem,
+                                               double *reaction,
+                                               double *velocity,
+                                               double tol,
+                                               int do_print);
 
 // The library's version, e.g. "0.2.0" (a static string, do not free).
 const char *fc3d_version(void);
@@ -686,6 +812,20 @@ int solver_options_name_to_id(const char *pName);
 // `fc3d_last_error_message`) for a tree `solver_options_copy` refuses.
 void solver_options_print(struct SolverOptions *options);
 
+// Siconos' deep copy of a problem: a new problem with the same dimension and contacts, `M`
+// copied in its storage and layout (`NM_copy`: the dense values, the sparse-block structure and
+// blocks, or the sparse origin form), `q` and `mu` copied. The source is checked first as the
+// solvers check it; NULL and the reason in `fc3d_last_error_message` when it is refused.
+// Release with `frictionContactProblem_free`.
+struct FrictionContactProblem *frictionContact_copy(struct FrictionContactProblem *problem);
+
+// Siconos' rescaling of a problem in place: `M <- alpha gamma^2 M` (as Siconos' `NM_scal`: a
+// sparse M is scaled in its CSC form, which becomes its origin, the other forms released) and
+// `q <- alpha gamma q`. The problem is checked first as the solvers check it, and a non-finite
+// `alpha` or `gamma` is refused; nothing is changed then (the reason in
+// `fc3d_last_error_message`).
+void frictionContact_rescaling(struct FrictionContactProblem *problem, double alpha, double gamma);
+
 // An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
 struct FrictionContactProblem *frictionContactProblem_new(void);
 
@@ -725,6 +865,238 @@ int frictionContact_printInFilename(struct FrictionContactProblem *problem, char
 
 // Prints a summary of the problem (sizes, storage, mu, q) to stdout.
 void frictionContact_display(struct FrictionContactProblem *problem);
+
+// Siconos' NSGS on velocities (`SICONOS_FRICTION_3D_NSGSV`, 501).
+// As `fc3d_driver` for options of id 501 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_nsgs_velocity(struct FrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        int *info,
+                        struct SolverOptions *options);
+
+// Siconos' proximal point algorithm (`SICONOS_FRICTION_3D_PROX`, 502).
+// As `fc3d_driver` for options of id 502 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_proximal(struct FrictionContactProblem *problem,
+                   double *reaction,
+                   double *velocity,
+                   int *info,
+                   struct SolverOptions *options);
+
+// Siconos' Tresca fixed point (`SICONOS_FRICTION_3D_TFP`, 503).
+// As `fc3d_driver` for options of id 503 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_TrescaFixedPoint(struct FrictionContactProblem *problem,
+                           double *reaction,
+                           double *velocity,
+                           int *info,
+                           struct SolverOptions *options);
+
+// Siconos' Alart-Curnier nonsmooth Newton (`SICONOS_FRICTION_3D_NSN_AC`, 504).
+// As `fc3d_driver` for options of id 504 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_nonsmooth_Newton_AlartCurnier(struct FrictionContactProblem *problem,
+                                        double *reaction,
+                                        double *velocity,
+                                        int *info,
+                                        struct SolverOptions *options);
+
+// Siconos' De Saxcé fixed point (`SICONOS_FRICTION_3D_DSFP`, 505).
+// As `fc3d_driver` for options of id 505 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_DeSaxceFixedPoint(struct FrictionContactProblem *problem,
+                            double *reaction,
+                            double *velocity,
+                            int *info,
+                            struct SolverOptions *options);
+
+// Siconos' VI fixed-point projection (`SICONOS_FRICTION_3D_VI_FPP`, 506).
+// As `fc3d_driver` for options of id 506 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_VI_FixedPointProjection(struct FrictionContactProblem *problem,
+                                  double *reaction,
+                                  double *velocity,
+                                  int *info,
+                                  struct SolverOptions *options);
+
+// Siconos' VI extra-gradient (`SICONOS_FRICTION_3D_VI_EG`, 507).
+// As `fc3d_driver` for options of id 507 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_VI_ExtraGradient(struct FrictionContactProblem *problem,
+                           double *reaction,
+                           double *velocity,
+                           int *info,
+                           struct SolverOptions *options);
+
+// Siconos' hyperplane projection (`SICONOS_FRICTION_3D_HP`, 508).
+// As `fc3d_driver` for options of id 508 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_HyperplaneProjection(struct FrictionContactProblem *problem,
+                               double *reaction,
+                               double *velocity,
+                               int *info,
+                               struct SolverOptions *options);
+
+// Siconos' fixed-point projection (`SICONOS_FRICTION_3D_FPP`, 511).
+// As `fc3d_driver` for options of id 511 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_fixedPointProjection(struct FrictionContactProblem *problem,
+                               double *reaction,
+                               double *velocity,
+                               int *info,
+                               struct SolverOptions *options);
+
+// Siconos' extra-gradient (`SICONOS_FRICTION_3D_EG`, 512).
+// As `fc3d_driver` for options of id 512 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_ExtraGradient(struct FrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        int *info,
+                        struct SolverOptions *options);
+
+// Siconos' Fischer-Burmeister nonsmooth Newton (`SICONOS_FRICTION_3D_NSN_FB`, 513).
+// As `fc3d_driver` for options of id 513 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_nonsmooth_Newton_FischerBurmeister(struct FrictionContactProblem *problem,
+                                             double *reaction,
+                                             double *velocity,
+                                             int *info,
+                                             struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 514: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
+void fc3d_AVI_gams_path(struct FrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        int *info,
+                        struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 515: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
+void fc3d_AVI_gams_pathvi(struct FrictionContactProblem *problem,
+                          double *reaction,
+                          double *velocity,
+                          int *info,
+                          struct SolverOptions *options);
+
+// Siconos' ACLM fixed point (`SICONOS_FRICTION_3D_ACLMFP`, 516).
+// As `fc3d_driver` for options of id 516 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_ACLMFixedPoint(struct FrictionContactProblem *problem,
+                         double *reaction,
+                         double *velocity,
+                         int *info,
+                         struct SolverOptions *options);
+
+// Siconos' SOCLCP reformulation (`SICONOS_FRICTION_3D_SOCLCP`, 517).
+// As `fc3d_driver` for options of id 517 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_SOCLCP(struct FrictionContactProblem *problem,
+                 double *reaction,
+                 double *velocity,
+                 int *info,
+                 struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 518: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
+void fc3d_lcp_gams_path(struct FrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        int *info,
+                        struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 519: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
+void fc3d_lcp_gams_pathvi(struct FrictionContactProblem *problem,
+                          double *reaction,
+                          double *velocity,
+                          int *info,
+                          struct SolverOptions *options);
+
+// Siconos' natural-map nonsmooth Newton (`SICONOS_FRICTION_3D_NSN_NM`, 520).
+// As `fc3d_driver` for options of id 520 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_nonsmooth_Newton_NaturalMap(struct FrictionContactProblem *problem,
+                                      double *reaction,
+                                      double *velocity,
+                                      int *info,
+                                      struct SolverOptions *options);
+
+// Siconos' second Alart-Curnier Newton (`SICONOS_FRICTION_3D_NSN_AC_TEST`, 521).
+// As `fc3d_driver` for options of id 521 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_nonsmooth_Newton_AlartCurnier2(struct FrictionContactProblem *problem,
+                                         double *reaction,
+                                         double *velocity,
+                                         int *info,
+                                         struct SolverOptions *options);
+
+// Siconos' Panagiotopoulos fixed point (`SICONOS_FRICTION_3D_PFP`, 522).
+// As `fc3d_driver` for options of id 522 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_Panagiotopoulos_FixedPoint(struct FrictionContactProblem *problem,
+                                     double *reaction,
+                                     double *velocity,
+                                     int *info,
+                                     struct SolverOptions *options);
+
+// Siconos' ADMM (`SICONOS_FRICTION_3D_ADMM`, 523).
+// As `fc3d_driver` for options of id 523 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void fc3d_admm(struct FrictionContactProblem *problem,
+               double *reaction,
+               double *velocity,
+               int *info,
+               struct SolverOptions *options);
+
+// Siconos' enumerative solver for one contact (`SICONOS_FRICTION_3D_ONECONTACT_QUARTIC`, 562,
+// and `_QUARTIC_NU`, 563) as a direct entry: as `fc3d_driver` for options of one of these ids;
+// the result code is written to `*info` and returned (Siconos returns it too).
+int fc3d_unitary_enumerative(struct FrictionContactProblem *problem,
+                             double *reaction,
+                             double *velocity,
+                             int *info,
+                             struct SolverOptions *options);
+
+// Siconos' Tresca sub-solver entry for id 566 (cylinder radii in `options->dWork`). Not
+// provided: always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing
+// else written.
+void fc3d_VI_FixedPointProjection_Cylinder(struct FrictionContactProblem *problem,
+                                           double *reaction,
+                                           double *velocity,
+                                           int *info,
+                                           struct SolverOptions *options);
+
+// Siconos' Tresca sub-solver entry for id 567 (cylinder radii in `options->dWork`). Not
+// provided: always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing
+// else written.
+void fc3d_ConvexQP_ProjectedGradient_Cylinder(struct FrictionContactProblem *problem,
+                                              double *reaction,
+                                              double *velocity,
+                                              int *info,
+                                              struct SolverOptions *options);
+
+// Siconos' take-off test: when every `q_N >= -DBL_EPSILON`, `r = 0, u = q` solves the problem:
+// writes them and returns 0; otherwise returns -1 and writes nothing. `options` is not used.
+// Invalid input returns a negative `FC3D_ERR_*` code (nothing written); as
+// `FC3D_ERR_NULL_POINTER` is -1 too, `fc3d_last_error_code` tells a refusal from "not trivial"
+// (it is `FC3D_OK` after a call that ran).
+int fc3d_checkTrivialCase(struct FrictionContactProblem *problem,
+                          double *velocity,
+                          double *reaction,
+                          struct SolverOptions *options);
+
+// Siconos' rule for the tolerance of an internal solver of a fixed-point method, by
+// `options->iparam[2]` (internal error strategy): adaptive (0):
+// `max(error / dparam[2], dparam[0] / nc)`; adaptive per contact (2): `error / (dparam[2] nc)`;
+// given value (1): unchanged. Written to `internalsolver_options->dparam[0]`. An unknown
+// strategy, NULL or too short arrays: nothing written, the reason in `fc3d_last_error_message`.
+void fc3d_set_internalsolver_tolerance(struct FrictionContactProblem *problem,
+                                       struct SolverOptions *options,
+                                       struct SolverOptions *internalsolver_options,
+                                       double error);
 
 #ifdef __cplusplus
 }  // extern "C"

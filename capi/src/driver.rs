@@ -212,19 +212,49 @@ pub unsafe extern "C" fn fc3d_nsgs(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    let code = ffi_guard(
+    solver_entry(
         "fc3d_nsgs",
+        &[500],
+        problem,
+        reaction,
+        velocity,
+        info,
+        options,
+    );
+}
+
+/// The body of Siconos' direct solver entries (`fc3d_nsgs`, `fc3d_DeSaxceFixedPoint`, ...):
+/// `fc3d_driver` for options whose `solverId` is one of `accepted` (any other id is refused
+/// with `FC3D_ERR_INVALID_OPTION`: Siconos would run the entry's algorithm on parameters laid
+/// out for another solver), the result code written to `*info` (also a negative code) and
+/// returned.
+pub(crate) unsafe fn solver_entry(
+    name: &str,
+    accepted: &[c_int],
+    problem: *mut FrictionContactProblem,
+    reaction: *mut c_double,
+    velocity: *mut c_double,
+    info: *mut c_int,
+    options: *mut SolverOptions,
+) -> c_int {
+    let code = ffi_guard(
+        name,
         |c| c,
         || {
             if info.is_null() {
                 return Err(CError::null("info"));
             }
-            if !options.is_null() && (*options).solverId != 500 {
+            if !options.is_null() && !accepted.contains(&(*options).solverId) {
                 return Err(CError::new(
                     FC3D_ERR_INVALID_OPTION,
                     format!(
-                        "fc3d_nsgs called with options for solver {}",
-                        (*options).solverId
+                        "{name} called with options for solver {} (it runs solver {})",
+                        (*options).solverId,
+                        accepted
+                            .iter()
+                            .map(|id| id.to_string())
+                            .collect::<Vec<_>>()
+                            .join(" or ")
                     ),
                 ));
             }
@@ -234,6 +264,7 @@ pub unsafe extern "C" fn fc3d_nsgs(
     if !info.is_null() {
         *info = code;
     }
+    code
 }
 
 /// Siconos' error measure: recomputes `w = M z + q` (written to `w`), then

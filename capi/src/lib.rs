@@ -18,6 +18,7 @@
 
 pub mod types;
 
+mod alart_curnier;
 mod alloc;
 mod codes;
 mod driver;
@@ -27,10 +28,12 @@ mod lmgc;
 mod matrix;
 /// cbindgen:ignore
 mod names;
+mod measures;
 mod native;
 mod options;
 mod params;
 mod problem;
+mod solver_entries;
 mod stream;
 
 use std::os::raw::c_int;

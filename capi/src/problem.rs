@@ -13,7 +13,9 @@ use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
-use super::matrix::{c_slice, delassus_from_c, matrix_to_c, nm_clear_impl};
+use super::matrix::{
+    c_slice, delassus_from_c, matrix_to_c, nm_clear_impl, nm_duplicate, nm_scale_in_place,
+};
 use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
@@ -105,6 +107,83 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
         mu,
     })
     .inspect_err(|_| release(&[q, mu]))
+}
+
+/// Siconos' deep copy of a problem: a new problem with the same dimension and contacts, `M`
+/// copied in its storage and layout (`NM_copy`: the dense values, the sparse-block structure and
+/// blocks, or the sparse origin form), `q` and `mu` copied. The source is checked first as the
+/// solvers check it; NULL and the reason in `fc3d_last_error_message` when it is refused.
+/// Release with `frictionContactProblem_free`.
+#[cfg(feature = "siconos-abi")]
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_copy(
+    problem: *mut FrictionContactProblem,
+) -> *mut FrictionContactProblem {
+    ffi_guard(
+        "frictionContact_copy",
+        |_| null_mut(),
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            let src = &*problem;
+            let p = problem_from_c(src)?;
+            let m = nm_duplicate(&*src.M)?;
+            let release = |ptrs: &[*mut c_double]| {
+                for &x in ptrs {
+                    c_free(x);
+                }
+                nm_clear_impl(m);
+                c_free(m);
+            };
+            let q = c_copy(p.q()).inspect_err(|_| release(&[]))?;
+            let mu = c_copy(p.mu()).inspect_err(|_| release(&[q]))?;
+            c_box(FrictionContactProblem {
+                dimension: src.dimension,
+                numberOfContacts: src.numberOfContacts,
+                M: m,
+                q,
+                mu,
+            })
+            .inspect_err(|_| release(&[q, mu]))
+        },
+    )
+}
+
+/// Siconos' rescaling of a problem in place: `M <- alpha gamma^2 M` (as Siconos' `NM_scal`: a
+/// sparse M is scaled in its CSC form, which becomes its origin, the other forms released) and
+/// `q <- alpha gamma q`. The problem is checked first as the solvers check it, and a non-finite
+/// `alpha` or `gamma` is refused; nothing is changed then (the reason in
+/// `fc3d_last_error_message`).
+#[cfg(feature = "siconos-abi")]
+#[no_mangle]
+pub unsafe extern "C" fn frictionContact_rescaling(
+    problem: *mut FrictionContactProblem,
+    alpha: c_double,
+    gamma: c_double,
+) {
+    ffi_guard(
+        "frictionContact_rescaling",
+        |_| (),
+        || {
+            if problem.is_null() {
+                return Err(CError::null("problem"));
+            }
+            if !(alpha.is_finite() && gamma.is_finite()) {
+                return Err(CError::new(
+                    super::FC3D_ERR_NON_FINITE,
+                    format!("alpha = {alpha}, gamma = {gamma}"),
+                ));
+            }
+            let n = problem_from_c(&*problem)?.size();
+            let src = &mut *problem;
+            nm_scale_in_place(&mut *src.M, alpha * gamma * gamma)?;
+            for v in std::slice::from_raw_parts_mut(src.q, n) {
+                *v *= alpha * gamma;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.

@@ -873,15 +873,16 @@ fn sbcm_new_3x3_rejects_block_counts_no_matrix_can_have() {
 /// Before: SBCM_to_SBM subtracted 1 from a column index of 0 (a panic in debug builds, block
 /// column 2^64 - 1 in release builds), accepted columns past blocknumber1, NULL block pointers
 /// and cumulative sizes that do not increase, and allocated blocknumber0 + 1 row pointers (32 GiB
-/// for 2^32 - 1 block rows) before looking at the arrays that declare them.
+/// for 2^32 - 1 block rows) before looking at the arrays that declare them. (The coordinates of
+/// a SparseBlockCoordinateMatrix are 0-based, as SBCM_new_3x3 stores them in Siconos.)
 #[test]
 fn sbcm_to_sbm_checks_what_the_host_filled() {
     if isolated("sbcm_to_sbm_checks_what_the_host_filled") {
         return;
     }
     unsafe {
-        let row = raw([1u32, 2]);
-        let col = raw([1u32, 2]);
+        let row = raw([0u32, 1]);
+        let col = raw([0u32, 1]);
         let values = raw([1.0f64; 18]);
         let ptrs = raw([values, values.add(9)]);
         let bs = raw([3u32, 6]);
@@ -904,14 +905,17 @@ fn sbcm_to_sbm_checks_what_the_host_filled() {
             assert!(s.is_null(), "{what}: accepted");
             assert_eq!(code, want, "{what}: {}", message());
         };
-        *col.add(1) = 0;
-        expect(FC3D_ERR_INVALID_SIZE, "column 0");
-        *col.add(1) = 3;
-        expect(FC3D_ERR_INVALID_SIZE, "column past blocknumber1");
+        *col.add(1) = c_uint::MAX;
+        expect(
+            FC3D_ERR_INVALID_SIZE,
+            "column 2^32 - 1 (a 1-based 0 made 0-based)",
+        );
         *col.add(1) = 2;
+        expect(FC3D_ERR_INVALID_SIZE, "column past blocknumber1");
+        *col.add(1) = 1;
+        *row = 2;
+        expect(FC3D_ERR_INVALID_SIZE, "row past blocknumber0");
         *row = 0;
-        expect(FC3D_ERR_INVALID_SIZE, "row 0");
-        *row = 1;
         *ptrs.add(1) = std::ptr::null_mut();
         expect(FC3D_ERR_NULL_POINTER, "NULL block");
         *ptrs.add(1) = values.add(9);
@@ -1170,8 +1174,16 @@ proptest! {
         let mut m = matrix(NM_SPARSE_BLOCK, 3 * nbr as c_int, 3 * nbr as c_int);
         m.matrix1 = &mut s;
         let nb = index2.len();
-        let valid = index1.len() == nbr + 1 && index1[0] == 0 && index1.windows(2).all(|w| w[0] <= w[1])
-            && index1[nbr] == nb && nbblocks as usize == nb && index2.iter().all(|&c| c < nbr)
+        // Siconos' filled1 may stop before blocknumber0 + 1 (SBCM_to_SBM sets it one past the
+        // last row holding a block): the rows past it are empty, and index1_data[filled1 - 1]
+        // must count every block.
+        let given = index1.len().min(nbr + 1);
+        let counts_agree = !(index1.len() > nbr + 1 && nbr > 0 || given == 0 && nbblocks != 0);
+        let last = if given == 0 { 0 } else { index1[given - 1] };
+        let mut ptr = index1[..given].to_vec();
+        ptr.resize(nbr + 1, last);
+        let valid = counts_agree && last == nb && ptr[0] == 0 && ptr.windows(2).all(|w| w[0] <= w[1])
+            && ptr[nbr] == nb && nbblocks as usize == nb && index2.iter().all(|&c| c < nbr)
             && null_block.is_none_or(|k| k >= nb);
         unsafe {
             let copy = NM_new();

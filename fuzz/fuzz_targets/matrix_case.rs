@@ -1153,6 +1153,8 @@ unsafe fn coordinate_case(b: &mut MatrixBytes) {
         assert_eq!(checked("SBM_free_from_SBCM", || SBM_free_from_SBCM(sbm)), 0);
     }
     assert_eq!(checked("SBCM_free_3x3", || SBCM_free_3x3(coo)), 0);
+    // As in Siconos, SBCM_free_3x3 frees the arrays, not the struct.
+    free(coo.cast());
     drop(host_coo);
     // An empty sparse-block structure, cleared twice.
     let s = SBM_new();

@@ -534,3 +534,100 @@ pub(super) unsafe fn triplet_push(
     t.n = t.n.max(j as CS_INT + 1);
     Ok(())
 }
+
+/// A C-allocated copy of the host CSparse matrix `cs` of form `kind`, checked as a `rows x cols`
+/// matrix (the whole structure, as `CsView::for_each` does): the same form, sizes and entries in
+/// the same order; `nzmax` becomes the number of entries stored (at least 1, as CSparse
+/// allocates). Nothing is left allocated on failure.
+pub(super) unsafe fn cs_duplicate(
+    cs: &CSparseMatrix,
+    kind: c_int,
+    rows: usize,
+    cols: usize,
+) -> CResult<*mut CSparseMatrix> {
+    let view = CsView::new(cs, kind, rows, cols)?;
+    view.for_each(|_, _, _| Ok(()))?;
+    let (p, i, x): (&[CS_INT], &[CS_INT], &[f64]) = if kind == NSM_TRIPLET {
+        let (ri, cj, x) = view.triplet()?;
+        (cj, ri, x)
+    } else {
+        let (outer, _, what, index) = view.compressed();
+        let p = c_slice(cs.p, outer + 1, what)?;
+        let used = p[outer] as usize;
+        (
+            p,
+            c_slice(cs.i, used, index)?,
+            c_slice(cs.x, used, "sparse values (x)")?,
+        )
+    };
+    let used = x.len();
+    // A triplet's p holds a column index per entry: allocate nzmax of them like i and x.
+    let copy_padded = |v: &[CS_INT], len: usize, what: &str| -> CResult<CBuf<CS_INT>> {
+        let mut b = CBuf::<CS_INT>::zeroed(len, what)?;
+        b.as_mut_slice()[..v.len()].copy_from_slice(v);
+        Ok(b)
+    };
+    let nzmax = used.max(1);
+    let p_len = if kind == NSM_TRIPLET { nzmax } else { p.len() };
+    let p_copy = copy_padded(p, p_len, "sparse copy p")?;
+    let i_copy = copy_padded(i, nzmax, "sparse copy i")?;
+    let mut x_copy = CBuf::<c_double>::zeroed(nzmax, "sparse copy x")?;
+    x_copy.as_mut_slice()[..used].copy_from_slice(x);
+    let nzmax = CS_INT::try_from(nzmax).map_err(|_| size_err("too many sparse entries"))?;
+    let out = CBuf::<CSparseMatrix>::zeroed(1, "sparse copy")?.into_raw();
+    out.write(CSparseMatrix {
+        nzmax,
+        m: cs.m,
+        n: cs.n,
+        p: p_copy.into_raw(),
+        i: i_copy.into_raw(),
+        x: x_copy.into_raw(),
+        nz: cs.nz,
+    });
+    Ok(out)
+}
+
+/// Scales the CSC form of a host sparse matrix in place by `factor`, as Siconos' `NM_scal`: the
+/// existing CSC form when there is one (it is checked first), else a CSC built from the origin
+/// form; the CSC becomes the origin and the triplet, half-triplet, transposed-CSC and CSR forms
+/// are released. Returns nothing changed on failure.
+pub(super) unsafe fn nsm_scale_to_csc(
+    s: &mut NumericsSparseMatrix,
+    rows: usize,
+    cols: usize,
+    factor: f64,
+) -> CResult<()> {
+    let csc = if s.csc.is_null() {
+        let (cs, kind) = match super::sparse_origin(s)? {
+            Some((cs, kind)) => (&*cs, kind),
+            None => return Err(CError::null("the sparse matrix's origin form")),
+        };
+        csc_to_c(&csr_from_cs(cs, kind, rows, cols)?)?
+    } else {
+        let view = CsView::new(&*s.csc, NSM_CSC, rows, cols)?;
+        view.for_each(|_, _, _| Ok(()))?;
+        s.csc
+    };
+    let (_, _, what, _) = CsView::new(&*csc, NSM_CSC, rows, cols)?.compressed();
+    let p = c_slice((*csc).p, cols + 1, what)?;
+    let used = p[cols] as usize;
+    if used > 0 {
+        for v in std::slice::from_raw_parts_mut((*csc).x, used) {
+            *v *= factor;
+        }
+    }
+    for cs in [
+        &mut s.triplet,
+        &mut s.half_triplet,
+        &mut s.trans_csc,
+        &mut s.csr,
+    ] {
+        cs_free(*cs);
+        *cs = null_mut();
+    }
+    s.csc = csc;
+    s.origin = NSM_CSC;
+    let newest = s.versions.iter().map(|v| v.number).max().unwrap_or(0);
+    s.versions[NSM_CSC as usize].number = newest.saturating_add(1);
+    Ok(())
+}

@@ -287,11 +287,13 @@ pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delas
 // ---------------------------------------------------------------------------------------------
 // Building C matrices from core ones.
 
+/// Siconos' `NM_null` state: unknown storage, sizes -1, no storage. `destructible` must then be
+/// set to the matrix's own address (`own_destructible`) once it has one.
 fn null_matrix() -> NumericsMatrix {
     NumericsMatrix {
         storageType: NM_UNKNOWN,
-        size0: 0,
-        size1: 0,
+        size0: -1,
+        size1: -1,
         matrix0: null_mut(),
         matrix1: null_mut(),
         matrix2: null_mut(),
@@ -347,8 +349,16 @@ pub(crate) fn matrix_to_c(w: &Delassus<'_>) -> CResult<*mut NumericsMatrix> {
     }
     let out = out.into_raw();
     // SAFETY: out is a fresh allocation for one NumericsMatrix.
-    unsafe { out.write(m) };
+    unsafe {
+        out.write(m);
+        own_destructible(out);
+    }
     Ok(out)
+}
+
+/// Siconos' default: a matrix is its own "destructible" matrix (`NM_destructible` is true).
+pub(crate) unsafe fn own_destructible(m: *mut NumericsMatrix) {
+    (*m).destructible = m;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -390,5 +400,94 @@ pub(crate) unsafe fn nm_clear_impl(m: *mut NumericsMatrix) {
         c_free(mm.internalData);
         mm.internalData = null_mut();
     }
-    mm.destructible = null_mut();
+    // As Siconos' NM_clear: a matrix whose destructible copy is another matrix (made by
+    // Siconos' NM_preserve) releases that copy's storage too, then is its own again.
+    let other = mm.destructible;
+    mm.destructible = m;
+    if !other.is_null() && other != m && (*other).destructible == other {
+        nm_clear_impl(other);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Copying.
+
+/// A deep C-allocated copy of a host NumericsMatrix in the same storage and layout, as Siconos'
+/// `NM_copy` into a new matrix: the dense values, the sparse-block structure with its blocks, or
+/// the sparse origin form (the other forms and the factorisation caches are not copied; a
+/// sparse copy's `nzmax` is its entry count). Checked first as the solvers check it. Nothing is
+/// left allocated on failure.
+pub(crate) unsafe fn nm_duplicate(m: &NumericsMatrix) -> CResult<*mut NumericsMatrix> {
+    delassus_from_c(m)?;
+    let (rows, cols) = matrix_dims(m)?;
+    let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
+    let mut copy = null_matrix();
+    copy.storageType = m.storageType;
+    copy.size0 = m.size0;
+    copy.size1 = m.size1;
+    copy.version = m.version;
+    match m.storageType {
+        NM_DENSE => {
+            let values = c_slice(m.matrix0 as *const c_double, rows * cols, "matrix0")?;
+            copy.matrix0 = CBuf::copy(values, "dense matrix")?.into_raw();
+        }
+        NM_SPARSE_BLOCK => copy.matrix1 = sbm::sbm_duplicate(&*m.matrix1)?,
+        _ => {
+            let s = &*m.matrix2;
+            let (cs, kind) = sparse_source(s)?;
+            let nsm = CBuf::<NumericsSparseMatrix>::zeroed(1, "sparse storage")?;
+            let form = csparse::cs_duplicate(cs, kind, rows, cols)?;
+            let mut v = empty_nsm();
+            v.origin = kind;
+            v.versions = s.versions;
+            match kind {
+                NSM_TRIPLET => v.triplet = form,
+                NSM_CSR => v.csr = form,
+                _ => v.csc = form,
+            }
+            let nsm = nsm.into_raw();
+            nsm.write(v);
+            copy.matrix2 = nsm;
+        }
+    }
+    let out = out.into_raw();
+    out.write(copy);
+    own_destructible(out);
+    Ok(out)
+}
+
+/// Scales a host NumericsMatrix in place by `factor`, as Siconos' `NM_scal`: the dense values or
+/// every block, the version raised past the matrix's newest; a sparse matrix is scaled in its CSC
+/// form, which becomes the origin (`csparse::nsm_scale_to_csc`). The matrix is checked first as
+/// the solvers check it; nothing is changed on failure.
+pub(crate) unsafe fn nm_scale_in_place(m: &mut NumericsMatrix, factor: f64) -> CResult<()> {
+    delassus_from_c(m)?;
+    let (rows, cols) = matrix_dims(m)?;
+    match m.storageType {
+        NM_DENSE => {
+            if rows * cols > 0 {
+                for v in std::slice::from_raw_parts_mut(m.matrix0, rows * cols) {
+                    *v *= factor;
+                }
+            }
+            m.version.number = m.version.number.saturating_add(1);
+        }
+        NM_SPARSE_BLOCK => {
+            let s = &mut *m.matrix1;
+            // Checked above: nbblocks 3x3 blocks behind non-NULL pointers.
+            let ptrs = c_slice(
+                s.block as *const *mut c_double,
+                s.nbblocks as usize,
+                "SBM block array",
+            )?;
+            for &b in ptrs {
+                for v in std::slice::from_raw_parts_mut(b, 9) {
+                    *v *= factor;
+                }
+            }
+            s.version.number = s.version.number.saturating_add(1);
+        }
+        _ => csparse::nsm_scale_to_csc(&mut *m.matrix2, rows, cols, factor)?,
+    }
+    Ok(())
 }

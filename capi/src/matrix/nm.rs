@@ -9,6 +9,7 @@ use std::os::raw::{c_double, c_int, c_void};
 use std::ptr::null_mut;
 
 use super::csparse::{cs_free, csc_insert, empty_nsm, triplet_new, triplet_push, CsView};
+use super::own_destructible;
 use super::sbm::{empty_sbm, sbm_get};
 use super::{byte_size, c_slice, check_clearable, delassus_from_c, matrix_dims, nm_clear_impl};
 use super::{null_matrix, size_err, sparse_origin, sparse_source, storage_err, CBuf};
@@ -21,11 +22,21 @@ use fc3d_core::error::Fc3dError;
 // ---------------------------------------------------------------------------------------------
 // Siconos API.
 
-/// A new empty matrix (storage NM_UNKNOWN, sizes 0). Release with `NM_free`.
+/// A new empty matrix in Siconos' `NM_null` state (storage NM_UNKNOWN, sizes -1, its own
+/// destructible matrix). Release with `NM_free`.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub extern "C" fn NM_new() -> *mut NumericsMatrix {
-    ffi_guard("NM_new", |_| null_mut(), || boxed(null_matrix()))
+    ffi_guard(
+        "NM_new",
+        |_| null_mut(),
+        || {
+            let p = boxed(null_matrix())?;
+            // SAFETY: p is the fresh matrix.
+            unsafe { own_destructible(p) };
+            Ok(p)
+        },
+    )
 }
 
 /// A C-allocated struct holding `v`.
@@ -36,7 +47,8 @@ fn boxed<T>(v: T) -> CResult<*mut T> {
     Ok(p)
 }
 
-/// Resets every field of `A` (frees nothing).
+/// Resets every field of `A` as Siconos does (storage NM_UNKNOWN, sizes -1, NULL storage,
+/// version 0, `destructible = A`); frees nothing.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn NM_null(A: *mut NumericsMatrix) {
@@ -48,6 +60,7 @@ pub unsafe extern "C" fn NM_null(A: *mut NumericsMatrix) {
                 return Err(CError::null("A"));
             }
             *A = null_matrix();
+            own_destructible(A);
             Ok(())
         },
     )
@@ -82,9 +95,16 @@ fn storage_for(storageType: c_int, size0: c_int, size1: c_int) -> CResult<Numeri
             }
             m.matrix0 = CBuf::<c_double>::zeroed(n, "dense matrix")?.into_raw();
         }
-        NM_SPARSE_BLOCK => m.matrix1 = boxed(empty_sbm())?,
+        NM_SPARSE_BLOCK => {
+            let mut sbm = empty_sbm();
+            sbm.version.number = 1;
+            m.matrix1 = boxed(sbm)?;
+        }
         NM_SPARSE => m.matrix2 = boxed(empty_nsm())?,
         other => return Err(unknown_storage(other)),
+    }
+    if storageType == NM_DENSE {
+        m.version.number = 1;
     }
     Ok(m)
 }
@@ -105,7 +125,10 @@ pub extern "C" fn NM_create(storageType: c_int, size0: c_int, size1: c_int) -> *
             let m = storage_for(storageType, size0, size1)?;
             let p = out.into_raw();
             // SAFETY: p is a fresh allocation for one NumericsMatrix.
-            unsafe { p.write(m) };
+            unsafe {
+                p.write(m);
+                own_destructible(p);
+            }
             Ok(p)
         },
     )
@@ -129,7 +152,22 @@ fn fill(
         NM_SPARSE => n.matrix2 = data as *mut NumericsSparseMatrix,
         other => return Err(unknown_storage(other)),
     }
+    // Siconos counts the data's first version: 1 for a dense array, one past a sparse-block
+    // structure's own version.
+    if !data.is_null() {
+        match storageType {
+            NM_DENSE => n.version.number = 1,
+            NM_SPARSE_BLOCK => {
+                // SAFETY: the host hands over a SparseBlockStructuredMatrix for this storage.
+                let v = unsafe { &mut (*n.matrix1).version.number };
+                *v = v.saturating_add(1);
+            }
+            _ => {}
+        }
+    }
     *m = n;
+    // SAFETY: m is a valid matrix (a reference).
+    unsafe { own_destructible(m) };
     Ok(())
 }
 
@@ -150,7 +188,10 @@ pub extern "C" fn NM_create_from_data(
         || {
             let mut m = null_matrix();
             fill(&mut m, storageType, size0, size1, data)?;
-            boxed(m)
+            let p = boxed(m)?;
+            // SAFETY: p is the fresh matrix (fill pointed it at the local copy).
+            unsafe { own_destructible(p) };
+            Ok(p)
         },
     )
 }

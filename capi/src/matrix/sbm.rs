@@ -42,6 +42,36 @@ fn check_block_count(count: c_uint, what: &str) -> CResult<()> {
     Ok(())
 }
 
+/// The `blocknumber0 + 1` block-row pointers of a host SBM. Siconos' `filled1` counts the
+/// pointers up to the last block row that holds a block (`SBCM_to_SBM` sets it so, and to 2 for
+/// a grid without rows): the rows past it are empty.
+unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
+    let nbr = s.blocknumber0 as usize;
+    let given = s.filled1.min(nbr + 1);
+    if s.filled1 > nbr + 1 && nbr > 0 || given == 0 && s.nbblocks != 0 {
+        return Err(storage_err(format!(
+            "SBM filled1 = {} but blocknumber0 + 1 = {} (and {} blocks)",
+            s.filled1,
+            nbr + 1,
+            s.nbblocks
+        )));
+    }
+    let declared = c_slice(s.index1_data, given, "SBM index1_data")?;
+    let mut ptr = try_vec(nbr + 1, 0usize, "SBM block row pointers")?;
+    ptr[..given].copy_from_slice(declared);
+    let last = declared.last().copied().unwrap_or(0);
+    // The rows up to filled1 - 1 hold every block.
+    if last != s.filled2 {
+        return Err(storage_err(format!(
+            "SBM index1_data[filled1 - 1 = {}] = {last} but filled2 = {} blocks",
+            given.saturating_sub(1),
+            s.filled2
+        )));
+    }
+    ptr[given..].iter_mut().for_each(|p| *p = last);
+    Ok(ptr)
+}
+
 /// Validated block-sparse core copy of a Siconos SBM with uniform 3x3 blocks.
 pub(super) unsafe fn block_sparse_from_sbm(
     s: &SparseBlockStructuredMatrix,
@@ -64,14 +94,7 @@ pub(super) unsafe fn block_sparse_from_sbm(
             )));
         }
     }
-    if s.filled1 != nbr + 1 {
-        return Err(storage_err(format!(
-            "SBM filled1 = {} but blocknumber0 + 1 = {}",
-            s.filled1,
-            nbr + 1
-        )));
-    }
-    let row_ptr = c_slice(s.index1_data, s.filled1, "SBM index1_data")?;
+    let row_ptr = sbm_row_ptr(s)?;
     let nb = row_ptr[nbr];
     if nb != s.filled2 || nb != s.nbblocks as usize {
         return Err(storage_err(format!(
@@ -79,16 +102,28 @@ pub(super) unsafe fn block_sparse_from_sbm(
             s.filled2, s.nbblocks
         )));
     }
-    let row_ptr = try_copy(row_ptr, "SBM block row pointers")?;
-    let col_idx = try_copy(
-        c_slice(s.index2_data, nb, "SBM index2_data")?,
-        "SBM block columns",
-    )?;
+    let given_cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
     let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
+    if let Some(w) = row_ptr.windows(2).find(|w| w[0] > w[1]) {
+        return Err(storage_err(format!(
+            "SBM index1_data decreases ({} then {})",
+            w[0], w[1]
+        )));
+    }
+    // A Siconos SBM need not sort the blocks of a row (SBCM_to_SBM keeps their coordinate
+    // order): the copy sorts them, so that products sum in the same order whatever the input
+    // order.
+    let mut order = try_vec(nb, 0usize, "SBM block order")?;
+    order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
+    for i in 0..nbr {
+        order[row_ptr[i]..row_ptr[i + 1]].sort_by_key(|&k| given_cols[k]);
+    }
+    let mut col_idx = try_vec(nb, 0usize, "SBM block columns")?;
     let mut blocks = try_vec(nb, [0.0; 9], "SBM blocks")?;
-    for (k, (&bp, a)) in ptrs.iter().zip(blocks.iter_mut()).enumerate() {
+    for ((&k, c), a) in order.iter().zip(col_idx.iter_mut()).zip(blocks.iter_mut()) {
+        *c = given_cols[k];
         a.copy_from_slice(c_slice(
-            bp as *const c_double,
+            ptrs[k] as *const c_double,
             9,
             &format!("SBM block {k}"),
         )?);
@@ -132,14 +167,7 @@ pub(super) unsafe fn sbm_get(s: &SparseBlockStructuredMatrix, i: usize, j: usize
     let r0 = if bi == 0 { 0 } else { bs0[bi - 1] as usize };
     let c0 = if bj == 0 { 0 } else { bs1[bj - 1] as usize };
     let (nrows, ncols) = (bs0[bi] as usize - r0, bs1[bj] as usize - c0);
-    if s.filled1 != nbr + 1 {
-        return Err(storage_err(format!(
-            "SBM filled1 = {} but blocknumber0 + 1 = {}",
-            s.filled1,
-            nbr + 1
-        )));
-    }
-    let ptr = c_slice(s.index1_data, s.filled1, "SBM index1_data")?;
+    let ptr = sbm_row_ptr(s)?;
     let (a, z) = (ptr[bi], ptr[bi + 1]);
     if a > z || z > nb {
         return Err(storage_err(format!(
@@ -284,8 +312,11 @@ pub(super) unsafe fn sbm_clear_impl(s: *mut SparseBlockStructuredMatrix, free_bl
         }
         c_free(s.block);
     }
+    // Siconos lets a square SBM share one array of block sizes.
+    if s.blocksize1 != s.blocksize0 {
+        c_free(s.blocksize1);
+    }
     c_free(s.blocksize0);
-    c_free(s.blocksize1);
     c_free(s.index1_data);
     c_free(s.index2_data);
     c_free(s.diagonal_blocks);
@@ -296,6 +327,8 @@ pub(super) unsafe fn sbm_clear_impl(s: *mut SparseBlockStructuredMatrix, free_bl
     s.index2_data = null_mut();
     s.diagonal_blocks = null_mut();
     s.nbblocks = 0;
+    s.blocknumber0 = 0;
+    s.blocknumber1 = 0;
     s.filled1 = 0;
     s.filled2 = 0;
 }
@@ -339,10 +372,14 @@ pub unsafe extern "C" fn SBM_clear(blmat: *mut SparseBlockStructuredMatrix) {
 }
 
 /// Coordinate block matrix of `nbblocks` 3x3 blocks at 1-based block coordinates
-/// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks.
-/// Keeps `row`, `column` and `block` without copying (they stay the caller's); release with
-/// `SBCM_free_3x3`. NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n` exceeds a C int or a
-/// coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a NULL array.
+/// `(row[k], column[k])`, values `block[9k..9k+9]` column-major, in an `m` x `n` grid of blocks,
+/// with Siconos' ownership: `row` and `column` are copied and made 0-based, the block pointers
+/// point into `block` (the caller's values, not copied), and `blocksize0`/`blocksize1` are the
+/// cumulative sizes 3, 6, 9, ... (at least `nbblocks` entries, as Siconos allocates them, and
+/// at least `m`/`n`, so that the grid is always described). Release with `SBCM_free_3x3` (the
+/// arrays) and then `free` (the struct). NULL with `FC3D_ERR_INVALID_SIZE` when `3 m` or `3 n`
+/// exceeds a C int or a coordinate is outside `1..=m` x `1..=n`, `FC3D_ERR_NULL_POINTER` for a
+/// NULL array.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_new_3x3(
@@ -371,19 +408,30 @@ pub unsafe extern "C" fn SBCM_new_3x3(
                     )));
                 }
             }
+            let zero_based = |v: &[c_uint], what: &str| -> CResult<CBuf<c_uint>> {
+                let mut b = CBuf::<c_uint>::zeroed(nb, what)?;
+                for (d, &s) in b.as_mut_slice().iter_mut().zip(v) {
+                    *d = s - 1;
+                }
+                Ok(b)
+            };
+            let row0 = zero_based(rows, "row")?;
+            let col0 = zero_based(cols, "column")?;
             let mut ptrs = CBuf::<*mut c_double>::zeroed(nb, "block pointers")?;
             for (k, p) in ptrs.as_mut_slice().iter_mut().enumerate() {
                 *p = block.add(9 * k);
             }
-            let cumulative = |count: c_uint, what: &str| -> CResult<CBuf<c_uint>> {
-                let mut bs = CBuf::<c_uint>::zeroed(count as usize, what)?;
+            let cumulative = |count: usize, what: &str| -> CResult<CBuf<c_uint>> {
+                let mut bs = CBuf::<c_uint>::zeroed(count, what)?;
                 for (k, v) in bs.as_mut_slice().iter_mut().enumerate() {
-                    *v = 3 * (k as c_uint + 1);
+                    // count <= max(nbblocks, m or n): 3 (k + 1) fits when it is a grid size;
+                    // past the grid (more blocks than rows) the sizes only need to increase.
+                    *v = (3 * (k as u64 + 1)).min(c_uint::MAX as u64) as c_uint;
                 }
                 Ok(bs)
             };
-            let bs0 = cumulative(m, "blocksize0")?;
-            let bs1 = cumulative(n, "blocksize1")?;
+            let bs0 = cumulative(nb.max(m as usize), "blocksize0")?;
+            let bs1 = cumulative(nb.max(n as usize), "blocksize1")?;
             let out =
                 CBuf::<SparseBlockCoordinateMatrix>::zeroed(1, "coordinate matrix")?.into_raw();
             out.write(SparseBlockCoordinateMatrix {
@@ -393,15 +441,18 @@ pub unsafe extern "C" fn SBCM_new_3x3(
                 block: ptrs.into_raw(),
                 blocksize0: bs0.into_raw(),
                 blocksize1: bs1.into_raw(),
-                row,
-                column,
+                row: row0.into_raw(),
+                column: col0.into_raw(),
             });
             Ok(out)
         },
     )
 }
 
-/// Frees what `SBCM_new_3x3` allocated (not the caller's row, column and block arrays).
+/// Frees the arrays `SBCM_new_3x3` allocated (`block`, `blocksize0`, `blocksize1`, `row`,
+/// `column`), not the struct itself (the caller frees it, as in Siconos) nor the block values.
+/// An SBM made by `SBCM_to_SBM` shares `blocksize0`/`blocksize1`: release it first. NULL is a
+/// no-op.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_free_3x3(MC: *mut SparseBlockCoordinateMatrix) {
@@ -409,21 +460,32 @@ pub unsafe extern "C" fn SBCM_free_3x3(MC: *mut SparseBlockCoordinateMatrix) {
         "SBCM_free_3x3",
         |_| (),
         || {
-            if !MC.is_null() {
-                c_free((*MC).block);
-                c_free((*MC).blocksize0);
-                c_free((*MC).blocksize1);
-                c_free(MC);
+            if let Some(mc) = MC.as_mut() {
+                c_free(mc.block);
+                c_free(mc.blocksize0);
+                c_free(mc.blocksize1);
+                c_free(mc.row);
+                c_free(mc.column);
+                mc.block = null_mut();
+                mc.blocksize0 = null_mut();
+                mc.blocksize1 = null_mut();
+                mc.row = null_mut();
+                mc.column = null_mut();
             }
             Ok(())
         },
     )
 }
 
-/// A sparse-block matrix (block-CSR, sorted) whose blocks point into the coordinate matrix's
-/// values (no copy). Release with `SBM_free_from_SBCM` before the coordinate data goes away.
-/// Checks what a host may have filled: NULL arrays and block pointers, cumulative sizes that do
-/// not increase, coordinates outside `1..=blocknumber0` x `1..=blocknumber1` (NULL and a code).
+/// A sparse-block matrix (block-CSR) built from the coordinate matrix as Siconos builds it:
+/// blocks grouped by block row in their coordinate order (columns are not sorted within a row),
+/// `blocksize0`/`blocksize1` and the block pointers shared with `MC` (nothing copied),
+/// `index1_data` (`blocknumber0 + 1` entries), `index2_data` and the block-pointer array
+/// allocated, `filled1` one past the last block row that holds a block (at least 2), no
+/// `diagonal_blocks`. Release with `SBM_free_from_SBCM` (or `free` of `index1_data`,
+/// `index2_data`, `block` and the struct) before `SBCM_free_3x3`. Checks what a host may have
+/// changed in `MC`: NULL arrays and block pointers, cumulative sizes that do not increase,
+/// 0-based coordinates outside the grid (NULL and a code).
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBCM_to_SBM(
@@ -442,66 +504,57 @@ pub unsafe extern "C" fn SBCM_to_SBM(
             let rows = c_slice(mc.row, nb, "row")?;
             let cols = c_slice(mc.column, nb, "column")?;
             let ptrs = c_slice(mc.block as *const *mut c_double, nb, "block")?;
-            let bs0 = c_slice(mc.blocksize0, nbr, "blocksize0")?;
-            let bs1 = c_slice(mc.blocksize1, nbc, "blocksize1")?;
-            check_block_sizes(bs0, "blocksize0")?;
-            check_block_sizes(bs1, "blocksize1")?;
+            check_block_sizes(c_slice(mc.blocksize0, nbr, "blocksize0")?, "blocksize0")?;
+            check_block_sizes(c_slice(mc.blocksize1, nbc, "blocksize1")?, "blocksize1")?;
             for k in 0..nb {
                 let (r, c) = (rows[k] as usize, cols[k] as usize);
-                if r == 0 || r > nbr || c == 0 || c > nbc {
+                if r >= nbr || c >= nbc {
                     return Err(size_err(format!(
-                        "block {k} at 1-based ({r}, {c}) is outside {nbr}x{nbc} blocks"
+                        "block {k} at 0-based ({r}, {c}) is outside {nbr}x{nbc} blocks"
                     )));
                 }
                 if ptrs[k].is_null() {
                     return Err(CError::null(&format!("block {k}")));
                 }
             }
-            // Sorted by (row, column), ties in the given order.
-            let mut order = try_vec(nb, 0usize, "block order")?;
-            order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
-            order.sort_unstable_by_key(|&k| (rows[k], cols[k], k));
+            // Counting sort by block row: stable, so a row keeps its blocks in coordinate order.
             let mut row_ptr = CBuf::<usize>::zeroed(nbr + 1, "index1_data")?;
             let rp = row_ptr.as_mut_slice();
-            for &k in &order {
-                rp[rows[k] as usize] += 1;
+            for &r in rows {
+                rp[r as usize + 1] += 1;
             }
             for i in 0..nbr {
                 rp[i + 1] += rp[i];
             }
+            let mut next = try_copy(&rp[..nbr], "block row cursors")?;
             let mut col_idx = CBuf::<usize>::zeroed(nb, "index2_data")?;
-            let mut sorted = CBuf::<*mut c_double>::zeroed(nb, "block array")?;
-            for ((c, b), &k) in col_idx
-                .as_mut_slice()
-                .iter_mut()
-                .zip(sorted.as_mut_slice().iter_mut())
-                .zip(&order)
-            {
-                *c = cols[k] as usize - 1;
-                *b = ptrs[k];
+            let mut grouped = CBuf::<*mut c_double>::zeroed(nb, "block array")?;
+            let (ci, gb) = (col_idx.as_mut_slice(), grouped.as_mut_slice());
+            for k in 0..nb {
+                let dest = &mut next[rows[k] as usize];
+                ci[*dest] = cols[k] as usize;
+                gb[*dest] = ptrs[k];
+                *dest += 1;
             }
-            let mut diag = CBuf::<c_uint>::zeroed(nbr, "diagonal_blocks")?;
-            let (rp, ci) = (row_ptr.as_mut_slice(), col_idx.as_mut_slice());
-            for (i, d) in diag.as_mut_slice().iter_mut().enumerate() {
-                *d = (rp[i]..rp[i + 1])
-                    .find(|&k| ci[k] == i)
-                    .map_or(c_uint::MAX, |k| k as c_uint);
-            }
-            let bs0 = CBuf::copy(bs0, "blocksize0")?;
-            let bs1 = CBuf::copy(bs1, "blocksize1")?;
+            let filled1 = rows
+                .iter()
+                .map(|&r| r as usize + 2)
+                .max()
+                .unwrap_or(2)
+                .max(2);
             let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "SBM")?.into_raw();
             out.write(SparseBlockStructuredMatrix {
                 nbblocks: mc.nbblocks,
-                block: sorted.into_raw(),
+                block: grouped.into_raw(),
                 blocknumber0: mc.blocknumber0,
                 blocknumber1: mc.blocknumber1,
-                blocksize0: bs0.into_raw(),
-                blocksize1: bs1.into_raw(),
-                filled1: nbr + 1,
+                blocksize0: mc.blocksize0,
+                blocksize1: mc.blocksize1,
+                filled1,
                 filled2: nb,
                 index1_data: row_ptr.into_raw(),
                 index2_data: col_idx.into_raw(),
-                diagonal_blocks: diag.into_raw(),
+                diagonal_blocks: null_mut(),
                 version: NumericsDataVersion::default(),
             });
             Ok(out)
@@ -509,7 +562,9 @@ pub unsafe extern "C" fn SBCM_to_SBM(
     )
 }
 
-/// Frees an SBM made by `SBCM_to_SBM` (structure and struct, not the block values).
+/// Frees an SBM made by `SBCM_to_SBM`: its `index1_data`, `index2_data`, block-pointer array
+/// and the struct, not what it shares with the coordinate matrix (`blocksize0`, `blocksize1`,
+/// the block values). NULL is a no-op.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn SBM_free_from_SBCM(M: *mut SparseBlockStructuredMatrix) {
@@ -517,9 +572,74 @@ pub unsafe extern "C" fn SBM_free_from_SBCM(M: *mut SparseBlockStructuredMatrix)
         "SBM_free_from_SBCM",
         |_| (),
         || {
-            sbm_clear_impl(M, false);
-            c_free(M);
+            if let Some(m) = M.as_mut() {
+                c_free(m.index1_data);
+                c_free(m.index2_data);
+                c_free(m.block);
+                c_free(M);
+            }
             Ok(())
         },
     )
+}
+
+/// A deep C-allocated copy of a host SBM that `block_sparse_from_sbm` accepted (3x3 blocks), as
+/// Siconos' `SBM_copy` with blocks: the same counts, sizes, `filled1`/`filled2` entries of the
+/// index arrays and block order, every block copied, `diagonal_blocks` (one entry per block
+/// row) when the source has one, the version. Nothing is left allocated on failure.
+pub(super) unsafe fn sbm_duplicate(
+    s: &SparseBlockStructuredMatrix,
+) -> CResult<*mut SparseBlockStructuredMatrix> {
+    let (nbr, nbc, nb) = (
+        s.blocknumber0 as usize,
+        s.blocknumber1 as usize,
+        s.nbblocks as usize,
+    );
+    let copy = |p: *const c_uint, n: usize, what: &str| -> CResult<CBuf<c_uint>> {
+        CBuf::copy(c_slice(p, n, what)?, what)
+    };
+    let bs0 = copy(s.blocksize0, nbr, "SBM blocksize0")?;
+    let bs1 = copy(s.blocksize1, nbc, "SBM blocksize1")?;
+    let i1 = CBuf::copy(
+        c_slice(s.index1_data, s.filled1, "SBM index1_data")?,
+        "SBM index1_data",
+    )?;
+    let i2 = CBuf::copy(
+        c_slice(s.index2_data, s.filled2, "SBM index2_data")?,
+        "SBM index2_data",
+    )?;
+    let diag = if s.diagonal_blocks.is_null() {
+        None
+    } else {
+        Some(copy(s.diagonal_blocks, nbr, "SBM diagonal_blocks")?)
+    };
+    let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
+    let mut blocks = Vec::new();
+    blocks
+        .try_reserve_exact(nb)
+        .map_err(|_| size_err(format!("cannot hold {nb} block copies")))?;
+    for (k, &b) in ptrs.iter().enumerate() {
+        let what = format!("SBM block {k}");
+        blocks.push(CBuf::copy(c_slice(b as *const c_double, 9, &what)?, &what)?);
+    }
+    let mut block_array = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?;
+    let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "SBM")?.into_raw();
+    for (slot, b) in block_array.as_mut_slice().iter_mut().zip(blocks) {
+        *slot = b.into_raw();
+    }
+    out.write(SparseBlockStructuredMatrix {
+        nbblocks: s.nbblocks,
+        block: block_array.into_raw(),
+        blocknumber0: s.blocknumber0,
+        blocknumber1: s.blocknumber1,
+        blocksize0: bs0.into_raw(),
+        blocksize1: bs1.into_raw(),
+        filled1: s.filled1,
+        filled2: s.filled2,
+        index1_data: i1.into_raw(),
+        index2_data: i2.into_raw(),
+        diagonal_blocks: diag.map_or(null_mut(), CBuf::into_raw),
+        version: s.version,
+    });
+    Ok(out)
 }

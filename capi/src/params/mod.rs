@@ -13,9 +13,11 @@ mod nsn;
 mod prox;
 mod siconos;
 mod siconos_table;
+mod tolerance;
 mod vi;
 
 pub(crate) use crate::names::{solver_name, solver_name_to_id};
+pub(crate) use tolerance::{internal_solver_tolerance, set_tolerance};
 
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;

@@ -15,6 +15,25 @@ mod sparse;
 
 pub use settings::{NsnFormulation, NsnLineSearch, NsnOptions, NONMONOTONE_MEMORY};
 
+/// One contact's Alart-Curnier residual `F(r, u)` (or, with `jean_moreau`, the Jean-Moreau one)
+/// at independent `r` and `u`, with `dF/dr` and `dF/du` (row-major): the per-contact pieces NSN
+/// assembles, for hosts that assemble their own Newton (Siconos' `computeAlartCurnierSTD`).
+pub fn alart_curnier_parts(
+    r: &Vec3,
+    u: &Vec3,
+    mu: f64,
+    rho_n: f64,
+    rho_t: f64,
+    jean_moreau: bool,
+) -> (Vec3, Mat3, Mat3) {
+    let formulation = if jean_moreau {
+        NsnFormulation::JeanMoreau
+    } else {
+        NsnFormulation::AlartCurnier
+    };
+    residual(formulation, r, u, &ContactData { mu, rho_n, rho_t })
+}
+
 use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::math::linalg::{norm, Mat3, Vec3};

@@ -1,0 +1,83 @@
+//! The small Siconos functions fc3d reimplements (the Alart-Curnier functions, the per-contact
+//! and velocity/Tresca error measures, `fc3d_checkTrivialCase`,
+//! `fc3d_set_internalsolver_tolerance`, `frictionContactProblem_compute_statistics`,
+//! `frictionContact_copy` and `frictionContact_rescaling` on dense and sparse-block problems)
+//! against the installed Siconos 4.4 in one process:
+//! c/siconos_side_by_side.c opens both libraries with dlopen and compares every output value and
+//! every output slot left alone, on the same random and boundary inputs. Skipped when Siconos is
+//! not installed (the test suite installs it).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+#[test]
+fn small_functions_agree_with_siconos() {
+    if !Path::new("/usr/include/siconos/numerics/FrictionContactProblem.h").is_file() {
+        eprintln!("Siconos not installed: skipped");
+        return;
+    }
+    // `cargo test` builds fc3d as an rlib: build the shared library of this profile.
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().unwrap().parent().unwrap();
+    let mut build = Command::new(env!("CARGO"));
+    build
+        .args(["build", "-p", "fc3d", "--lib"])
+        .current_dir(root());
+    if profile_dir.file_name().unwrap() == "release" {
+        build.arg("--release");
+    }
+    assert!(build.status().unwrap().success(), "cargo build -p fc3d");
+    let lib = profile_dir.join("libfc3d.so");
+
+    let dir = std::env::temp_dir().join(format!("fc3d-side-by-side-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let program = dir.join("siconos_side_by_side");
+    let out = Command::new("cc")
+        .args(["-O1", "-Wall", "-Wextra", "-Werror"])
+        .arg(format!(
+            "-I{}",
+            root().join("capi/include/siconos-compat").display()
+        ))
+        .arg(format!("-I{}", root().join("capi/include").display()))
+        .arg(root().join("capi-tests/c/siconos_side_by_side.c"))
+        .args(["-ldl", "-lm", "-o"])
+        .arg(&program)
+        .output()
+        .expect("run cc");
+    assert!(
+        out.status.success(),
+        "cc: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run = Command::new(&program)
+        .arg(&lib)
+        .arg("libsiconos_numerics.so")
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        run.status.success(),
+        "{}{}",
+        String::from_utf8_lossy(&run.stdout),
+        String::from_utf8_lossy(&run.stderr)
+    );
+    // frictionContactProblem_compute_statistics: both libraries print the same line for each of
+    // the 50 inputs (and nothing when do_print is above the verbosity).
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    let lines: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.contains("FC3D - STAT"))
+        .collect();
+    assert_eq!(lines.len(), 100, "{stdout}");
+    let mut counts = std::collections::BTreeMap::new();
+    for l in &lines {
+        *counts.entry(*l).or_insert(0) += 1;
+    }
+    for (line, count) in counts {
+        assert!(count % 2 == 0, "printed by one library only: {line}");
+    }
+}
