@@ -22,6 +22,7 @@ mod alloc;
 mod codes;
 mod driver;
 mod errors;
+mod fc2d;
 mod fclib;
 mod lmgc;
 mod matrix;

@@ -10,23 +10,46 @@ use crate::error::{try_vec, Fc3dError};
 use crate::measure::natural_map_error_of;
 use crate::problem::FrictionProblem;
 
-/// Where a contact's reaction lies.
+/// Where a contact's reaction lies (Siconos' CPG status codes 0 to 3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Status {
-    /// `r = 0`.
+pub enum Status {
+    /// `r = 0` (0).
     Open,
-    /// `r_T = -mu r_N`.
+    /// `r_T = -mu r_N` (1).
     SlideBackward,
-    /// `|r_T| < mu r_N`.
+    /// `|r_T| < mu r_N` (2).
     Stick,
-    /// `r_T = mu r_N`.
+    /// `r_T = mu r_N` (3).
     SlideForward,
+}
+
+impl Status {
+    /// Siconos' code.
+    pub fn code(self) -> i32 {
+        match self {
+            Status::Open => 0,
+            Status::SlideBackward => 1,
+            Status::Stick => 2,
+            Status::SlideForward => 3,
+        }
+    }
+
+    /// The status of Siconos' code `code`; codes other than 0, 1, 3 read as stick, as Siconos'
+    /// projections treat them.
+    pub fn from_code(code: i32) -> Status {
+        match code {
+            0 => Status::Open,
+            1 => Status::SlideBackward,
+            3 => Status::SlideForward,
+            _ => Status::Stick,
+        }
+    }
 }
 
 /// The reaction of one contact after a step to `xi`, and its status: `xi` projected on the
 /// cone, except that a contact sliding before a step whose direction has no tangential part
 /// (`p_T = 0`) stays on its side of the cone.
-fn project_step(xi: [f64; 2], p_t: f64, before: Status, mu: f64) -> ([f64; 2], Status) {
+pub fn project_step(xi: [f64; 2], p_t: f64, before: Status, mu: f64) -> ([f64; 2], Status) {
     let [n, t] = xi;
     if n <= 0.0 {
         return ([0.0, 0.0], Status::Open);
@@ -47,7 +70,7 @@ fn project_step(xi: [f64; 2], p_t: f64, before: Status, mu: f64) -> ([f64; 2], S
 /// A direction `y` of one contact restricted to the moves its status allows: an open contact
 /// may only close (`y_N > 0`), a sliding one may not move its tangential part towards the
 /// inside of its face.
-fn project_direction(y: [f64; 2], status: Status) -> [f64; 2] {
+pub fn project_direction(y: [f64; 2], status: Status) -> [f64; 2] {
     match status {
         Status::Open if y[0] <= 0.0 => [0.0, 0.0],
         Status::SlideForward => [y[0], y[1].min(0.0)],

@@ -188,7 +188,57 @@ pub fn lemke(
         pivots += 1;
     }
     read_solution(&t, cols, &basis, m, z, w, lcp);
+    resolve_final_basis(lcp, &basis, z, w)?;
     Ok((LcpEnd::Solved, pivots))
+}
+
+/// The pivots accumulate rounding in the tableau; the final basis is solved again from M and q̃
+/// (Gaussian elimination with partial pivoting), and that solution replaces the tableau's when it
+/// is feasible and closer to complementarity.
+fn resolve_final_basis(
+    lcp: &PlanarLcp,
+    basis: &[usize],
+    z: &mut [f64],
+    w: &mut [f64],
+) -> Result<(), Fc3dError> {
+    let m = lcp.size;
+    // Columns of [I, -M] for the basic variables: w_j -> e_j, z_j -> -M e_j.
+    let mut a = try_vec(m * m, 0.0, "the Lemke final basis")?;
+    let mut x = lcp.q.clone();
+    for (k, &b) in basis.iter().enumerate() {
+        for i in 0..m {
+            a[i * m + k] = if b < m {
+                if i == b {
+                    1.0
+                } else {
+                    0.0
+                }
+            } else {
+                -lcp.m[i * m + (b - m)]
+            };
+        }
+    }
+    if !solve_dense(&mut a, &mut x, m) {
+        return Ok(());
+    }
+    let mut z_new = try_vec(m, 0.0, "the Lemke final basis")?;
+    for (k, &b) in basis.iter().enumerate() {
+        if b >= m {
+            z_new[b - m] = x[k].max(0.0);
+        }
+    }
+    let mut w_new = try_vec(m, 0.0, "the Lemke final basis")?;
+    lcp_velocity(lcp, &z_new, &mut w_new);
+    if complementarity_gap(&z_new, &w_new) < complementarity_gap(z, w) {
+        z.copy_from_slice(&z_new);
+        w.copy_from_slice(&w_new);
+    }
+    Ok(())
+}
+
+/// `sum_i |min(z_i, w_i)|`: zero exactly at a solution of the LCP.
+fn complementarity_gap(z: &[f64], w: &[f64]) -> f64 {
+    z.iter().zip(w).map(|(a, b)| a.min(*b).abs()).sum()
 }
 
 /// Whether row `i` (ratio `(rhs_i, B^-1_i) / a_i`) comes lexicographically before row `k`.
@@ -288,7 +338,9 @@ pub const MAX_ENUMERATION_SIZE: usize = 32;
 
 /// Enumeration of the complementary bases, in Siconos' order: case `k` (from `seed`, wrapping
 /// around) frees `w_j` where bit `j` of `k` is set and `z_j` elsewhere, solves the square
-/// system, and stops at the first solution with every free variable `>= -tolerance`. Returns how
+/// system, and stops at the first solution with every free variable `>= -tolerance ||q̃||_inf`.
+/// (Siconos compares with `-tolerance` itself; relative to q̃ the test does not accept every
+/// case of a problem whose data are of order 1e-15, as some real 2D problems are.) Returns how
 /// it ended and the cases tried.
 pub fn enumerate(
     lcp: &PlanarLcp,
@@ -308,6 +360,7 @@ pub fn enumerate(
         )));
     }
     let cases: u64 = 1u64 << m;
+    let slack = tolerance * lcp.q.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     let mut a = try_vec(m * m, 0.0, "the enumeration system")?;
     let mut x = try_vec(m, 0.0, "the enumeration system")?;
     let mut tried = 0usize;
@@ -333,7 +386,7 @@ pub fn enumerate(
         if !solve_dense(&mut a, &mut x, m) {
             continue;
         }
-        if x.iter().all(|&v| v >= -tolerance && v.is_finite()) {
+        if x.iter().all(|&v| v >= -slack && v.is_finite()) {
             for j in 0..m {
                 if case >> j & 1 == 0 {
                     z[j] = x[j];
