@@ -3,7 +3,12 @@
 
 fn main() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let sources = ["c/capi_checks.c", "c/nsgs_options.c", "c/matrix_hostile.c"];
+    let sources = [
+        "c/capi_checks.c",
+        "c/nsgs_options.c",
+        "c/matrix_hostile.c",
+        "c/fc2d_checks.c",
+    ];
     let mut build = cc::Build::new();
     build
         .include(root.join("../capi/include/siconos-compat"))

@@ -83,7 +83,15 @@ pub unsafe extern "C" fn fc2d_nsgs_dense(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    direct("fc2d_nsgs_dense", 400, problem, reaction, velocity, info, options)
+    direct(
+        "fc2d_nsgs_dense",
+        400,
+        problem,
+        reaction,
+        velocity,
+        info,
+        options,
+    )
 }
 
 /// Siconos' sparse-block 2D NSGS entry: the 2D NSGS (400) of `fc2d_driver`, whatever W's
@@ -123,7 +131,15 @@ pub unsafe extern "C" fn fc2d_lexicolemke(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    direct("fc2d_lexicolemke", 404, problem, reaction, velocity, info, options)
+    direct(
+        "fc2d_lexicolemke",
+        404,
+        problem,
+        reaction,
+        velocity,
+        info,
+        options,
+    )
 }
 
 /// Siconos' enumeration entry (405), as `fc2d_driver`.
@@ -327,10 +343,7 @@ unsafe fn contacts_of(n: *mut c_int) -> super::CResult<usize> {
     if n.is_null() {
         return Err(CError::null("n"));
     }
-    usize::try_from(*n).map(|n| n / 2).map_err(|_| {
-        CError::new(
-            FC3D_ERR_INVALID_SIZE,
-            format!("n = {} is negative", *n),
-        )
-    })
+    usize::try_from(*n)
+        .map(|n| n / 2)
+        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, format!("n = {} is negative", *n)))
 }

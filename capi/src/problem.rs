@@ -17,8 +17,8 @@ use super::matrix::{c_slice, delassus_from_c_blocks, matrix_to_c, nm_clear_impl}
 use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
-use fc3d_core::matrix::{Delassus, DenseMatrix};
 use fc3d_core::io::dat::DatProblem;
+use fc3d_core::matrix::{Delassus, DenseMatrix};
 use fc3d_core::problem::{FrictionProblem, FrictionProblem2d};
 
 /// A C problem of either dimension.
@@ -64,10 +64,7 @@ unsafe fn problem_from_c_d<'a, const D: usize>(
         };
         return Err(CError::new(
             FC3D_ERR_INVALID_PROBLEM,
-            format!(
-                "dimension {} where {D} is needed{hint}",
-                p.dimension
-            ),
+            format!("dimension {} where {D} is needed{hint}", p.dimension),
         ));
     }
     let nc = usize::try_from(p.numberOfContacts).map_err(|_| {

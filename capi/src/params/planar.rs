@@ -49,7 +49,11 @@ pub(crate) fn read(id: c_int, p: &Params<'_>) -> CResult<PlanarConfig> {
         }
         405 => {
             p.require(IPARAM_ENUM_USE_DGELS, 0, "enumeration by least squares")?;
-            p.require(IPARAM_ENUM_MULTIPLE_SOLUTIONS, 0, "enumeration of every solution")?;
+            p.require(
+                IPARAM_ENUM_MULTIPLE_SOLUTIONS,
+                0,
+                "enumeration of every solution",
+            )?;
             let seed = p.count(IPARAM_ENUM_SEED, "enumeration seed")? as u64;
             PlanarMethod::Enumeration { seed }
         }
