@@ -143,3 +143,62 @@ fn lemke_cpg_and_enumeration() {
         }
     }
 }
+
+/// Ten contacts, nine of them open (q_N > 0): enumeration must reach case 2^27 or beyond, so a
+/// budget of 50 ms stops it long before; Lemke with one pivot and NSGS with one sweep stop at
+/// their limits. Every run returns a finite pair with the error measured on it.
+#[test]
+fn limits_hold_for_every_2d_solver() {
+    use fc3d_core::{Delassus, DenseMatrix, FrictionProblem2d};
+    use std::time::{Duration, Instant};
+    let nc = 10;
+    let n = 2 * nc;
+    let mut w = vec![0.0; n * n];
+    for i in 0..n {
+        w[i + n * i] = 2.0;
+    }
+    // A coupling between the normals of contacts 0 and 1 (column-major).
+    w[2 + n * 0] = 0.3;
+    w[0 + n * 2] = 0.3;
+    let mut q = vec![0.0; n];
+    q[0] = -1.0;
+    q[1] = 0.5;
+    for c in 1..nc {
+        q[2 * c] = 1.0;
+    }
+    let mu = vec![0.3; nc];
+    let p = FrictionProblem2d::new_2d(Delassus::Dense(DenseMatrix::new(n, n, w).unwrap()), q, mu)
+        .unwrap();
+    let mut config = PlanarConfig::new(PlanarMethod::Enumeration { seed: 0 });
+    config.time_budget = Some(Duration::from_millis(50));
+    let start = Instant::now();
+    let (r, _, error, _, status) = run(&p, &config);
+    assert!(start.elapsed() < Duration::from_secs(2));
+    assert_eq!(status, SolveStatus::TimeBudgetExhausted);
+    assert!(r.iter().all(|v| v.is_finite()) && error.is_finite());
+
+    for method in [
+        PlanarMethod::Lemke,
+        PlanarMethod::Nsgs(PlanarNsgsOptions::default()),
+    ] {
+        let mut config = PlanarConfig::new(method);
+        config.max_iter = 1;
+        config.tolerance = 1e-14;
+        let (_, _, _, iterations, status) = run(&p, &config);
+        assert!(iterations <= 1, "{method:?}");
+        assert_ne!(status, SolveStatus::TimeBudgetExhausted);
+    }
+    // Without limits, NSGS and Lemke solve it exactly (contact 0 slides, the others stay open;
+    // CPG, like Siconos', stalls on a sliding contact).
+    for method in [
+        PlanarMethod::Lemke,
+        PlanarMethod::Nsgs(PlanarNsgsOptions::default()),
+    ] {
+        let mut config = PlanarConfig::new(method);
+        config.tolerance = 1e-12;
+        config.max_iter = 1000;
+        let (r, _, error, _, status) = run(&p, &config);
+        assert_eq!(status, SolveStatus::Converged, "{method:?}: {error:e}");
+        assert!(r[2..].iter().all(|&v| v == 0.0), "{method:?}: {r:?}");
+    }
+}
