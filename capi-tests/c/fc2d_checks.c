@@ -202,6 +202,90 @@ static int check_one_contact(int sbm, int id) {
   return 0;
 }
 
+/* W of a 2D problem rebuilt by hand as a dense matrix (storage 0) or as a sparse-block matrix
+ * of its non-zero 2x2 blocks (storage 1), the blocks column-major as Siconos stores them. */
+static NumericsMatrix* rebuild_2d(NumericsMatrix* W, int nc, int storage) {
+  int n = 2 * nc;
+  if (storage == 0) {
+    NumericsMatrix* M = NM_create(NM_DENSE, n, n);
+    for (int j = 0; j < n; j++)
+      for (int i = 0; i < n; i++) M->matrix0[i + (size_t)j * n] = NM_get_value(W, i, j);
+    return M;
+  }
+  SparseBlockStructuredMatrix* s = SBM_new();
+  s->blocknumber0 = s->blocknumber1 = (unsigned)nc;
+  s->blocksize0 = malloc(sizeof(unsigned) * (size_t)nc);
+  s->blocksize1 = malloc(sizeof(unsigned) * (size_t)nc);
+  for (int b = 0; b < nc; b++) s->blocksize0[b] = s->blocksize1[b] = (unsigned)(2 * (b + 1));
+  s->index1_data = malloc(sizeof(size_t) * (size_t)(nc + 1));
+  s->index2_data = malloc(sizeof(size_t) * (size_t)nc * (size_t)nc);
+  s->block = malloc(sizeof(double*) * (size_t)nc * (size_t)nc);
+  size_t k = 0;
+  for (int bi = 0; bi < nc; bi++) {
+    s->index1_data[bi] = k;
+    for (int bj = 0; bj < nc; bj++) {
+      double v[4];
+      int nonzero = bi == bj;
+      for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+          v[i + 2 * j] = NM_get_value(W, 2 * bi + i, 2 * bj + j);
+          nonzero |= v[i + 2 * j] != 0;
+        }
+      if (!nonzero) continue;
+      s->index2_data[k] = (size_t)bj;
+      s->block[k] = malloc(sizeof v);
+      memcpy(s->block[k], v, sizeof v);
+      k++;
+    }
+  }
+  s->index1_data[nc] = k;
+  s->filled1 = (size_t)nc + 1;
+  s->filled2 = k;
+  s->nbblocks = k;
+  return NM_new_SBM(n, n, s);
+}
+
+/* The file's problem solved with W as read, rebuilt dense and rebuilt as a 2x2 sparse-block
+ * matrix: the same reaction, bit for bit (the sweep sees the same blocks). */
+int capi_fc2d_check_storages(const char* path) {
+  FrictionContactProblem* file = frictionContact_new_from_filename(path);
+  CHECK(file != NULL && file->dimension == 2, "cannot read %s", path);
+  int nc = file->numberOfContacts, n = 2 * nc;
+  double* reference = NULL;
+  for (int storage = -1; storage < 2; storage++) {
+    FrictionContactProblem* p = file;
+    if (storage >= 0) {
+      double* q = malloc(sizeof(double) * (size_t)n);
+      double* mu = malloc(sizeof(double) * (size_t)nc);
+      memcpy(q, file->q, sizeof(double) * (size_t)n);
+      memcpy(mu, file->mu, sizeof(double) * (size_t)nc);
+      p = frictionContactProblem_new_with_data(2, nc, rebuild_2d(file->M, nc, storage), q, mu);
+    }
+    double* r = calloc((size_t)n, sizeof(double));
+    double* u = calloc((size_t)n, sizeof(double));
+    SolverOptions* o = solver_options_create(SICONOS_FRICTION_2D_NSGS);
+    o->dparam[SICONOS_DPARAM_TOL] = 1e-10;
+    o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
+    int info = fc2d_driver(p, r, u, o);
+    CHECK(info == 0, "%s storage %d: info %d", path, storage, info);
+    if (!reference) {
+      reference = r;
+    } else {
+      for (int i = 0; i < n; i++)
+        CHECK(r[i] == reference[i], "%s storage %d: r[%d] = %.17g, as read %.17g", path, storage, i, r[i],
+              reference[i]);
+      free(r);
+    }
+    free(u);
+    solver_options_delete(o);
+    free(o);
+    if (p != file) frictionContactProblem_free(p);
+  }
+  free(reference);
+  frictionContactProblem_free(file);
+  return 0;
+}
+
 int capi_fc2d_check_api(void) {
   /* Siconos 4.4's defaults (solver_options_create of the installed library). */
   struct {

@@ -56,6 +56,8 @@ extern "C" {
     ) -> c_int;
     /// The 2D API checks of `c/fc2d_checks.c`.
     pub fn capi_fc2d_check_api() -> c_int;
+    /// A 2D file solved with W as read, rebuilt dense and rebuilt as 2x2 sparse blocks.
+    pub fn capi_fc2d_check_storages(path: *const c_char) -> c_int;
     pub fn capi_solve_file(
         path: *const c_char,
         storage: c_int,

@@ -15,6 +15,22 @@ fn fc2d_api_checks() {
     assert_eq!(unsafe { capi_fc2d_check_api() }, 0);
 }
 
+#[test]
+fn fc2d_storages_give_the_same_reaction() {
+    for file in [
+        "FrictionContactProblem00071.dat",
+        "FrictionContactProblem00727.dat",
+        "FC2D_SliderCrankLagrangian00000.dat",
+    ] {
+        let path = CString::new(data_dir().join(file).to_str().unwrap()).unwrap();
+        assert_eq!(
+            unsafe { capi_fc2d_check_storages(path.as_ptr()) },
+            0,
+            "{file}"
+        );
+    }
+}
+
 /// Siconos 4.4 (`fc2d_driver` of the installed libsiconos-numerics, tolerance 1e-5, 10000
 /// iterations, from r = 0): (file, id, info, iterations). Siconos aborts on the sparse-storage
 /// `fc2d_granularflowonwall_*` files (its fc2d_driver handles dense and sparse-block W only) and
