@@ -65,6 +65,30 @@ fn every_2d_file_reads_as_a_planar_problem() {
     }
 }
 
+/// Writing a 2D problem and reading it back gives the same problem, bit for bit (W in the
+/// storage it was read into: dense, or CSR for sparse-block and sparse files).
+#[test]
+fn write_then_read_2d_is_bit_exact() {
+    use fc3d_core::io::dat::{parse_dat_any, write_dat};
+    for f in planar_files() {
+        let p = read_planar(&f);
+        let mut text = Vec::new();
+        write_dat(&p, &mut text).unwrap();
+        let text = String::from_utf8(text).unwrap();
+        assert!(text.starts_with("2\n"));
+        match parse_dat_any(&text, "written") {
+            Ok(DatProblem::Planar(back)) => assert_eq!(back, p, "{}", f.display()),
+            other => panic!("{}: {other:?}", f.display()),
+        }
+    }
+    // A 2D sparse-block body must be made of 2x2 blocks.
+    let text = "2 1 1 2 2 1 1 1 3 3 2 1 0 1 0 0 1 2 3 4 5 6 7 8 9 0 0 0.5";
+    match parse_dat_any(text, "wrong-block.dat") {
+        Err(fc3d_core::Fc3dError::Unsupported(m)) => assert!(m.contains("2x2"), "{m}"),
+        other => panic!("{other:?}"),
+    }
+}
+
 #[test]
 fn nsgs_solves_every_2d_file() {
     for f in planar_files() {
