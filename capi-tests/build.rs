@@ -8,6 +8,7 @@ fn main() {
         "c/nsgs_options.c",
         "c/matrix_hostile.c",
         "c/solver_entries.c",
+        "c/fc2d_checks.c",
     ];
     let mut build = cc::Build::new();
     build

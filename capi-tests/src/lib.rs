@@ -28,7 +28,36 @@ pub struct CSolveResult {
     pub storage: c_int,
 }
 
+/// What a C-side 2D solve returned (`c/fc2d_checks.c`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Fc2dResult {
+    pub info: c_int,
+    pub iterations: c_int,
+    /// dparam[1] as reported by fc2d_driver.
+    pub reported_error: c_double,
+    /// fc2d_compute_error with norm = ||q||.
+    pub api_error: c_double,
+    /// The error recomputed in plain C from W (read entry by entry), q, mu, r.
+    pub independent_error: c_double,
+    pub dimension: c_int,
+}
+
 extern "C" {
+    /// Solves a 2D file with `solver_id` through `fc2d_driver`.
+    pub fn capi_fc2d_solve_file(
+        path: *const c_char,
+        solver_id: c_int,
+        tolerance: c_double,
+        max_iter: c_int,
+        reaction_out: *mut c_double,
+        capacity: c_int,
+        result: *mut Fc2dResult,
+    ) -> c_int;
+    /// The 2D API checks of `c/fc2d_checks.c`.
+    pub fn capi_fc2d_check_api() -> c_int;
+    /// A 2D file solved with W as read, rebuilt dense and rebuilt as 2x2 sparse blocks.
+    pub fn capi_fc2d_check_storages(path: *const c_char) -> c_int;
     pub fn capi_solve_file(
         path: *const c_char,
         storage: c_int,

@@ -386,6 +386,100 @@ int fc3d_last_error_code(void);
 // Clears the last error of this thread.
 void fc3d_clear_last_error(void);
 
+// Solves the 2D problem (`problem->dimension` = 2) with the solver `options->solverId`: 400
+// NSGS, 402 CPG, 404 Lemke, 405 enumeration (any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`). NSGS
+// starts from `reaction`; CPG, Lemke and enumeration start from zero, as Siconos' do. W may be
+// dense, sparse-block (2x2 blocks) or sparse. Returns 0 when the natural-map error of the
+// returned `(reaction, velocity)` is at most `dparam[0]`, 1 when the solver stopped above it
+// (Lemke: a secondary ray or the pivot limit; enumeration: no feasible case), 2 when the time
+// budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative `FC3D_ERR_*` code when the input
+// is rejected (nothing written). On return >= 0, `iparam[1]` holds the iterations (sweeps, CPG
+// iterations, pivots, cases tried) and `dparam[1]` the error measured on the returned pair.
+int fc2d_driver(struct FrictionContactProblem *problem,
+                double *reaction,
+                double *velocity,
+                struct SolverOptions *options);
+
+// Siconos' dense 2D NSGS entry: the 2D NSGS (400) of `fc2d_driver`, whatever W's storage.
+void fc2d_nsgs_dense(struct FrictionContactProblem *problem,
+                     double *reaction,
+                     double *velocity,
+                     int *info,
+                     struct SolverOptions *options);
+
+// Siconos' sparse-block 2D NSGS entry: the 2D NSGS (400) of `fc2d_driver`, whatever W's
+// storage.
+void fc2d_nsgs_sbm(struct FrictionContactProblem *problem,
+                   double *z,
+                   double *w,
+                   int *info,
+                   struct SolverOptions *options);
+
+// Siconos' CPG entry (402), as `fc2d_driver`.
+void fc2d_cpg(struct FrictionContactProblem *problem,
+              double *reaction,
+              double *velocity,
+              int *info,
+              struct SolverOptions *options);
+
+// Siconos' Lemke entry (404), as `fc2d_driver`.
+void fc2d_lexicolemke(struct FrictionContactProblem *problem,
+                      double *reaction,
+                      double *velocity,
+                      int *info,
+                      struct SolverOptions *options);
+
+// Siconos' enumeration entry (405), as `fc2d_driver`.
+void fc2d_enum(struct FrictionContactProblem *problem,
+               double *reaction,
+               double *velocity,
+               int *info,
+               struct SolverOptions *options);
+
+// Writes Siconos' 2D NSGS defaults into the slots of `options` that carry them: `iparam[5]`
+// (no shuffling) = 0 and `iparam[7]` (error evaluation) = 2, light with full final. Nothing
+// else changes. NULL options, or arrays shorter than 8, are refused (nothing written).
+void fc2d_nsgs_set_default(struct SolverOptions *options);
+
+// Siconos' 2D error: recomputes `w = M z + q` (written to `w`), then
+// `error = sqrt(sum_c ||z_c - P_K(z_c - (w_N + mu |w_T|, w_T))||^2)`, divided by
+// `max(norm, ||z||, ||w||)` when that is above the machine epsilon (as Siconos: a smaller scale
+// leaves the error absolute). Returns 0 if `error <= tolerance`, 1 otherwise, a negative code
+// on invalid input (nothing written).
+int fc2d_compute_error(struct FrictionContactProblem *problem,
+                       double *z,
+                       double *w,
+                       double tolerance,
+                       double norm,
+                       double *error);
+
+// Adds the squared 2D natural-map residual of one contact (`r`, `u`: 2 values each) to
+// `*error`, as Siconos' `fc2d_unitary_compute_and_add_error`; `worktmp` (2 values) receives
+// `r - P_K(r - (u_N + mu |u_T|, u_T))`. NULL pointers are refused (nothing written).
+void fc2d_unitary_compute_and_add_error(double *r,
+                                        double *u,
+                                        double mu,
+                                        double *error,
+                                        double *worktmp);
+
+// Siconos' CPG step projection `fc2d_projc`: for each of the `*n / 2` contacts, the point `xi`
+// projected on the cone (`projc1`) and its status code (`projc2`: 0 open, 1 sliding backward,
+// 2 stick, 3 sliding forward), where a contact sliding before (`statusi`) whose direction
+// `pi` has no tangential part stays on its side. `fric` holds the friction coefficients.
+void fc2d_projc(double *xi,
+                int *n,
+                int *statusi,
+                double *pi,
+                double *fric,
+                double *projc1,
+                int *projc2);
+
+// Siconos' CPG direction projection `fc2d_projf`: for each of the `*n / 2` contacts, `y`
+// restricted to the moves its status `etat` allows (open: only closing; sliding forward:
+// `y_T <= 0`; sliding backward: `y_T >= 0`; stick: free), written to `projf1`. `fric` is not
+// used (as in Siconos).
+void fc2d_projf(int *etat, int *n, double *y, double *fric, double *projf1);
+
 // Reads the FCLIB file `path`: its local problem (`/fclib_local`), or else its global problem
 // (`/fclib_global`) reduced to the local form W = H^T M^-1 H, q = H^T M^-1 f + w. W has the
 // storage fc3d recorded when it wrote the file, otherwise Siconos' sparse-block storage.

@@ -6,13 +6,18 @@ use std::os::raw::{c_double, c_int};
 
 use super::matrix::c_slice;
 use super::params::{
-    config_from_c, write_outputs, DPARAM_DUMONT_CRITERION, DPARAM_RESIDU, IPARAM_ITER_DONE,
+    config_from_c, planar_config_from_c, write_outputs, DPARAM_DUMONT_CRITERION, DPARAM_RESIDU,
+    IPARAM_ITER_DONE,
 };
-use super::problem::problem_from_c;
+use super::problem::{planar_problem_from_c, problem_from_c};
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION};
 use fc3d_core::measure::relative_natural_map_error;
-use fc3d_core::{solve_with_observer, IterationEvent};
+use fc3d_core::problem::FrictionProblem;
+use fc3d_core::{
+    solve_planar_with_observer, solve_with_observer, Fc3dError, IterationEvent, Observer,
+    SolveReport,
+};
 
 /// What `fc3d_driver` read from the options and writes back into, to detect a callback that
 /// freed or changed them during the solve (`solver_options_delete` in a callback, a new array, a
@@ -113,6 +118,67 @@ unsafe fn driver_impl(
     }
     let config = config_from_c(&*options)?;
     let p = problem_from_c(&*problem)?;
+    let report = solve_into_host(&p, reaction, velocity, options, |r, u, observer| {
+        solve_with_observer(&p, &config, r, u, observer)
+    })?;
+    if verbose() > 0 {
+        eprintln!(
+            "fc3d: {} on {} contacts: {:?} after {} iterations, error {:e} (tolerance {:e})",
+            config.label(),
+            p.n_contacts(),
+            report.status,
+            report.iterations,
+            report.error,
+            config.tolerance
+        );
+    }
+    Ok(report.status.info_code())
+}
+
+/// `fc2d_driver`'s work: the 2D problem and options read, solved, written back.
+pub(crate) unsafe fn planar_driver_impl(
+    problem: *mut FrictionContactProblem,
+    reaction: *mut c_double,
+    velocity: *mut c_double,
+    options: *mut SolverOptions,
+) -> CResult<c_int> {
+    if problem.is_null() {
+        return Err(CError::null("problem"));
+    }
+    if options.is_null() {
+        return Err(CError::null("options"));
+    }
+    let config = planar_config_from_c(&*options)?;
+    let p = planar_problem_from_c(&*problem)?;
+    let report = solve_into_host(&p, reaction, velocity, options, |r, u, observer| {
+        solve_planar_with_observer(&p, &config, r, u, observer)
+    })?;
+    if verbose() > 0 {
+        eprintln!(
+            "fc3d: 2D solver {} on {} contacts: {:?} after {} iterations, error {:e} (tolerance {:e})",
+            config.method.siconos_id(),
+            p.n_contacts(),
+            report.status,
+            report.iterations,
+            report.error,
+            config.tolerance
+        );
+    }
+    Ok(report.status.info_code())
+}
+
+/// Runs `solve` on copies of the host's `reaction` (initial guess) and `velocity`, calling the
+/// host's callback after each iteration, and writes the result and the outputs (`iparam[1]`,
+/// `dparam[1]`) only on success. A callback must not free or change the options (nor the
+/// problem) during the solve: the options are checked after each call, the callback is not
+/// called again once they changed, and the solve is then refused (nothing written).
+unsafe fn solve_into_host<const D: usize>(
+    p: &FrictionProblem<'_, D>,
+    reaction: *mut c_double,
+    velocity: *mut c_double,
+    options: *mut SolverOptions,
+    solve: impl FnOnce(&mut [f64], &mut [f64], &mut Observer<'_>) -> Result<SolveReport, Fc3dError>,
+) -> CResult<SolveReport> {
     let n = p.size();
     let r_in = c_slice(reaction as *const c_double, n, "reaction")?;
     c_slice(velocity as *const c_double, n, "velocity")?;
@@ -123,9 +189,6 @@ unsafe fn driver_impl(
     let callback = (*options).callback;
     let mut scratch_r = Vec::new();
     let mut scratch_u = Vec::new();
-    // A callback must not free or change the options (nor the problem) during the solve: the
-    // options are checked after each call, the callback is not called again once they changed,
-    // and the solve is then refused (nothing written).
     let seal = OptionsSeal::of(&*options);
     let mut tampered: Option<String> = None;
     let mut observer = |ev: &IterationEvent<'_>| {
@@ -149,7 +212,7 @@ unsafe fn driver_impl(
             tampered = seal.changed(&*options);
         }
     };
-    let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut observer)?;
+    let report = solve(&mut r, &mut u, &mut observer)?;
     if let Some(what) = tampered.or_else(|| seal.changed(&*options)) {
         return Err(CError::new(
             FC3D_ERR_INVALID_OPTION,
@@ -160,18 +223,7 @@ unsafe fn driver_impl(
     std::ptr::copy_nonoverlapping(r.as_ptr(), reaction, n);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, n);
     write_outputs(&mut *options, &report);
-    if verbose() > 0 {
-        eprintln!(
-            "fc3d: {} on {} contacts: {:?} after {} iterations, error {:e} (tolerance {:e})",
-            config.label(),
-            p.n_contacts(),
-            report.status,
-            report.iterations,
-            report.error,
-            config.tolerance
-        );
-    }
-    Ok(report.status.info_code())
+    Ok(report)
 }
 
 /// Solves the problem with the solver `options->solverId`, starting from `reaction`.

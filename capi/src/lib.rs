@@ -23,12 +23,13 @@ mod alloc;
 mod codes;
 mod driver;
 mod errors;
+mod fc2d;
 mod fclib;
 mod lmgc;
 mod matrix;
+mod measures;
 /// cbindgen:ignore
 mod names;
-mod measures;
 mod native;
 mod options;
 mod params;

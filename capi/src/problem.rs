@@ -14,25 +14,59 @@ use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
 use super::matrix::{
-    c_slice, delassus_from_c, matrix_to_c, nm_clear_impl, nm_duplicate, nm_scale_in_place,
+    c_slice, delassus_from_c_blocks, matrix_to_c, nm_clear_impl, nm_duplicate, nm_scale_in_place,
 };
 use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
+use fc3d_core::io::dat::DatProblem;
 use fc3d_core::matrix::{Delassus, DenseMatrix};
-use fc3d_core::problem::FrictionProblem;
+use fc3d_core::problem::{FrictionProblem, FrictionProblem2d};
 
-/// The core view of a C problem; dense W, q and mu are borrowed, not copied.
+/// A C problem of either dimension.
+pub(crate) enum AnyProblem<'a> {
+    Spatial(FrictionProblem<'a>),
+    Planar(FrictionProblem2d<'a>),
+}
+
+/// The core view of a C problem of dimension 2 or 3.
+pub(crate) unsafe fn any_problem_from_c<'a>(
+    p: &'a FrictionContactProblem,
+) -> CResult<AnyProblem<'a>> {
+    if p.dimension == 2 {
+        planar_problem_from_c(p).map(AnyProblem::Planar)
+    } else {
+        problem_from_c(p).map(AnyProblem::Spatial)
+    }
+}
+
+/// The core view of a 3D C problem; dense W, q and mu are borrowed, not copied.
 pub(crate) unsafe fn problem_from_c<'a>(
     p: &'a FrictionContactProblem,
 ) -> CResult<FrictionProblem<'a>> {
-    if p.dimension != 3 {
+    problem_from_c_d::<3>(p)
+}
+
+/// The core view of a 2D C problem (`fc2d_driver`); a sparse-block W (2x2 blocks) is copied
+/// into a general sparse matrix, a dense or sparse one is borrowed or converted as in 3D.
+pub(crate) unsafe fn planar_problem_from_c<'a>(
+    p: &'a FrictionContactProblem,
+) -> CResult<FrictionProblem2d<'a>> {
+    problem_from_c_d::<2>(p)
+}
+
+unsafe fn problem_from_c_d<'a, const D: usize>(
+    p: &'a FrictionContactProblem,
+) -> CResult<FrictionProblem<'a, D>> {
+    if usize::try_from(p.dimension) != Ok(D) {
+        let hint = match (p.dimension, D) {
+            (2, 3) => " (a 2D problem: solve it with fc2d_driver)",
+            (3, 2) => " (a 3D problem: solve it with fc3d_driver)",
+            _ => "",
+        };
         return Err(CError::new(
             FC3D_ERR_INVALID_PROBLEM,
-            format!(
-                "dimension {} is not supported (fc3d solves dimension 3 only)",
-                p.dimension
-            ),
+            format!("dimension {} where {D} is needed{hint}", p.dimension),
         ));
     }
     let nc = usize::try_from(p.numberOfContacts).map_err(|_| {
@@ -41,15 +75,15 @@ pub(crate) unsafe fn problem_from_c<'a>(
             format!("numberOfContacts = {} is negative", p.numberOfContacts),
         )
     })?;
-    // M's sizes are C ints: 3 * numberOfContacts must be one (checked, never truncated).
+    // M's sizes are C ints: D * numberOfContacts must be one (checked, never truncated).
     let n = nc
-        .checked_mul(3)
+        .checked_mul(D)
         .filter(|&n| c_int::try_from(n).is_ok())
         .ok_or_else(|| {
             CError::new(
                 FC3D_ERR_INVALID_SIZE,
                 format!(
-                    "numberOfContacts = {nc} is too large: M would have 3 * {nc} rows, more \
+                    "numberOfContacts = {nc} is too large: M would have {D} * {nc} rows, more \
                      than a C int holds ({})",
                     c_int::MAX
                 ),
@@ -75,17 +109,28 @@ pub(crate) unsafe fn problem_from_c<'a>(
                 ),
             ));
         }
-        delassus_from_c(m)?
+        delassus_from_c_blocks(m, D)?
     };
-    Ok(FrictionProblem::new(
+    Ok(FrictionProblem::<D>::from_parts(
         w,
         Cow::Borrowed(q),
         Cow::Borrowed(mu),
     )?)
 }
 
-/// A C-allocated problem holding a copy of `p` (W in the same storage).
-pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionContactProblem> {
+/// A C-allocated problem holding a copy of a problem read from a file.
+fn dat_problem_to_c(p: &DatProblem) -> CResult<*mut FrictionContactProblem> {
+    match p {
+        DatProblem::Spatial(p) => problem_to_c(p),
+        DatProblem::Planar(p) => problem_to_c(p),
+    }
+}
+
+/// A C-allocated problem holding a copy of `p` (W in the same storage; a 2D problem's W, held as
+/// dense or general sparse, in that storage).
+pub(crate) fn problem_to_c<const D: usize>(
+    p: &FrictionProblem<'_, D>,
+) -> CResult<*mut FrictionContactProblem> {
     let nc = c_int::try_from(p.n_contacts())
         .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
     let m = matrix_to_c(p.w())?;
@@ -100,7 +145,7 @@ pub(crate) fn problem_to_c(p: &FrictionProblem<'_>) -> CResult<*mut FrictionCont
     let q = c_copy(p.q()).inspect_err(|_| release(&[]))?;
     let mu = c_copy(p.mu()).inspect_err(|_| release(&[q]))?;
     c_box(FrictionContactProblem {
-        dimension: 3,
+        dimension: D as c_int,
         numberOfContacts: nc,
         M: m,
         q,
@@ -271,8 +316,8 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
             if super::fclib::is_fclib_file(path) {
                 return super::fclib::read_fclib_problem(path);
             }
-            let p = fc3d_core::io::dat::read_dat_file(std::path::Path::new(path))?;
-            problem_to_c(&p)
+            let p = fc3d_core::io::dat::read_dat_file_any(std::path::Path::new(path))?;
+            dat_problem_to_c(&p)
         },
     )
 }
@@ -295,10 +340,10 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
         || {
             let mut stream = CStream::new(file)?;
             let len = stream.len_hint();
-            match fc3d_core::io::dat::read_dat(&mut stream, len, "<FILE stream>") {
+            match fc3d_core::io::dat::read_dat_any(&mut stream, len, "<FILE stream>") {
                 Ok((p, used)) => {
                     stream.finish(Some(used));
-                    problem_to_c(&p)
+                    dat_problem_to_c(&p)
                 }
                 Err(e) => {
                     stream.finish(None);
@@ -310,8 +355,11 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
 }
 
 /// Writes `p` in the .dat format with `out`, as it is produced.
-fn write_dat_to(p: &FrictionProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
-    fc3d_core::io::dat::write_dat(p, &mut out)
+fn write_dat_to(p: &AnyProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    match p {
+        AnyProblem::Spatial(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+        AnyProblem::Planar(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+    }
 }
 
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
@@ -329,7 +377,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
             if problem.is_null() {
                 return Err(CError::null("problem"));
             }
-            let p = problem_from_c(&*problem)?;
+            let p = any_problem_from_c(&*problem)?;
             write_stream(file, |out| write_dat_to(&p, out))?;
             Ok(0)
         },
@@ -350,7 +398,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
             if problem.is_null() {
                 return Err(CError::null("problem"));
             }
-            let p = problem_from_c(&*problem)?;
+            let p = any_problem_from_c(&*problem)?;
             let path = c_filename(filename)?;
             write_file(path, |out| write_dat_to(&p, out))?;
             Ok(0)
@@ -369,18 +417,24 @@ pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactPr
             if problem.is_null() {
                 return Err(CError::null("problem"));
             }
-            let p = problem_from_c(&*problem)?;
-            println!(
-                "FrictionContactProblem: dimension 3, {} contacts, W {}x{} ({}), ||q|| = {:e}",
-                p.n_contacts(),
-                p.w().nrows(),
-                p.w().ncols(),
-                p.w().storage_name(),
-                fc3d_core::math::linalg::norm(p.q())
-            );
-            println!("  mu = {:?}", p.mu());
-            println!("  q = {:?}", p.q());
+            match any_problem_from_c(&*problem)? {
+                AnyProblem::Spatial(p) => display(&p),
+                AnyProblem::Planar(p) => display(&p),
+            }
             Ok(())
         },
     )
+}
+
+fn display<const D: usize>(p: &FrictionProblem<'_, D>) {
+    println!(
+        "FrictionContactProblem: dimension {D}, {} contacts, W {}x{} ({}), ||q|| = {:e}",
+        p.n_contacts(),
+        p.w().nrows(),
+        p.w().ncols(),
+        p.w().storage_name(),
+        fc3d_core::math::linalg::norm(p.q())
+    );
+    println!("  mu = {:?}", p.mu());
+    println!("  q = {:?}", p.q());
 }

@@ -24,9 +24,11 @@ pub enum Fc3dError {
     /// Index arrays that do not describe a valid matrix.
     #[error("invalid matrix structure: {0}")]
     InvalidStructure(String),
-    /// A problem of another dimension than 3 (a 2D friction problem).
+    /// A problem of another dimension than 3 given to a 3D reader or solver (a 2D friction
+    /// problem: read it with `io::dat::read_dat_file_any`, solve it with `solve_planar`).
     #[error(
-        "{file}: problems of dimension {dimension} are not supported (fc3d solves dimension 3)"
+        "{file}: problems of dimension {dimension} are not supported here (3D only; read a 2D \
+         problem with read_dat_file_any and solve it with solve_planar, or fc2d_driver in C)"
     )]
     UnsupportedDimension { file: String, dimension: usize },
     /// A storage or problem shape the library does not handle.

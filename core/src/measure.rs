@@ -1,12 +1,15 @@
 //! Error measures. The one every result is judged by is [`natural_map_error`], Siconos'
-//! `fc3d_compute_error`: with `u = W r + q` and the De Saxcé velocity `ũ_c = (u_N + mu ||u_T||, u_T)`,
+//! `fc3d_compute_error` (and, for 2D problems, `fc2d_compute_error`, the same formula with the 2D
+//! cone): with `u = W r + q` and the De Saxcé velocity `ũ_c = (u_N + mu ||u_T||, u_T)`,
 //!
 //! `error = sqrt( sum_c || r_c - P_K(mu_c)(r_c - ũ_c) ||^2 ) / max(||q||, ||r||, ||u||)`
 //!
 //! (the normalisation falls back to 1 when all three norms are zero).
 
-use crate::math::cone::{modified_velocity, project_on_cone};
-use crate::math::linalg::{norm, Vec3};
+use crate::math::cone::{
+    modified_velocity, modified_velocity_d, project_on_cone, project_on_cone_d,
+};
+use crate::math::linalg::{contact_of, norm, Vec3};
 use crate::matrix::BlockRows;
 use crate::problem::FrictionProblem;
 
@@ -24,13 +27,34 @@ pub fn contact_residual_sq(r: &Vec3, u: &Vec3, mu: f64) -> f64 {
     d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
 }
 
-/// Absolute natural-map residual `sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2)` for given `r, u`.
+/// [`contact_residual_sq`] for a contact of dimension `D` (2 or 3; the 3D case is that function).
+#[inline]
+pub fn contact_residual_sq_d<const D: usize>(r: &[f64; D], u: &[f64; D], mu: f64) -> f64 {
+    if D == 3 {
+        return contact_residual_sq(&[r[0], r[1], r[2]], &[u[0], u[1], u[2]], mu);
+    }
+    let ut = modified_velocity_d(u, mu);
+    if !ut[0].is_finite() {
+        return f64::INFINITY;
+    }
+    let mut x = *r;
+    for (xk, uk) in x.iter_mut().zip(&ut) {
+        *xk -= uk;
+    }
+    let p = project_on_cone_d(&x, mu);
+    crate::math::linalg::distance_sq_d(r, &p)
+}
+
+/// Absolute natural-map residual `sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2)` for given `r, u` (3D).
 pub fn absolute_natural_map_residual(r: &[f64], u: &[f64], mu: &[f64]) -> f64 {
+    absolute_natural_map_residual_d::<3>(r, u, mu)
+}
+
+/// [`absolute_natural_map_residual`] for contacts of dimension `D`.
+pub fn absolute_natural_map_residual_d<const D: usize>(r: &[f64], u: &[f64], mu: &[f64]) -> f64 {
     let mut s = 0.0;
     for (c, &m) in mu.iter().enumerate() {
-        let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-        let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
-        s += contact_residual_sq(&rc, &uc, m);
+        s += contact_residual_sq_d::<D>(&contact_of(r, c), &contact_of(u, c), m);
     }
     s.sqrt()
 }
@@ -46,12 +70,27 @@ pub fn relative_scale(norm_q: f64, r: &[f64], u: &[f64]) -> f64 {
 }
 
 /// The relative natural-map error `absolute residual / max(norm_q, ||r||, ||u||)` of a pair
-/// `(r, u)`, finite for any finite `r`, `u`: the error is invariant under a common scaling of
-/// `(r, u, q)`, so when the squares overflow (entries near 1e155 and beyond, or a De Saxcé
-/// velocity that overflows) it is measured on the pair scaled by its largest entry. The result
-/// equals the plain formula whenever that is finite.
+/// `(r, u)` of a 3D problem, finite for any finite `r`, `u`: the error is invariant under a
+/// common scaling of `(r, u, q)`, so when the squares overflow (entries near 1e155 and beyond, or
+/// a De Saxcé velocity that overflows) it is measured on the pair scaled by its largest entry.
+/// The result equals the plain formula whenever that is finite.
 pub fn relative_natural_map_error(r: &[f64], u: &[f64], mu: &[f64], norm_q: f64) -> f64 {
-    let e = absolute_natural_map_residual(r, u, mu) / relative_scale(norm_q, r, u);
+    relative_natural_map_error_d::<3>(r, u, mu, norm_q)
+}
+
+/// [`relative_natural_map_error`] of a 2D pair (Siconos' `fc2d_compute_error`).
+pub fn relative_natural_map_error_2d(r: &[f64], u: &[f64], mu: &[f64], norm_q: f64) -> f64 {
+    relative_natural_map_error_d::<2>(r, u, mu, norm_q)
+}
+
+/// [`relative_natural_map_error`] for contacts of dimension `D`.
+pub fn relative_natural_map_error_d<const D: usize>(
+    r: &[f64],
+    u: &[f64],
+    mu: &[f64],
+    norm_q: f64,
+) -> f64 {
+    let e = absolute_natural_map_residual_d::<D>(r, u, mu) / relative_scale(norm_q, r, u);
     if e.is_finite() {
         return e;
     }
@@ -62,21 +101,25 @@ pub fn relative_natural_map_error(r: &[f64], u: &[f64], mu: &[f64], norm_q: f64)
     // Rare path (overflow): scaled copies.
     let rs: Vec<f64> = r.iter().map(|v| v / largest).collect();
     let us: Vec<f64> = u.iter().map(|v| v / largest).collect();
-    absolute_natural_map_residual(&rs, &us, mu) / relative_scale(norm_q / largest, &rs, &us)
+    absolute_natural_map_residual_d::<D>(&rs, &us, mu) / relative_scale(norm_q / largest, &rs, &us)
 }
 
 /// The relative natural-map error of `r` for `problem`: computes `u = W r + q` into `u` (as
-/// Siconos' `fc3d_compute_error` does) and returns the error.
-pub fn natural_map_error(problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64]) -> f64 {
+/// Siconos' `fc3d_compute_error` and `fc2d_compute_error` do) and returns the error.
+pub fn natural_map_error<const D: usize>(
+    problem: &FrictionProblem<'_, D>,
+    r: &[f64],
+    u: &mut [f64],
+) -> f64 {
     problem.velocity(r, u);
     natural_map_error_of(problem, r, u)
 }
 
 /// [`natural_map_error`] with `u = W r + q` computed through the block rows of W (cheaper than
 /// the host's storage when W is dense but sparsely coupled).
-pub fn natural_map_error_by_rows(
-    problem: &FrictionProblem<'_>,
-    rows: &BlockRows,
+pub fn natural_map_error_by_rows<const D: usize>(
+    problem: &FrictionProblem<'_, D>,
+    rows: &BlockRows<D>,
     r: &[f64],
     u: &mut [f64],
 ) -> f64 {
@@ -85,8 +128,12 @@ pub fn natural_map_error_by_rows(
 }
 
 /// Relative natural-map error of a pair `(r, u)` taken as given (u is not recomputed).
-pub fn natural_map_error_of(problem: &FrictionProblem<'_>, r: &[f64], u: &[f64]) -> f64 {
-    relative_natural_map_error(r, u, problem.mu(), norm(problem.q()))
+pub fn natural_map_error_of<const D: usize>(
+    problem: &FrictionProblem<'_, D>,
+    r: &[f64],
+    u: &[f64],
+) -> f64 {
+    relative_natural_map_error_d::<D>(r, u, problem.mu(), norm(problem.q()))
 }
 
 /// Cheap error (134) from the accumulated squared increment of a sweep.
@@ -144,20 +191,38 @@ mod tests {
 /// with which the friction work would be counted twice): `u·r + mu r_N ||u_T||` vanishes exactly
 /// on the three branches of Coulomb's law for an `r` in its cone. Absolute, not normalised.
 pub fn dumont_criterion(r: &[f64], u: &[f64], u_solved: &[f64], mu: &[f64]) -> f64 {
+    dumont_criterion_d::<3>(r, u, u_solved, mu)
+}
+
+/// [`dumont_criterion`] for contacts of dimension `D` (`||u_T||` is `|u_T|` in 2D).
+pub fn dumont_criterion_d<const D: usize>(
+    r: &[f64],
+    u: &[f64],
+    u_solved: &[f64],
+    mu: &[f64],
+) -> f64 {
     let nc = mu.len();
     if nc == 0 {
         return 0.0;
     }
     let mut sum = 0.0;
     for (c, &m) in mu.iter().enumerate() {
-        let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-        let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
-        let us = [u_solved[3 * c], u_solved[3 * c + 1], u_solved[3 * c + 2]];
-        let motion = crate::math::linalg::norm3(&crate::math::linalg::sub3(&us, &uc));
-        let p = project_on_cone(&rc, m);
-        let proj = crate::math::linalg::norm3(&crate::math::linalg::sub3(&rc, &p));
-        let ut_norm = crate::math::linalg::norm2(uc[1], uc[2]);
-        let bipotential = (crate::math::linalg::dot3(&uc, &rc) + m * rc[0] * ut_norm).abs();
+        let rc: [f64; D] = contact_of(r, c);
+        let uc: [f64; D] = contact_of(u, c);
+        let us: [f64; D] = contact_of(u_solved, c);
+        let motion = crate::math::linalg::distance_sq_d(&us, &uc).sqrt();
+        let p = project_on_cone_d(&rc, m);
+        let proj = crate::math::linalg::distance_sq_d(&rc, &p).sqrt();
+        let ut_norm = if D == 3 {
+            crate::math::linalg::norm2(uc[1], uc[2])
+        } else {
+            uc[1].abs()
+        };
+        let mut ur = 0.0;
+        for k in 0..D {
+            ur += uc[k] * rc[k];
+        }
+        let bipotential = (ur + m * rc[0] * ut_norm).abs();
         let penetration = (-uc[0]).max(0.0);
         sum += motion + proj + bipotential + penetration;
     }

@@ -1,34 +1,85 @@
-//! The discrete frictional contact problem FC(W, q, mu) in reduced (Delassus) form, dimension 3.
+//! The discrete frictional contact problem FC(W, q, mu) in reduced (Delassus) form, of contact
+//! dimension `D`: 3 (normal and two tangential components, the default) or 2 (normal and one
+//! tangential component, Siconos' `fc2d` problems). The dimension is a type parameter, so that
+//! every 3D path keeps its fixed 3x3 kernels and a 2D problem cannot reach a 3D-only solver.
 
 use std::borrow::Cow;
 
 use crate::error::{check_finite, Fc3dError};
 use crate::matrix::Delassus;
 
-/// FC(W, q, mu): `nc` contacts, `W` of size `3nc x 3nc`, `q` of size `3nc`, `mu` of size `nc`.
-/// Local frames put the normal component first: `r_c = (r_N, r_T1, r_T2)`.
+/// FC(W, q, mu): `nc` contacts, `W` of size `D nc x D nc`, `q` of size `D nc`, `mu` of size `nc`.
+/// Local frames put the normal component first: `r_c = (r_N, r_T1, r_T2)` in 3D, `(r_N, r_T)` in
+/// 2D, where the Coulomb cone is `|r_T| <= mu r_N`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FrictionProblem<'a> {
+pub struct FrictionProblem<'a, const D: usize = 3> {
     w: Delassus<'a>,
     q: Cow<'a, [f64]>,
     mu: Cow<'a, [f64]>,
 }
 
-/// The only dimension fc3d solves.
+/// A 2D problem (Siconos' `fc2d`): two components per contact.
+pub type FrictionProblem2d<'a> = FrictionProblem<'a, 2>;
+
+/// The dimension of the default (3D) problem.
 pub const DIMENSION: usize = 3;
 
 impl<'a> FrictionProblem<'a> {
-    /// Validates and assembles a problem: sizes agree, every value finite, `mu >= 0`, and (for a
-    /// sparse-block W) every diagonal 3x3 block present.
+    /// Validates and assembles a 3D problem: sizes agree, every value finite, `mu >= 0`, and (for
+    /// a sparse-block W) every diagonal 3x3 block present.
     pub fn new(
         w: Delassus<'a>,
         q: impl Into<Cow<'a, [f64]>>,
         mu: impl Into<Cow<'a, [f64]>>,
     ) -> Result<Self, Fc3dError> {
-        let q = q.into();
-        let mu = mu.into();
+        Self::validated(w, q.into(), mu.into())
+    }
+}
+
+impl<'a> FrictionProblem<'a, 2> {
+    /// Validates and assembles a 2D problem: sizes agree (`W` is `2 nc x 2 nc`), every value
+    /// finite, `mu >= 0`. W is dense or general sparse: the sparse-block storage holds 3x3 blocks
+    /// only, so a 2x2-block W is handed over as a [`crate::CsrMatrix`].
+    pub fn new_2d(
+        w: Delassus<'a>,
+        q: impl Into<Cow<'a, [f64]>>,
+        mu: impl Into<Cow<'a, [f64]>>,
+    ) -> Result<Self, Fc3dError> {
+        Self::validated(w, q.into(), mu.into())
+    }
+}
+
+impl<'a, const D: usize> FrictionProblem<'a, D> {
+    /// [`FrictionProblem::new`] or [`FrictionProblem::new_2d`] for a dimension `D` chosen by
+    /// the caller's type (readers generic over the dimension).
+    pub fn from_parts(
+        w: Delassus<'a>,
+        q: impl Into<Cow<'a, [f64]>>,
+        mu: impl Into<Cow<'a, [f64]>>,
+    ) -> Result<Self, Fc3dError> {
+        if D != 2 && D != 3 {
+            return Err(Fc3dError::Unsupported(format!(
+                "contacts of dimension {D} (2 or 3 only)"
+            )));
+        }
+        Self::validated(w, q.into(), mu.into())
+    }
+
+    fn validated(
+        w: Delassus<'a>,
+        q: Cow<'a, [f64]>,
+        mu: Cow<'a, [f64]>,
+    ) -> Result<Self, Fc3dError> {
+        if D != DIMENSION && matches!(w, Delassus::SparseBlock(_)) {
+            return Err(Fc3dError::Unsupported(format!(
+                "a problem of dimension {D} cannot hold W in 3x3 sparse-block storage (use a \
+                 dense or CSR W)"
+            )));
+        }
         let nc = mu.len();
-        let n = DIMENSION * nc;
+        let n = nc.checked_mul(D).ok_or_else(|| {
+            Fc3dError::InvalidStructure(format!("{nc} contacts of dimension {D} overflow"))
+        })?;
         if w.nrows() != n || w.ncols() != n {
             return Err(Fc3dError::dims(
                 format!("W is {}x{} but {nc} contacts need", w.nrows(), w.ncols()),
@@ -55,12 +106,16 @@ impl<'a> FrictionProblem<'a> {
         Ok(FrictionProblem { w, q, mu })
     }
 
+    /// The contact dimension `D` (2 or 3).
+    pub const fn dimension(&self) -> usize {
+        D
+    }
     pub fn n_contacts(&self) -> usize {
         self.mu.len()
     }
-    /// `3 * n_contacts`.
+    /// `D * n_contacts`.
     pub fn size(&self) -> usize {
-        DIMENSION * self.mu.len()
+        D * self.mu.len()
     }
     pub fn w(&self) -> &Delassus<'a> {
         &self.w
@@ -78,12 +133,12 @@ impl<'a> FrictionProblem<'a> {
     }
 
     /// The same problem with W in another storage (used to cross-check storages).
-    pub fn with_w(&self, w: Delassus<'static>) -> Result<FrictionProblem<'static>, Fc3dError> {
-        FrictionProblem::new(w, self.q.to_vec(), self.mu.to_vec())
+    pub fn with_w(&self, w: Delassus<'static>) -> Result<FrictionProblem<'static, D>, Fc3dError> {
+        FrictionProblem::validated(w, Cow::Owned(self.q.to_vec()), Cow::Owned(self.mu.to_vec()))
     }
 
     /// An owned copy that no longer borrows any host array.
-    pub fn into_owned(self) -> FrictionProblem<'static> {
+    pub fn into_owned(self) -> FrictionProblem<'static, D> {
         let w = match self.w {
             Delassus::Dense(d) => Delassus::Dense(d.into_owned()),
             Delassus::SparseBlock(s) => Delassus::SparseBlock(s),

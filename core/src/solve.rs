@@ -2,12 +2,12 @@
 //! trivial-case shortcut, the dispatch, and the one post-processing path that measures the error
 //! of the returned `(r, u)` and sets the status from it.
 
-use crate::config::{scalar_factors, Rescaling, SolverConfig};
+use crate::config::{scalar_factors, PlanarConfig, Rescaling, SolverConfig};
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::norm;
 use crate::measure::natural_map_error;
-use crate::problem::FrictionProblem;
+use crate::problem::{FrictionProblem, FrictionProblem2d};
 
 /// Solves `problem` from the initial guess in `r`; on success `r` and `u = W r + q` hold the
 /// result and the report holds the error measured on them.
@@ -187,3 +187,65 @@ const RAY_NULL: f64 = 100.0;
 const RAY_NULL_CAP: f64 = 1e-3;
 /// `q·d <= -RAY_PUSH ||q||`: q pushes along d.
 const RAY_PUSH: f64 = 1e-3;
+
+/// Solves the 2D `problem` with a Siconos `fc2d` solver from the initial guess in `r` (NSGS uses
+/// it; CPG, Lemke and enumeration start from zero as Siconos' do). On success `r` and
+/// `u = W r + q` hold the result and the report the natural-map error measured on them (the 2D
+/// cone); on `Err`, `r` and `u` are left untouched.
+pub fn solve_planar(
+    problem: &FrictionProblem2d<'_>,
+    config: &PlanarConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+) -> Result<SolveReport, Fc3dError> {
+    solve_planar_with_observer(problem, config, r, u, &mut |_| {})
+}
+
+/// [`solve_planar`] with an observer called after every iteration of NSGS and CPG.
+pub fn solve_planar_with_observer(
+    problem: &FrictionProblem2d<'_>,
+    config: &PlanarConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolveReport, Fc3dError> {
+    let n = problem.size();
+    if r.len() != n {
+        return Err(Fc3dError::dims("reaction", n, r.len()));
+    }
+    if u.len() != n {
+        return Err(Fc3dError::dims("velocity", n, u.len()));
+    }
+    check_finite("initial reaction", r)?;
+    config.validate()?;
+    // Exactly, not up to rounding as in 3D: 2D problems with q of order 1e-18 exist, where a
+    // q_N of -1e-19 matters relative to ||q||.
+    let outcome = if problem.q().chunks_exact(2).all(|qc| qc[0] >= 0.0) {
+        // No contact is pushed into penetration: r = 0, u = q.
+        r.iter_mut().for_each(|v| *v = 0.0);
+        SolverOutcome::stopped(0, false)
+    } else {
+        crate::solvers::planar::run(&config.method, problem, &config.limits(), r, u, observer)?
+    };
+    let mut error = match outcome.final_error {
+        Some(e) => e,
+        None => natural_map_error(problem, r, u),
+    };
+    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        error = natural_map_error(problem, r, u);
+    }
+    let status = if error <= config.tolerance {
+        SolveStatus::Converged
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    Ok(SolveReport {
+        status,
+        iterations: outcome.iterations,
+        error,
+        dumont_criterion: None,
+    })
+}

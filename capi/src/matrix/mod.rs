@@ -37,7 +37,9 @@ use super::types::*;
 use super::{CError, CResult, FC3D_ERR_INVALID_SIZE, FC3D_ERR_INVALID_STORAGE};
 use csparse::{csc_to_c, csr_from_cs, empty_nsm, nsm_clear};
 use fc3d_core::matrix::{Delassus, DenseMatrix};
-use sbm::{block_sparse_from_sbm, check_sbm_clearable, sbm_clear_impl, sbm_to_c};
+use sbm::{
+    block_sparse_from_sbm, check_sbm_clearable, csr_from_uniform_sbm, sbm_clear_impl, sbm_to_c,
+};
 
 pub(crate) const NM_DENSE: c_int = 0;
 pub(crate) const NM_SPARSE_BLOCK: c_int = 1;
@@ -244,7 +246,27 @@ fn matrix_dims(m: &NumericsMatrix) -> CResult<(usize, usize)> {
 /// The core view of a NumericsMatrix (dense storage is borrowed, not copied). Every number of
 /// the host's structs is checked before an array is read with it.
 pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delassus<'a>> {
+    delassus_from_c_blocks(m, 3)
+}
+
+/// [`delassus_from_c`] for the W of a problem of contact dimension `block`: a sparse-block W of
+/// 2x2 blocks (a 2D problem) is copied into a general sparse matrix.
+pub(crate) unsafe fn delassus_from_c_blocks<'a>(
+    m: &'a NumericsMatrix,
+    block: usize,
+) -> CResult<Delassus<'a>> {
     let (rows, cols) = matrix_dims(m)?;
+    if m.storageType == NM_SPARSE_BLOCK && block != 3 {
+        if m.matrix1.is_null() {
+            return Err(CError::null("sparse-block storage (matrix1)"));
+        }
+        return Ok(Delassus::Sparse(csr_from_uniform_sbm(
+            &*m.matrix1,
+            rows,
+            cols,
+            block,
+        )?));
+    }
     match m.storageType {
         NM_DENSE => {
             let n = rows

@@ -16,7 +16,7 @@ use crate::alloc::c_free;
 use crate::types::*;
 use crate::{ffi_guard, CError, CResult};
 use fc3d_core::error::{try_copy, try_vec};
-use fc3d_core::matrix::BlockSparseMatrix;
+use fc3d_core::matrix::{BlockSparseMatrix, CsrMatrix};
 
 /// Checks cumulative block sizes: strictly increasing from a positive first size.
 fn check_block_sizes(bs: &[c_uint], what: &str) -> CResult<()> {
@@ -72,25 +72,37 @@ unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
     Ok(ptr)
 }
 
-/// Validated block-sparse core copy of a Siconos SBM with uniform 3x3 blocks.
-pub(super) unsafe fn block_sparse_from_sbm(
+/// The checked structure of a host SBM with uniform `b x b` blocks covering `rows x cols`: block
+/// row pointers, and the block columns and block pointers of each row sorted by column.
+struct UniformSbm {
+    nbr: usize,
+    nbc: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    blocks: Vec<*const c_double>,
+}
+
+unsafe fn uniform_sbm(
     s: &SparseBlockStructuredMatrix,
     rows: usize,
     cols: usize,
-) -> CResult<BlockSparseMatrix> {
+    b: usize,
+) -> CResult<UniformSbm> {
     let (nbr, nbc) = (s.blocknumber0 as usize, s.blocknumber1 as usize);
-    if 3 * nbr != rows || 3 * nbc != cols {
+    if b * nbr != rows || b * nbc != cols {
         return Err(size_err(format!(
-            "sparse-block matrix has {nbr}x{nbc} blocks but the NumericsMatrix is {rows}x{cols} (fc3d needs 3x3 blocks)"
+            "sparse-block matrix has {nbr}x{nbc} blocks but the NumericsMatrix is {rows}x{cols} (fc3d needs {b}x{b} blocks)"
         )));
     }
     let bs0 = c_slice(s.blocksize0, nbr, "SBM blocksize0")?;
     let bs1 = c_slice(s.blocksize1, nbc, "SBM blocksize1")?;
     for (k, &v) in bs0.iter().chain(bs1.iter()).enumerate() {
-        let expected = 3 * ((if k < nbr { k } else { k - nbr }) + 1);
+        let expected = b * ((if k < nbr { k } else { k - nbr }) + 1);
         if v as usize != expected {
             return Err(storage_err(format!(
-                "sparse-block matrix blocks must all be 3x3 (cumulative sizes 3, 6, 9, ...): found {v} where {expected} was expected"
+                "sparse-block matrix blocks must all be {b}x{b} (cumulative sizes {b}, {}, {}, ...): found {v} where {expected} was expected",
+                2 * b,
+                3 * b
             )));
         }
     }
@@ -102,14 +114,14 @@ pub(super) unsafe fn block_sparse_from_sbm(
             s.filled2, s.nbblocks
         )));
     }
-    let given_cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
-    let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
     if let Some(w) = row_ptr.windows(2).find(|w| w[0] > w[1]) {
         return Err(storage_err(format!(
             "SBM index1_data decreases ({} then {})",
             w[0], w[1]
         )));
     }
+    let given_cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
+    let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
     // A Siconos SBM need not sort the blocks of a row (SBCM_to_SBM keeps their coordinate
     // order): the copy sorts them, so that products sum in the same order whatever the input
     // order.
@@ -119,16 +131,84 @@ pub(super) unsafe fn block_sparse_from_sbm(
         order[row_ptr[i]..row_ptr[i + 1]].sort_by_key(|&k| given_cols[k]);
     }
     let mut col_idx = try_vec(nb, 0usize, "SBM block columns")?;
-    let mut blocks = try_vec(nb, [0.0; 9], "SBM blocks")?;
-    for ((&k, c), a) in order.iter().zip(col_idx.iter_mut()).zip(blocks.iter_mut()) {
+    let mut blocks = try_vec(nb, std::ptr::null(), "SBM block pointers")?;
+    for ((&k, c), p) in order.iter().zip(col_idx.iter_mut()).zip(blocks.iter_mut()) {
         *c = given_cols[k];
-        a.copy_from_slice(c_slice(
-            ptrs[k] as *const c_double,
-            9,
-            &format!("SBM block {k}"),
-        )?);
+        *p = ptrs[k] as *const c_double;
     }
-    Ok(BlockSparseMatrix::new(nbr, nbc, row_ptr, col_idx, blocks)?)
+    Ok(UniformSbm {
+        nbr,
+        nbc,
+        row_ptr,
+        col_idx,
+        blocks,
+    })
+}
+
+/// Validated block-sparse core copy of a Siconos SBM with uniform 3x3 blocks.
+pub(super) unsafe fn block_sparse_from_sbm(
+    s: &SparseBlockStructuredMatrix,
+    rows: usize,
+    cols: usize,
+) -> CResult<BlockSparseMatrix> {
+    let u = uniform_sbm(s, rows, cols, 3)?;
+    let mut blocks = try_vec(u.blocks.len(), [0.0; 9], "SBM blocks")?;
+    for (k, (&bp, a)) in u.blocks.iter().zip(blocks.iter_mut()).enumerate() {
+        a.copy_from_slice(c_slice(bp, 9, &format!("SBM block {k}"))?);
+    }
+    Ok(BlockSparseMatrix::new(
+        u.nbr, u.nbc, u.row_ptr, u.col_idx, blocks,
+    )?)
+}
+
+/// Validated general sparse copy of a Siconos SBM with uniform `b x b` blocks (the 2x2 blocks of
+/// a 2D problem's W; the core's sparse-block storage holds 3x3 blocks only).
+pub(super) unsafe fn csr_from_uniform_sbm(
+    s: &SparseBlockStructuredMatrix,
+    rows: usize,
+    cols: usize,
+    b: usize,
+) -> CResult<CsrMatrix> {
+    let u = uniform_sbm(s, rows, cols, b)?;
+    if u.row_ptr[0] != 0 {
+        return Err(storage_err(format!(
+            "SBM index1_data must start at 0, not {}",
+            u.row_ptr[0]
+        )));
+    }
+    let mut triplets = try_vec(
+        u.blocks.len().saturating_mul(b * b),
+        (0usize, 0usize, 0.0),
+        "SBM entries",
+    )?;
+    let mut k = 0;
+    for row in 0..u.nbr {
+        let (start, end) = (u.row_ptr[row], u.row_ptr[row + 1]);
+        if start > end || end > u.blocks.len() {
+            return Err(storage_err(format!(
+                "SBM index1_data must not decrease: block row {row} spans {start}..{end}"
+            )));
+        }
+        for slot in start..end {
+            let col = u.col_idx[slot];
+            if col >= u.nbc {
+                return Err(storage_err(format!(
+                    "SBM block column {col} out of range ({} block columns)",
+                    u.nbc
+                )));
+            }
+            let values = c_slice(u.blocks[slot], b * b, &format!("SBM block {slot}"))?;
+            // Column-major blocks.
+            for j in 0..b {
+                for i in 0..b {
+                    triplets[k] = (b * row + i, b * col + j, values[i + b * j]);
+                    k += 1;
+                }
+            }
+        }
+    }
+    triplets.truncate(k);
+    Ok(CsrMatrix::from_triplets(rows, cols, &triplets)?)
 }
 
 /// Entry (i, j) of a host SBM of any block sizes (the sum of the blocks stored at its place, 0

@@ -10,6 +10,7 @@ mod fixed_point;
 mod local;
 mod nsgs;
 mod nsn;
+pub(crate) mod planar;
 mod prox;
 mod siconos;
 mod siconos_table;
@@ -218,6 +219,26 @@ pub(crate) unsafe fn config_from_c(o: &SolverOptions) -> CResult<SolverConfig> {
     config_from_node(o)
 }
 
+/// The 2D configuration (`fc2d_driver`) the options describe: ids 400, 402, 404, 405; any other
+/// id is refused with `FC3D_ERR_UNSUPPORTED_SOLVER`. The tree is checked as in
+/// [`config_from_c`].
+pub(crate) unsafe fn planar_config_from_c(o: &SolverOptions) -> CResult<fc3d_core::PlanarConfig> {
+    check_tree(o)?;
+    let id = o.solverId;
+    let what = solver_name(id).to_string_lossy();
+    if !planar::is_planar(id) {
+        return Err(CError::new(
+            FC3D_ERR_UNSUPPORTED_SOLVER,
+            format!(
+                "solver id {id} ({what}) is not a 2D friction solver: fc2d_driver solves 400 \
+                 (F2D_NSGS), 402 (F2D_CPG), 404 (F2D_LEMKE) and 405 (F2D_ENUM)"
+            ),
+        ));
+    }
+    let p = Params::of(o, &format!("{what} options"))?;
+    planar::read(id, &p)
+}
+
 /// `config_from_c` of a node of a checked tree.
 pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig> {
     let id = o.solverId;
@@ -234,6 +255,12 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
         517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
         523 => Method::Admm(admm::read(&p)?),
+        id if planar::is_planar(id) => {
+            return Err(CError::new(
+                FC3D_ERR_UNSUPPORTED_SOLVER,
+                format!("solver id {id} ({what}) solves 2D problems: call fc2d_driver"),
+            ))
+        }
         _ => return Err(unsupported_solver(id)),
     };
     let mut config = SolverConfig::new(method);

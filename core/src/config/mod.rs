@@ -3,9 +3,11 @@
 //! family's Siconos defaults; [`Method`] holds what is specific to the family.
 
 mod method;
+mod planar;
 mod rescaling;
 
 pub use method::Method;
+pub use planar::PlanarConfig;
 pub use rescaling::{scalar_factors, Rescaling};
 
 use std::time::Duration;

@@ -1,10 +1,11 @@
 //! One-contact solvers: FC(w, q, mu) with a 3x3 `w`, behind one trait so that the Gauss-Seidel
-//! sweep does not know which one it drives.
+//! sweep does not know which one it drives; and the exact 2x2 solve of a 2D contact (`planar`).
 
 mod adaptive;
 pub(crate) mod dumont;
 mod fischer_burmeister;
 mod newton;
+mod planar;
 mod projection;
 mod quartic;
 mod registry;
@@ -15,6 +16,7 @@ mod vi_upk;
 pub use dumont::EnhancedBipotential;
 pub use fischer_burmeister::{fischer_burmeister_function, FischerBurmeisterNewton};
 pub use newton::{alart_curnier_function, jean_moreau_function, AlartCurnierNewton};
+pub use planar::{solve_planar_contact, PlanarBranch, PlanarSolution};
 pub use projection::{ProjectionOnCone, ProjectionOnConeWithLocalIteration, ProjectionOnCylinder};
 pub use quartic::Quartic;
 pub use registry::{AnyLocalSolver, LocalSolverKind};

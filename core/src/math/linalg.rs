@@ -65,6 +65,44 @@ pub fn mat3_vec_add(m: &Mat3, x: &Vec3, y: &Vec3) -> Vec3 {
     ]
 }
 
+/// Row-major `D x D` block of W (`D` = 2 or 3, the contact dimension): a diagonal or coupling
+/// block of one contact row.
+pub type Block<const D: usize> = [[f64; D]; D];
+
+/// `y + m * x` for a `D x D` block, each row summed in the order of [`mat3_vec_add`] (so that a
+/// 3D sweep through the generic code gives the same bits as through the 3x3 kernel).
+#[inline(always)]
+pub fn block_vec_add<const D: usize>(m: &Block<D>, x: &[f64; D], y: &[f64; D]) -> [f64; D] {
+    let mut out = *y;
+    for (o, row) in out.iter_mut().zip(m) {
+        let mut s = row[0] * x[0];
+        for j in 1..D {
+            s += row[j] * x[j];
+        }
+        *o += s;
+    }
+    out
+}
+
+/// The `D` components of contact `c` in a vector of all contacts.
+#[inline(always)]
+pub fn contact_of<const D: usize>(v: &[f64], c: usize) -> [f64; D] {
+    let mut out = [0.0; D];
+    out.copy_from_slice(&v[D * c..D * c + D]);
+    out
+}
+
+/// `||a - b||^2` for two contact vectors.
+#[inline(always)]
+pub fn distance_sq_d<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+    let mut s = 0.0;
+    for k in 0..D {
+        let d = a[k] - b[k];
+        s += d * d;
+    }
+    s
+}
+
 /// `a * b`.
 #[inline(always)]
 pub fn mat3_mul(a: &Mat3, b: &Mat3) -> Mat3 {

@@ -1,49 +1,49 @@
 use super::Delassus;
 use crate::error::Fc3dError;
-use crate::math::linalg::{mat3_vec_add, Mat3, Vec3};
+use crate::math::linalg::{block_vec_add, contact_of, Block};
 
-/// Block-row view of a square W with 3x3 blocks, built once per solve for Gauss-Seidel sweeps:
-/// for each contact, its diagonal block and its non-zero off-diagonal blocks (row-major).
-/// All-zero blocks are not stored, whatever the storage they came from.
+/// Block-row view of a square W with `D x D` blocks (`D` the contact dimension, 3 by default),
+/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block and its
+/// non-zero off-diagonal blocks (row-major). All-zero blocks are not stored, whatever the storage
+/// they came from.
 #[derive(Debug, Clone)]
-pub struct BlockRows {
+pub struct BlockRows<const D: usize = 3> {
     n_contacts: usize,
-    diagonal: Vec<Mat3>,
+    diagonal: Vec<Block<D>>,
     row_ptr: Vec<usize>,
     cols: Vec<usize>,
-    blocks: Vec<Mat3>,
+    blocks: Vec<Block<D>>,
 }
 
-impl BlockRows {
+impl<const D: usize> BlockRows<D> {
     pub fn from_delassus(w: &Delassus<'_>) -> Result<Self, Fc3dError> {
         let n = w.nrows();
-        if n != w.ncols() || n % 3 != 0 {
+        if n != w.ncols() || n % D != 0 {
             return Err(Fc3dError::InvalidStructure(format!(
-                "W must be square with 3x3 blocks, got {}x{}",
+                "W must be square with {D}x{D} blocks, got {}x{}",
                 w.nrows(),
                 w.ncols()
             )));
         }
-        let nc = n / 3;
-        let mut diagonal = vec![[[0.0; 3]; 3]; nc];
-        let mut have_diag = vec![false; nc];
+        let nc = n / D;
+        let zero: Block<D> = [[0.0; D]; D];
+        let mut diagonal = vec![zero; nc];
         // (block row, block col, block) collected row by row; duplicates merged below.
-        let mut entries: Vec<(usize, usize, Mat3)> = Vec::new();
+        let mut entries: Vec<(usize, usize, Block<D>)> = Vec::new();
         match w {
             Delassus::Dense(d) => {
                 for bi in 0..nc {
                     for bj in 0..nc {
-                        let mut b = [[0.0; 3]; 3];
+                        let mut b = zero;
                         let mut nonzero = false;
                         for (i, row) in b.iter_mut().enumerate() {
                             for (j, v) in row.iter_mut().enumerate() {
-                                *v = d.get(3 * bi + i, 3 * bj + j);
+                                *v = d.get(D * bi + i, D * bj + j);
                                 nonzero |= *v != 0.0;
                             }
                         }
                         if bi == bj {
                             diagonal[bi] = b;
-                            have_diag[bi] = true;
                         } else if nonzero {
                             entries.push((bi, bj, b));
                         }
@@ -51,8 +51,20 @@ impl BlockRows {
                 }
             }
             Delassus::SparseBlock(s) => {
+                if D != 3 {
+                    return Err(Fc3dError::InvalidStructure(format!(
+                        "a 3x3 sparse-block W cannot be cut into {D}x{D} contact blocks"
+                    )));
+                }
+                let mut have_diag = vec![false; nc];
                 for (bi, bj, cm) in s.iter_blocks() {
-                    let b = crate::math::linalg::mat3_from_col_major(cm);
+                    // Column-major 3x3 to row-major D x D (D = 3 here).
+                    let mut b = zero;
+                    for (i, row) in b.iter_mut().enumerate() {
+                        for (j, v) in row.iter_mut().enumerate() {
+                            *v = cm[i + 3 * j];
+                        }
+                    }
                     if bi == bj {
                         add_into(&mut diagonal[bi], &b);
                         have_diag[bi] = true;
@@ -65,10 +77,10 @@ impl BlockRows {
                 }
             }
             Delassus::Sparse(s) => {
-                let mut map = std::collections::BTreeMap::<(usize, usize), Mat3>::new();
+                let mut map = std::collections::BTreeMap::<(usize, usize), Block<D>>::new();
                 s.for_each_entry(|i, j, v| {
-                    let b = map.entry((i / 3, j / 3)).or_insert([[0.0; 3]; 3]);
-                    b[i % 3][j % 3] += v;
+                    let b = map.entry((i / D, j / D)).or_insert(zero);
+                    b[i % D][j % D] += v;
                 });
                 for ((bi, bj), b) in map {
                     if bi == bj {
@@ -77,13 +89,12 @@ impl BlockRows {
                         entries.push((bi, bj, b));
                     }
                 }
-                have_diag.iter_mut().for_each(|h| *h = true);
             }
         }
         entries.sort_by_key(|e| (e.0, e.1));
         let mut row_ptr = vec![0usize; nc + 1];
         let mut cols = Vec::with_capacity(entries.len());
-        let mut blocks: Vec<Mat3> = Vec::with_capacity(entries.len());
+        let mut blocks: Vec<Block<D>> = Vec::with_capacity(entries.len());
         let mut last = None;
         for (bi, bj, b) in entries {
             if last == Some((bi, bj)) {
@@ -117,7 +128,7 @@ impl BlockRows {
     }
 
     #[inline]
-    pub fn diagonal(&self, c: usize) -> &Mat3 {
+    pub fn diagonal(&self, c: usize) -> &Block<D> {
         &self.diagonal[c]
     }
 
@@ -125,43 +136,44 @@ impl BlockRows {
     /// its coupling costs).
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
-            let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
-            let uc =
-                crate::math::linalg::mat3_vec_add(&self.diagonal[c], &rc, &self.local_q(c, q, r));
-            u[3 * c..3 * c + 3].copy_from_slice(&uc);
+            let uc = block_vec_add(&self.diagonal[c], &contact_of(r, c), &self.local_q(c, q, r));
+            u[D * c..D * c + D].copy_from_slice(&uc);
         }
     }
 
     /// The normal component of [`BlockRows::local_q`]: all a frictionless contact needs (one
-    /// row of each coupled block instead of three).
+    /// row of each coupled block instead of `D`).
     #[inline]
     pub fn local_q_normal(&self, c: usize, q: &[f64], r: &[f64]) -> f64 {
-        let mut acc = q[3 * c];
+        let mut acc = q[D * c];
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             let b = self.cols[k];
             let row = &self.blocks[k][0];
-            acc += row[0] * r[3 * b] + row[1] * r[3 * b + 1] + row[2] * r[3 * b + 2];
+            let mut s = row[0] * r[D * b];
+            for j in 1..D {
+                s += row[j] * r[D * b + j];
+            }
+            acc += s;
         }
         acc
     }
 
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
     #[inline]
-    pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> Vec3 {
-        let mut acc: Vec3 = [q[3 * c], q[3 * c + 1], q[3 * c + 2]];
+    pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> [f64; D] {
+        let mut acc = contact_of(q, c);
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let b = self.cols[k];
-            let rb = [r[3 * b], r[3 * b + 1], r[3 * b + 2]];
-            acc = mat3_vec_add(&self.blocks[k], &rb, &acc);
+            let rb = contact_of(r, self.cols[k]);
+            acc = block_vec_add(&self.blocks[k], &rb, &acc);
         }
         acc
     }
 }
 
-fn add_into(a: &mut Mat3, b: &Mat3) {
-    for i in 0..3 {
-        for j in 0..3 {
-            a[i][j] += b[i][j];
+fn add_into<const D: usize>(a: &mut Block<D>, b: &Block<D>) {
+    for (ra, rb) in a.iter_mut().zip(b) {
+        for (x, y) in ra.iter_mut().zip(rb) {
+            *x += y;
         }
     }
 }

@@ -9,6 +9,7 @@ pub mod admm;
 pub mod nsgs;
 pub mod nsn;
 pub mod pfp;
+pub mod planar;
 pub mod prox;
 pub mod soclcp;
 pub mod tresca;

@@ -27,8 +27,12 @@
 //! (Rust's `{:e}`, which C's `strtod` reads too), so our files round-trip bit for bit in all three
 //! storages.
 //!
-//! Only dimension 3 is supported, sparse-block matrices must be made of 3x3 blocks, and every error
-//! in the text is an [`Fc3dError::Parse`] naming the token at fault (or `<end of file>`).
+//! [`parse_dat`] and the other readers of a 3D problem reject dimension 2
+//! ([`Fc3dError::UnsupportedDimension`]); the `_any` readers ([`parse_dat_any`],
+//! [`read_dat_any`], [`read_dat_file_any`]) also read 2D problems ([`DatProblem::Planar`]), whose
+//! sparse-block W (2x2 blocks) becomes a general sparse matrix. Otherwise sparse-block matrices
+//! must be made of 3x3 blocks, and every error in the text is an [`Fc3dError::Parse`] naming the
+//! token at fault (or `<end of file>`).
 //!
 //! # Reading bounded by the data
 //!
@@ -61,8 +65,9 @@ mod tokens;
 mod write;
 
 pub use parse::{
-    parse_dat, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix, read_dat,
-    read_dat_file, read_matrix, read_matrix_file, read_sbm,
+    parse_dat, parse_dat_any, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix,
+    read_dat, read_dat_any, read_dat_file, read_dat_file_any, read_matrix, read_matrix_file,
+    read_sbm, DatProblem,
 };
 pub use write::{write_dat, write_dat_file, write_matrix, write_sbm};
 

@@ -9,7 +9,17 @@ use super::tokens::{try_push, Reader};
 use super::STORAGE_DENSE;
 use crate::error::Fc3dError;
 use crate::matrix::{BlockSparseMatrix, Delassus};
-use crate::problem::{FrictionProblem, DIMENSION};
+use crate::problem::{FrictionProblem, FrictionProblem2d, DIMENSION};
+
+/// A problem as read from a `.dat` file, of the dimension the file declares.
+#[derive(Debug, Clone, PartialEq)]
+pub enum DatProblem {
+    /// Dimension 3.
+    Spatial(FrictionProblem<'static>),
+    /// Dimension 2 (Siconos' `fc2d` problems). A sparse-block W (2x2 blocks) is held as a
+    /// general sparse matrix.
+    Planar(FrictionProblem2d<'static>),
+}
 
 /// Largest number of rows or columns (2^24) [`parse_matrix`] accepts for a sparse or sparse-block
 /// matrix. Their sizes are not bounded by the number of values in the text (an empty
@@ -44,6 +54,39 @@ pub fn read_dat<R: Read>(
     Ok((p, r.consumed_bytes()))
 }
 
+/// [`parse_dat`] for a file of dimension 2 or 3.
+pub fn parse_dat_any(text: &str, file_label: &str) -> Result<DatProblem, Fc3dError> {
+    let mut r = Reader::new(text, file_label, "W");
+    any_problem(&mut r)
+}
+
+/// [`read_dat`] for a stream of dimension 2 or 3.
+pub fn read_dat_any<R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    file_label: &str,
+) -> Result<(DatProblem, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, file_label, "W");
+    let p = any_problem(&mut r)?;
+    Ok((p, r.consumed_bytes()))
+}
+
+/// [`read_dat_file`] for a file of dimension 2 or 3.
+pub fn read_dat_file_any(path: &Path) -> Result<DatProblem, Fc3dError> {
+    let label = path.display().to_string();
+    let (file, len) = open(path, &label)?;
+    read_dat_any(file, len, &label).map(|(p, _)| p)
+}
+
+fn any_problem(r: &mut Reader<'_>) -> Result<DatProblem, Fc3dError> {
+    let (dim_index, dim) = r.usize("the problem dimension")?;
+    match dim {
+        DIMENSION => problem_body::<3>(r).map(DatProblem::Spatial),
+        2 => problem_body::<2>(r).map(DatProblem::Planar),
+        _ => Err(r.error_at(dim_index, "the problem dimension must be 2 or 3")),
+    }
+}
+
 fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
     let (dim_index, dim) = r.usize("the problem dimension")?;
     match dim {
@@ -56,9 +99,16 @@ fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
         }
         _ => return Err(r.error_at(dim_index, "the problem dimension must be 3")),
     }
+    problem_body::<3>(r)
+}
+
+/// The problem after its dimension token, for contacts of dimension `D`.
+fn problem_body<const D: usize>(
+    r: &mut Reader<'_>,
+) -> Result<FrictionProblem<'static, D>, Fc3dError> {
     let (nc_index, nc) = r.usize("the number of contacts")?;
     let n = nc
-        .checked_mul(DIMENSION)
+        .checked_mul(D)
         .ok_or_else(|| r.error_at(nc_index, "the number of contacts is too large"))?;
 
     let (storage_index, storage) = r.usize("the storage type of W")?;
@@ -67,21 +117,21 @@ fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
     if rows != n {
         return Err(r.error_at(
             rows_index,
-            format!("W must have 3 * {nc} = {n} rows, not {rows}"),
+            format!("W must have {D} * {nc} = {n} rows, not {rows}"),
         ));
     }
     let (cols_index, cols) = r.usize("the number of columns of W")?;
     if cols != n {
         return Err(r.error_at(
             cols_index,
-            format!("W must have 3 * {nc} = {n} columns, not {cols}"),
+            format!("W must have {D} * {nc} = {n} columns, not {cols}"),
         ));
     }
     // q and mu follow the matrix: a size the rest of the input cannot hold fails here, before any
     // storage sized by it is allocated.
     r.ensure_remaining(n.saturating_add(nc), "W, q and mu")?;
     // The solvers need the diagonal block of every contact: a sparse-block W must store them all.
-    let body = parse_matrix_body(r, storage_index, storage, n, n, true)?;
+    let body = parse_matrix_body(r, storage_index, storage, n, n, true, D)?;
 
     let q = r.reals(n, "q")?;
     r.ensure_remaining(nc, "the friction coefficients mu")?;
@@ -98,7 +148,7 @@ fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
     let w = body.finish(r)?;
     // Everything `FrictionProblem::new` checks has been checked token by token above; this only
     // catches what slipped through, pointing at the matrix it concerns.
-    FrictionProblem::new(w, q, mu)
+    FrictionProblem::<D>::from_parts(w, q, mu)
         .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))
 }
 
@@ -212,7 +262,7 @@ fn matrix(r: &mut Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
             ));
         }
     }
-    parse_matrix_body(r, storage_index, storage, rows, cols, false)?.finish(r)
+    parse_matrix_body(r, storage_index, storage, rows, cols, false, DIMENSION)?.finish(r)
 }
 
 /// Parses a sparse-block body without the `storageType size0 size1` header, as Siconos'

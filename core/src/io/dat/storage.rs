@@ -5,11 +5,8 @@ use super::csparse::{parse_sparse, SparseEntries};
 use super::tokens::{reserve, token_count, try_push, Reader};
 use super::{STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
 use crate::error::{try_vec, Fc3dError};
-use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
+use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::problem::DIMENSION;
-
-/// Tokens of a 3x3 block in the sparse-block body: its number and 9 values.
-const TOKENS_PER_BLOCK: usize = 1 + 9;
 
 /// A matrix body as read: complete, or the entries of a sparse matrix whose compressed form
 /// (one pointer per row) is built by [`MatrixBody::finish`]. A problem reader finishes it after
@@ -31,6 +28,9 @@ impl MatrixBody {
 /// The body of a `rows x cols` matrix of the given storage code (read at token `storage_index`,
 /// which the caller has kept with `Reader::remember`).
 /// `require_diagonal`: a sparse-block matrix must store every diagonal block (a problem's W).
+/// `block`: the side of the sparse-block matrix's blocks, the contact dimension (3, or 2 for a
+/// 2D problem, whose 2x2 blocks are stored as a general sparse W: the sparse-block storage of
+/// the core holds 3x3 blocks).
 pub(super) fn parse_matrix_body(
     r: &mut Reader<'_>,
     storage_index: usize,
@@ -38,11 +38,16 @@ pub(super) fn parse_matrix_body(
     rows: usize,
     cols: usize,
     require_diagonal: bool,
+    block: usize,
 ) -> Result<MatrixBody, Fc3dError> {
     match storage {
         STORAGE_DENSE => parse_dense(r, rows, cols).map(MatrixBody::Done),
-        STORAGE_SPARSE_BLOCK => parse_sparse_block(r, Some((rows, cols)), require_diagonal)
-            .map(|m| MatrixBody::Done(Delassus::SparseBlock(m))),
+        STORAGE_SPARSE_BLOCK if block == DIMENSION => {
+            parse_sparse_block(r, Some((rows, cols)), require_diagonal)
+                .map(|m| MatrixBody::Done(Delassus::SparseBlock(m)))
+        }
+        STORAGE_SPARSE_BLOCK => parse_sparse_block_as_csr(r, (rows, cols), require_diagonal, block)
+            .map(|m| MatrixBody::Done(Delassus::Sparse(m))),
         STORAGE_SPARSE => parse_sparse(r, rows, cols).map(MatrixBody::Sparse),
         _ => Err(r.error_at(
             storage_index,
@@ -80,14 +85,15 @@ fn parse_dense(
     Ok(Delassus::Dense(DenseMatrix::new(rows, cols, values)?))
 }
 
-/// Reads `count` cumulative block sizes that must be 3, 6, 9, ..., up to `n` when it is given;
-/// returns the last one (the number of rows or columns the blocks cover).
+/// Reads `count` cumulative block sizes that must be `block`, `2 block`, `3 block`, ..., up to
+/// `n` when it is given; returns the last one (the number of rows or columns the blocks cover).
 fn parse_block_sizes(
     r: &mut Reader<'_>,
     count: usize,
     count_index: usize,
     n: Option<usize>,
     what: &str,
+    block: usize,
 ) -> Result<usize, Fc3dError> {
     r.ensure_remaining(count, &format!("the cumulative {what} block sizes"))?;
     let mut previous = 0;
@@ -100,10 +106,10 @@ fn parse_block_sizes(
                 format!("cumulative {what} block sizes must increase ({size} after {previous})"),
             ));
         }
-        if size - previous != DIMENSION {
+        if size - previous != block {
             return Err(Fc3dError::Unsupported(format!(
                 "{}: sparse-block {} with a block {what} of size {} (block {what} {k}, token {index}); \
-                 fc3d handles 3x3 blocks only",
+                 fc3d handles {block}x{block} blocks only here",
                 r.file,
                 r.name,
                 size - previous
@@ -124,13 +130,87 @@ fn parse_block_sizes(
     }
 }
 
-/// A sparse-block body. `shape`: the declared `(rows, cols)` (None: the block sizes tell).
-/// `require_diagonal`: every diagonal block must be stored (the W of a problem).
+/// A sparse-block body of 3x3 blocks. `shape`: the declared `(rows, cols)` (None: the block
+/// sizes tell). `require_diagonal`: every diagonal block must be stored (the W of a problem).
 pub(super) fn parse_sparse_block(
     r: &mut Reader<'_>,
     shape: Option<(usize, usize)>,
     require_diagonal: bool,
 ) -> Result<BlockSparseMatrix, Fc3dError> {
+    let mut blocks: Vec<[f64; 9]> = Vec::new();
+    let layout = parse_sparse_block_with(r, shape, require_diagonal, DIMENSION, |r, values| {
+        if blocks.capacity() == 0 {
+            blocks = r.vec_for(values.1, 1 + 9, &format!("the blocks of {}", r.name))?;
+        }
+        let mut block = [0.0; 9];
+        block.copy_from_slice(values.0);
+        try_push(&mut blocks, block, "the blocks")
+    })?;
+    BlockSparseMatrix::new(
+        layout.block_rows,
+        layout.block_cols,
+        layout.row_ptr,
+        layout.col_idx,
+        blocks,
+    )
+    .map_err(|e| r.error_at(layout.nbblocks_index, e.to_string()))
+}
+
+/// A sparse-block body of `block x block` blocks (the 2x2 blocks of a 2D problem's W) as a
+/// general sparse matrix of the declared `shape`; exact zeros inside stored blocks are kept.
+fn parse_sparse_block_as_csr(
+    r: &mut Reader<'_>,
+    shape: (usize, usize),
+    require_diagonal: bool,
+    block: usize,
+) -> Result<CsrMatrix, Fc3dError> {
+    let mut values: Vec<f64> = Vec::new();
+    let layout = parse_sparse_block_with(r, Some(shape), require_diagonal, block, |r, b| {
+        if values.capacity() == 0 {
+            let what = format!("the blocks of {}", r.name);
+            values = r.vec_for(b.1.saturating_mul(block * block), 1, &what)?;
+        }
+        for &v in b.0 {
+            try_push(&mut values, v, "the blocks")?;
+        }
+        Ok(())
+    })?;
+    let mut triplets = Vec::new();
+    reserve(&mut triplets, values.len(), "the entries of W")?;
+    let mut k = 0;
+    for row in 0..layout.block_rows {
+        for &col in &layout.col_idx[layout.row_ptr[row]..layout.row_ptr[row + 1]] {
+            // Column-major within a block.
+            for j in 0..block {
+                for i in 0..block {
+                    triplets.push((block * row + i, block * col + j, values[k]));
+                    k += 1;
+                }
+            }
+        }
+    }
+    CsrMatrix::from_triplets(shape.0, shape.1, &triplets)
+        .map_err(|e| r.error_at(layout.nbblocks_index, e.to_string()))
+}
+
+/// The block structure of a sparse-block body.
+struct BlockLayout {
+    nbblocks_index: usize,
+    block_rows: usize,
+    block_cols: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+}
+
+/// Reads a sparse-block body of `block x block` blocks, handing each block's values
+/// (column-major) and the number of blocks to `on_block` in file order; returns the structure.
+fn parse_sparse_block_with(
+    r: &mut Reader<'_>,
+    shape: Option<(usize, usize)>,
+    require_diagonal: bool,
+    block: usize,
+    mut on_block: impl FnMut(&Reader<'_>, (&[f64], usize)) -> Result<(), Fc3dError>,
+) -> Result<BlockLayout, Fc3dError> {
     let name = r.name;
     let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
     r.remember(nbblocks_index);
@@ -142,36 +222,41 @@ pub(super) fn parse_sparse_block(
                 nbblocks_index,
                 format!(
                     "a sparse-block {name} without blocks lacks the diagonal blocks of {} contacts",
-                    rows / DIMENSION
+                    rows / block
                 ),
             ));
         }
-        if rows % DIMENSION != 0 || cols % DIMENSION != 0 {
+        if rows % block != 0 || cols % block != 0 {
             return Err(Fc3dError::Unsupported(format!(
-                "{}: a sparse-block {name} of size {rows}x{cols} cannot be made of 3x3 blocks \
-                 (fc3d handles 3x3 blocks only)",
+                "{}: a sparse-block {name} of size {rows}x{cols} cannot be made of \
+                 {block}x{block} blocks (fc3d handles {block}x{block} blocks only here)",
                 r.file
             )));
         }
         // The size is declared, not given by values: the row pointers are allocated fallibly.
-        let row_ptr = try_vec(rows / DIMENSION + 1, 0, "the block-row pointers")?;
-        let empty = BlockSparseMatrix::new(
-            rows / DIMENSION,
-            cols / DIMENSION,
+        let row_ptr = try_vec(rows / block + 1, 0, "the block-row pointers")?;
+        return Ok(BlockLayout {
+            nbblocks_index,
+            block_rows: rows / block,
+            block_cols: cols / block,
             row_ptr,
-            Vec::new(),
-            Vec::new(),
-        )
-        .map_err(|e| r.error_at(nbblocks_index, e.to_string()))?;
-        return Ok(empty);
+            col_idx: Vec::new(),
+        });
     }
     let (rows_index, block_rows) = r.usize("the number of block rows")?;
     r.remember(rows_index);
     let (cols_index, block_cols) = r.usize("the number of block columns")?;
     r.remember(cols_index);
-    parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row")?;
-    parse_block_sizes(r, block_cols, cols_index, shape.map(|s| s.1), "column")?;
-    // From here on the matrix is block_rows x block_cols blocks of 3x3 (and block_rows tokens
+    parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row", block)?;
+    parse_block_sizes(
+        r,
+        block_cols,
+        cols_index,
+        shape.map(|s| s.1),
+        "column",
+        block,
+    )?;
+    // From here on the matrix is block_rows x block_cols blocks (and block_rows tokens
     // have been read, so allocating per block row is bounded by the text).
 
     let (filled1_index, filled1) = r.usize("filled1 (the length of index1_data)")?;
@@ -242,8 +327,9 @@ pub(super) fn parse_sparse_block(
         // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
         for c in 0..block_rows {
             if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
-                let message =
-                    format!("the diagonal 3x3 block of contact {c} is missing from {name}");
+                let message = format!(
+                    "the diagonal {block}x{block} block of contact {c} is missing from {name}"
+                );
                 if c >= filled1 {
                     return Err(r.error_at(filled1_index, message));
                 }
@@ -256,11 +342,14 @@ pub(super) fn parse_sparse_block(
         }
     }
 
+    // Tokens of a block: its number and its values.
+    let tokens_per_block = 1 + block * block;
     r.ensure_remaining(
-        token_count(filled2, TOKENS_PER_BLOCK),
+        token_count(filled2, tokens_per_block),
         &format!("the blocks of {name}"),
     )?;
-    let mut blocks = r.vec_for(filled2, TOKENS_PER_BLOCK, &format!("the blocks of {name}"))?;
+    let mut values = [0.0; 9];
+    let values = &mut values[..block * block];
     for row in 0..block_rows {
         for k in row_ptr[row]..row_ptr[row + 1] {
             let (index, number) = r.usize("a block number")?;
@@ -272,13 +361,17 @@ pub(super) fn parse_sparse_block(
                     format!("block number {number} where block {k} is expected"),
                 ));
             }
-            let mut block = [0.0; 9];
-            for v in block.iter_mut() {
+            for v in values.iter_mut() {
                 *v = r.real("a block value")?.1;
             }
-            try_push(&mut blocks, block, "the blocks")?;
+            on_block(r, (values, filled2))?;
         }
     }
-    BlockSparseMatrix::new(block_rows, block_cols, row_ptr, col_idx, blocks)
-        .map_err(|e| r.error_at(nbblocks_index, e.to_string()))
+    Ok(BlockLayout {
+        nbblocks_index,
+        block_rows,
+        block_cols,
+        row_ptr,
+        col_idx,
+    })
 }

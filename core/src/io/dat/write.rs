@@ -13,9 +13,13 @@ use crate::problem::{FrictionProblem, DIMENSION};
 
 /// Writes `problem` in the `.dat` format, W in the storage it has (a [`CsrMatrix`] as a CSparse
 /// triplet dump, which Siconos reads as `NM_SPARSE` with origin `NSM_TRIPLET`). Values are printed
-/// in their shortest exactly round-tripping form, so [`parse_dat`] gives back an equal problem.
-pub fn write_dat<W: Write>(problem: &FrictionProblem<'_>, out: &mut W) -> io::Result<()> {
-    writeln!(out, "{DIMENSION}")?;
+/// in their shortest exactly round-tripping form, so [`parse_dat`] (or, in 2D,
+/// [`super::parse_dat_any`]) gives back an equal problem.
+pub fn write_dat<W: Write, const D: usize>(
+    problem: &FrictionProblem<'_, D>,
+    out: &mut W,
+) -> io::Result<()> {
+    writeln!(out, "{D}")?;
     writeln!(out, "{}", problem.n_contacts())?;
     write_matrix(problem.w(), out)?;
     write_reals_line(out, problem.q())?;
@@ -61,7 +65,10 @@ pub fn write_sbm<W: Write>(m: &BlockSparseMatrix, out: &mut W) -> io::Result<()>
 }
 
 /// Writes `problem` to `path` (see [`write_dat`]).
-pub fn write_dat_file(problem: &FrictionProblem<'_>, path: &Path) -> Result<(), Fc3dError> {
+pub fn write_dat_file<const D: usize>(
+    problem: &FrictionProblem<'_, D>,
+    path: &Path,
+) -> Result<(), Fc3dError> {
     let io_error = |e: io::Error| Fc3dError::Io {
         file: path.display().to_string(),
         message: format!("cannot write: {e}"),

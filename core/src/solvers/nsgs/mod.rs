@@ -11,10 +11,11 @@ mod settings;
 mod sweeper;
 
 pub use settings::{ContactOrder, LocalTolerance, NsgsOptions};
-pub use sweeper::Sweeper;
+pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
 
 use crate::contract::{
-    BestIterate, ErrorSchedule, Family, IterationEvent, Limits, Measure, Observer, SolverOutcome,
+    BestIterate, ErrorEvaluation, ErrorSchedule, Family, IterationEvent, Limits, Measure, Observer,
+    SolverOutcome,
 };
 use crate::error::Fc3dError;
 use crate::measure::natural_map_error;
@@ -65,6 +66,34 @@ pub(crate) fn nsgs(
 ) -> Result<SolverOutcome, Fc3dError> {
     // Everything that can fail happens before r is touched.
     let mut sweeper = Sweeper::with_options(problem, options, limits.tolerance)?;
+    let schedule = SweepSchedule {
+        error_evaluation: options.error_evaluation,
+        evaluation_frequency: options.evaluation_frequency,
+        local_tolerance: options.local_tolerance,
+    };
+    run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
+}
+
+/// How a Gauss-Seidel run tests for convergence and tunes its local tolerance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SweepSchedule {
+    pub error_evaluation: ErrorEvaluation,
+    pub evaluation_frequency: usize,
+    pub local_tolerance: LocalTolerance,
+}
+
+/// The Gauss-Seidel main loop over contacts of any dimension: sweep, test on the schedule,
+/// adapt the local tolerance, keep the best iterate under a time budget. The prepared `sweeper`
+/// has been checked, so nothing fails once `r` is touched.
+pub(crate) fn run_sweeps<const D: usize, S: ContactStep<D>>(
+    problem: &FrictionProblem<'_, D>,
+    sweeper: &mut GaussSeidel<D, S>,
+    options: &SweepSchedule,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
     let (q, mu) = (problem.q(), problem.mu());
     let nc = problem.n_contacts().max(1) as f64;
     let run = limits.start();

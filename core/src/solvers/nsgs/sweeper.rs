@@ -1,10 +1,13 @@
 //! One Gauss-Seidel sweep over the contacts, prepared once per problem: the block-row view of
-//! W, the local solver, each contact's rho, and the sweep options (order, relaxation, freezing).
+//! W, the one-contact step, and the sweep options (order, relaxation, freezing). The sweep is
+//! generic over the contact dimension `D`: the 3D NSGS (Siconos 500) drives it with the local
+//! solver of its options ([`LocalStep`]), the 2D NSGS (Siconos 400) with the exact 2x2 solve.
 
 use std::time::Instant;
 
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
+use crate::math::linalg::{block_vec_add, contact_of, distance_sq_d, Block};
 use crate::matrix::BlockRows;
 use crate::measure::natural_map_error_by_rows;
 use crate::problem::FrictionProblem;
@@ -47,6 +50,91 @@ impl SplitMix64 {
     }
 }
 
+/// The one-contact step a sweep applies to each contact of dimension `D`.
+pub trait ContactStep<const D: usize> {
+    /// The reaction of contact `c` for its local problem FC(`w`, `q`, `mu`), starting from and
+    /// written into `r`. A step that cannot produce a finite answer leaves `r` as it was.
+    fn solve(&mut self, c: usize, w: &Block<D>, q: &[f64; D], mu: f64, r: &mut [f64; D]);
+
+    /// A new tolerance for iterative steps (adaptive local tolerance); exact steps ignore it.
+    fn set_tolerance(&mut self, _tolerance: f64) {}
+
+    /// The instant after which an iterative step stops iterating.
+    fn set_deadline(&mut self, _deadline: Option<Instant>) {}
+}
+
+/// The 3D step: the configured local solver with each contact's penalty parameters (they depend
+/// on `W_cc` only, so they are computed once per problem).
+pub struct LocalStep {
+    options: LocalSolverOptions,
+    solver: AnyLocalSolver,
+    rho: Vec<(f64, f64)>,
+    deadline: Option<Instant>,
+}
+
+impl LocalStep {
+    fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Self {
+        let solver = AnyLocalSolver::new(options);
+        let rho = (0..rows.n_contacts())
+            .map(|c| solver.rho(rows.diagonal(c)))
+            .collect();
+        LocalStep {
+            options: *options,
+            solver,
+            rho,
+            deadline: None,
+        }
+    }
+}
+
+impl ContactStep<3> for LocalStep {
+    #[inline]
+    fn solve(&mut self, c: usize, w: &Block<3>, q: &[f64; 3], mu: f64, r: &mut [f64; 3]) {
+        let p = LocalProblem { w, q: *q, mu };
+        let old = *r;
+        self.solver.solve_with_rho(&p, self.rho[c], r);
+        if !r.iter().all(|v| v.is_finite()) {
+            *r = old;
+        }
+    }
+
+    fn set_tolerance(&mut self, tolerance: f64) {
+        if tolerance != self.options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
+            self.options.tolerance = tolerance;
+            self.solver = AnyLocalSolver::new(&self.options);
+            self.solver.set_deadline(self.deadline);
+        }
+    }
+
+    fn set_deadline(&mut self, deadline: Option<Instant>) {
+        self.deadline = deadline;
+        self.solver.set_deadline(deadline);
+    }
+}
+
+/// The sweep options shared by the 3D and 2D Gauss-Seidel families.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepOptions {
+    /// PSOR factor omega in (0, 2); `None`: plain Gauss-Seidel.
+    pub relaxation: Option<f64>,
+    pub order: ContactOrder,
+    /// Sweeps a contact that stopped moving stays frozen; `None` or `Some(0)`: never.
+    pub freezing: Option<usize>,
+    /// Keep the velocity each contact was solved with (Dumont's motion term).
+    pub track_solved_velocity: bool,
+}
+
+impl From<&NsgsOptions> for SweepOptions {
+    fn from(o: &NsgsOptions) -> Self {
+        SweepOptions {
+            relaxation: o.relaxation,
+            order: o.order,
+            freezing: o.freezing,
+            track_solved_velocity: o.error_evaluation == ErrorEvaluation::DumontCriterion,
+        }
+    }
+}
+
 /// What a sweep does beyond visiting every contact in index order once.
 #[derive(Debug, Clone, Default)]
 struct SweepPlan {
@@ -64,19 +152,46 @@ struct SweepPlan {
     u_solved: Vec<f64>,
 }
 
-/// One Gauss-Seidel sweep's state, prepared once per problem: the block-row view of W, the
-/// local solver and the sweep options. Public so that benchmarks and hosts that drive their own
-/// loop can sweep without re-preparing; a sweep allocates nothing.
-pub struct Sweeper {
-    rows: BlockRows,
-    local_options: LocalSolverOptions,
-    local: AnyLocalSolver,
-    /// When the local solver must stop iterating (the run's deadline).
-    deadline: Option<Instant>,
-    /// Each contact's penalty parameters for the local solver (they depend on W_cc only).
-    rho: Vec<(f64, f64)>,
+impl SweepPlan {
+    fn new(options: &SweepOptions, nc: usize, dimension: usize, tolerance: f64) -> Self {
+        let mut plan = SweepPlan {
+            relaxation: options.relaxation,
+            ..SweepPlan::default()
+        };
+        match options.order {
+            ContactOrder::Natural => {}
+            ContactOrder::ShuffledOnce { seed } => {
+                plan.order = (0..nc).collect();
+                SplitMix64(seed).shuffle(&mut plan.order);
+            }
+            ContactOrder::ShuffledEachSweep { seed } => {
+                plan.order = (0..nc).collect();
+                plan.reshuffle = Some(SplitMix64(seed));
+            }
+        }
+        if let Some(k) = options.freezing.filter(|&k| k > 0) {
+            plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), tolerance));
+            plan.frozen = vec![0; nc];
+        }
+        if options.track_solved_velocity {
+            plan.u_solved = vec![0.0; dimension * nc];
+        }
+        plan
+    }
+}
+
+/// One Gauss-Seidel sweep's state for contacts of dimension `D`, prepared once per problem: the
+/// block-row view of W, the one-contact step `S` and the sweep options. A sweep allocates
+/// nothing.
+pub struct GaussSeidel<const D: usize, S> {
+    rows: BlockRows<D>,
+    step: S,
     plan: SweepPlan,
 }
+
+/// The 3D sweep with a local solver (public so that benchmarks and hosts that drive their own
+/// loop can sweep without re-preparing).
+pub type Sweeper = GaussSeidel<3, LocalStep>;
 
 impl Sweeper {
     /// A plain sweeper: contacts in index order, no relaxation, no freezing.
@@ -85,18 +200,18 @@ impl Sweeper {
         local: &LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
-        let local_solver = AnyLocalSolver::new(local);
-        let rho = (0..rows.n_contacts())
-            .map(|c| local_solver.rho(rows.diagonal(c)))
-            .collect();
-        Ok(Sweeper {
+        let step = LocalStep::new(&rows, local);
+        Ok(GaussSeidel::from_parts(
             rows,
-            local_options: *local,
-            local: local_solver,
-            deadline: None,
-            rho,
-            plan: SweepPlan::default(),
-        })
+            step,
+            &SweepOptions {
+                relaxation: None,
+                order: ContactOrder::Natural,
+                freezing: None,
+                track_solved_velocity: false,
+            },
+            0.0,
+        ))
     }
 
     /// A sweeper with the sweep options of `options` (order, relaxation, freezing, and the
@@ -108,30 +223,23 @@ impl Sweeper {
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
         options.validate()?;
-        let mut s = Sweeper::new(problem, &options.local)?;
-        let nc = s.rows.n_contacts();
-        s.plan.relaxation = options.relaxation;
-        match options.order {
-            ContactOrder::Natural => {}
-            ContactOrder::ShuffledOnce { seed } => {
-                s.plan.order = (0..nc).collect();
-                SplitMix64(seed).shuffle(&mut s.plan.order);
-            }
-            ContactOrder::ShuffledEachSweep { seed } => {
-                s.plan.order = (0..nc).collect();
-                s.plan.reshuffle = Some(SplitMix64(seed));
-            }
-        }
-        if let Some(k) = options.freezing {
-            if k > 0 {
-                s.plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), tolerance));
-                s.plan.frozen = vec![0; nc];
-            }
-        }
-        if options.error_evaluation == ErrorEvaluation::DumontCriterion {
-            s.plan.u_solved = vec![0.0; 3 * nc];
-        }
-        Ok(s)
+        let rows = problem.w().block_rows()?;
+        let step = LocalStep::new(&rows, &options.local);
+        Ok(GaussSeidel::from_parts(
+            rows,
+            step,
+            &options.into(),
+            tolerance,
+        ))
+    }
+}
+
+impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
+    /// A sweeper over the block rows `rows` with the one-contact step `step`; `tolerance` is the
+    /// run's, against which freezing judges a contact still.
+    pub fn from_parts(rows: BlockRows<D>, step: S, options: &SweepOptions, tolerance: f64) -> Self {
+        let plan = SweepPlan::new(options, rows.n_contacts(), D, tolerance);
+        GaussSeidel { rows, step, plan }
     }
 
     /// One sweep over all contacts, updating `r` in place; returns
@@ -164,13 +272,13 @@ impl Sweeper {
             }
         }
         let w = self.rows.diagonal(c);
-        let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+        let old: [f64; D] = contact_of(r, c);
         let wnn = w[0][0];
         let frictionless = mu[c] == 0.0 && wnn > 0.0 && wnn.is_finite();
         let need_local_q = !frictionless || !self.plan.u_solved.is_empty();
         let local_q = need_local_q.then(|| self.rows.local_q(c, q, r));
         // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
-        // quotient that overflows (a subnormal W_NN) is left to the 3D local solver.
+        // quotient that overflows (a subnormal W_NN) is left to the one-contact step.
         let scalar = if frictionless {
             let qn = match local_q {
                 Some(lq) => lq[0],
@@ -181,80 +289,67 @@ impl Sweeper {
             None
         };
         let mut rc = match scalar {
-            Some(rn) => [rn, 0.0, 0.0],
+            Some(rn) => {
+                let mut rc = [0.0; D];
+                rc[0] = rn;
+                rc
+            }
             None => {
                 let lq = local_q.unwrap_or_else(|| self.rows.local_q(c, q, r));
-                let p = LocalProblem {
-                    w,
-                    q: lq,
-                    mu: mu[c],
-                };
                 let mut rc = old;
-                self.local.solve_with_rho(&p, self.rho[c], &mut rc);
-                if rc.iter().all(|v| v.is_finite()) {
-                    rc
-                } else {
-                    old
-                }
+                self.step.solve(c, w, &lq, mu[c], &mut rc);
+                rc
             }
         };
         if let Some(omega) = self.plan.relaxation {
-            rc = [
-                omega * rc[0] + (1.0 - omega) * old[0],
-                omega * rc[1] + (1.0 - omega) * old[1],
-                omega * rc[2] + (1.0 - omega) * old[2],
-            ];
+            for (x, o) in rc.iter_mut().zip(&old) {
+                *x = omega * *x + (1.0 - omega) * o;
+            }
             if omega > 1.0 {
                 // Over-relaxation can leave the cone; the iterate must stay admissible.
-                rc = crate::math::cone::project_on_cone(&rc, mu[c]);
+                rc = crate::math::cone::project_on_cone_d(&rc, mu[c]);
             }
         }
-        let d = [rc[0] - old[0], rc[1] - old[1], rc[2] - old[2]];
-        let d_sq = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        let d_sq = distance_sq_d(&rc, &old);
         if let Some((sweeps, tol)) = self.plan.freezing {
-            let r_sq = rc[0] * rc[0] + rc[1] * rc[1] + rc[2] * rc[2];
+            let r_sq = distance_sq_d(&rc, &[0.0; D]);
             if d_sq <= tol * tol * r_sq {
                 self.plan.frozen[c] = sweeps;
             }
         }
-        r[3 * c..3 * c + 3].copy_from_slice(&rc);
+        r[D * c..D * c + D].copy_from_slice(&rc);
         if let Some(lq) = local_q.filter(|_| !self.plan.u_solved.is_empty()) {
-            let uc = crate::math::linalg::mat3_vec_add(w, &rc, &lq);
-            self.plan.u_solved[3 * c..3 * c + 3].copy_from_slice(&uc);
+            let uc = block_vec_add(w, &rc, &lq);
+            self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
         }
         d_sq
     }
 
-    pub(super) fn any_frozen(&self) -> bool {
+    pub(crate) fn any_frozen(&self) -> bool {
         self.plan.frozen.iter().any(|&f| f > 0)
     }
 
     /// Unfreezes every contact.
-    pub(super) fn thaw(&mut self) {
+    pub(crate) fn thaw(&mut self) {
         self.plan.frozen.iter_mut().for_each(|f| *f = 0);
     }
 
-    /// Sets the local solver's tolerance (adaptive local tolerance strategies).
-    pub(super) fn set_local_tolerance(&mut self, tolerance: f64) {
-        if tolerance != self.local_options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
-            self.local_options.tolerance = tolerance;
-            self.local = AnyLocalSolver::new(&self.local_options);
-            self.local.set_deadline(self.deadline);
-        }
+    /// Sets the one-contact step's tolerance (adaptive local tolerance strategies).
+    pub(crate) fn set_local_tolerance(&mut self, tolerance: f64) {
+        self.step.set_tolerance(tolerance);
     }
 
     /// The instant after which the local solves stop iterating, so that one sweep ends soon
     /// after the budget whatever the local iteration limits.
     pub fn set_deadline(&mut self, deadline: Option<Instant>) {
-        self.deadline = deadline;
-        self.local.set_deadline(deadline);
+        self.step.set_deadline(deadline);
     }
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
     /// blocks (cheaper than the host's storage when W is dense but sparsely coupled).
     pub fn natural_map_error(
         &self,
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'_, D>,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
@@ -262,13 +357,13 @@ impl Sweeper {
     }
 
     /// Dumont's criterion (37) after the last sweep (`u` receives `W r + q`).
-    pub(super) fn dumont_criterion(
+    pub(crate) fn dumont_criterion(
         &self,
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'_, D>,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
         self.rows.velocity(problem.q(), r, u);
-        crate::measure::dumont_criterion(r, u, &self.plan.u_solved, problem.mu())
+        crate::measure::dumont_criterion_d::<D>(r, u, &self.plan.u_solved, problem.mu())
     }
 }
