@@ -15,11 +15,23 @@
 //!
 //! Jean-Moreau (59) ("NSN-JM" of Table 3, Siconos formulation 1) only changes the radius to
 //! `R = mu (r_N)_+`: in the slide branch `A_T[., 0] = -mu [r_N > 0] e` and `B_T[., 0] = 0`.
+//!
+//! Two variants ([`LocalVariant`]). Siconos 4.4's (default): `q_N > -eps` is a take-off
+//! (`r = 0`) without iterating; each Newton iteration steps first and then stops when
+//! `||F||^2 / (2 ||q||) < tolerance`; a Goldstein-Price search that finds no acceptable step
+//! in its trials takes its last bisection point; 565 runs Newton, then (while the local error
+//! `||r - P_K(r - ũ)|| / ||q||` is at or above the tolerance, `hybrid_max_loop` times) 553's
+//! iteration for `hybrid_max_iter` steps and Newton again, keeping a new point only when its
+//! local error is within the tolerance or not larger than the kept one's. fc3d's: the stop
+//! test `||F|| <= tolerance * max(||r||, rho_N ||q||)` comes before each step, a failed search
+//! keeps its best decrease (or stops Newton), and 565 keeps the best point of every round.
 
+use super::adaptive::siconos_cone_iteration;
 use super::{
-    local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
+    local_rho_of_variant, LocalOutcome, LocalProblem, LocalSolver,
+    ProjectionOnConeWithLocalIteration,
 };
-use crate::local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
+use crate::local::{LocalSolverKind, LocalSolverOptions, LocalVariant, NewtonFormulation};
 use std::time::Instant;
 
 use crate::contract::past_deadline;
@@ -131,6 +143,7 @@ pub struct AlartCurnierNewton {
     line_search: bool,
     hybrid: bool,
     jean_moreau: bool,
+    variant: LocalVariant,
     projection: ProjectionOnConeWithLocalIteration,
     deadline: Option<Instant>,
 }
@@ -153,6 +166,7 @@ impl AlartCurnierNewton {
             line_search,
             hybrid,
             jean_moreau: options.formulation == NewtonFormulation::JeanMoreau,
+            variant: options.variant,
             projection: ProjectionOnConeWithLocalIteration::new(&proj),
             deadline: None,
         }
@@ -215,6 +229,169 @@ impl AlartCurnierNewton {
         (norm3(&f) <= tol * scale, self.options.max_iter)
     }
 
+    /// Siconos 4.4's Newton iterations from `r` (module documentation); `inv_q` is
+    /// `1 / ||q||` (1 for a tiny q). Returns (converged, iterations).
+    fn newton_siconos(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        inv_q: f64,
+        r: &mut Vec3,
+    ) -> (bool, usize) {
+        let (rho_n, rho_t) = rho;
+        let tol = self.options.tolerance;
+        for it in 0..self.options.max_iter {
+            if past_deadline(self.deadline, it) {
+                return (false, it);
+            }
+            let (f, jac) = if self.jean_moreau {
+                jean_moreau_function(p, rho_n, rho_t, r)
+            } else {
+                alart_curnier_function(p, rho_n, rho_t, r)
+            };
+            // A singular Jacobian ends the iterations where they are.
+            let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
+                return (false, it);
+            };
+            let t = if self.line_search {
+                self.goldstein_price_siconos(p, rho, r, &d, f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+            } else {
+                1.0
+            };
+            let next = [r[0] + t * d[0], r[1] + t * d[1], r[2] + t * d[2]];
+            if !next.iter().all(|v| v.is_finite()) {
+                return (false, it + 1);
+            }
+            *r = next;
+            let f = self.residual(p, rho_n, rho_t, r);
+            if 0.5 * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * inv_q < tol {
+                return (true, it + 1);
+            }
+        }
+        (false, self.options.max_iter)
+    }
+
+    /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` (slope
+    /// `-||F||^2`): bisection of `[lo, hi]` from `alpha = 1`, `hi` starting at 1e20; after the
+    /// last trial the next bisection point is returned untested.
+    fn goldstein_price_siconos(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &Vec3,
+        d: &Vec3,
+        f_sq: f64,
+    ) -> f64 {
+        const UNBOUNDED: f64 = 1e20;
+        let psi0 = 0.5 * f_sq;
+        let slope0 = -f_sq;
+        let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
+        let mut alpha = 1.0;
+        for trial in 0..self.options.line_search_max_iter {
+            if past_deadline(self.deadline, trial) {
+                break;
+            }
+            let rt = [
+                r[0] + alpha * d[0],
+                r[1] + alpha * d[1],
+                r[2] + alpha * d[2],
+            ];
+            let ft = self.residual(p, rho.0, rho.1, &rt);
+            let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+            let slope = (psi - psi0) / alpha;
+            let long_enough = slope >= GP_M2 * slope0;
+            let short_enough = slope <= GP_M1 * slope0;
+            if long_enough && short_enough {
+                return alpha;
+            }
+            if !long_enough {
+                lo = alpha;
+            } else {
+                hi = alpha;
+            }
+            alpha = if alpha < UNBOUNDED {
+                0.5 * (lo + hi)
+            } else {
+                10.0 * alpha
+            };
+        }
+        alpha
+    }
+
+    /// Siconos 4.4's 550 / 551 / 565 on one contact (module documentation); `step` is the
+    /// contact's 553 step length kept between sweeps.
+    fn solve_siconos(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        step: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        if p.q[0] > -f64::EPSILON {
+            *r = [0.0; 3];
+            return LocalOutcome {
+                converged: true,
+                iterations: 0,
+            };
+        }
+        let norm_q = norm3(&p.q);
+        let inv_q = if norm_q > f64::EPSILON {
+            1.0 / norm_q
+        } else {
+            1.0
+        };
+        if !self.hybrid {
+            let (converged, iterations) = self.newton_siconos(p, rho, inv_q, r);
+            return LocalOutcome {
+                converged,
+                iterations,
+            };
+        }
+        let tol = self.options.tolerance;
+        let local_error = |x: &Vec3| p.residual(x) * inv_q;
+        let mut kept = *r;
+        let mut kept_error = local_error(r);
+        // A new point replaces the kept one when it is good enough or no worse.
+        let keep_or_discard = |x: &mut Vec3, kept: &mut Vec3, kept_error: &mut f64| {
+            let e = local_error(x);
+            if e <= tol || e <= *kept_error {
+                *kept = *x;
+                *kept_error = e;
+            } else {
+                *x = *kept;
+            }
+        };
+        let (_, mut iterations) = self.newton_siconos(p, rho, inv_q, r);
+        keep_or_discard(r, &mut kept, &mut kept_error);
+        let mut round = 0;
+        while kept_error > tol && round < self.options.hybrid_max_loop {
+            if past_deadline(self.deadline, round) {
+                break;
+            }
+            round += 1;
+            let pr = siconos_cone_iteration(
+                p,
+                step,
+                tol,
+                self.options.hybrid_max_iter,
+                self.deadline,
+                r,
+            );
+            iterations += pr.iterations;
+            keep_or_discard(r, &mut kept, &mut kept_error);
+            if kept_error < tol {
+                break;
+            }
+            let (_, it) = self.newton_siconos(p, rho, inv_q, r);
+            iterations += it;
+            keep_or_discard(r, &mut kept, &mut kept_error);
+        }
+        LocalOutcome {
+            converged: kept_error <= tol,
+            iterations,
+        }
+    }
+
     /// Goldstein-Price search along the Newton direction `d` on `psi = ||F||^2 / 2`, whose slope
     /// along `d` is `-||F||^2`. Returns the accepted point with its F, or the best point that
     /// decreased psi, or `None` when no trial step decreased it.
@@ -265,7 +442,7 @@ impl AlartCurnierNewton {
 
 impl LocalSolver for AlartCurnierNewton {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
-        local_rho(w, self.options.rho_rule)
+        local_rho_of_variant(w, self.options.rho_rule, self.variant)
     }
 
     fn set_deadline(&mut self, deadline: Option<Instant>) {
@@ -279,6 +456,20 @@ impl LocalSolver for AlartCurnierNewton {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
+        let mut step = 1.0;
+        self.solve_in_sweep(p, rho, &mut step, r)
+    }
+
+    fn solve_in_sweep(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        step: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        if self.variant == LocalVariant::Siconos {
+            return self.solve_siconos(p, rho, step, r);
+        }
         let start = *r;
         let (converged, mut iterations) = self.newton(p, rho, r);
         if converged || !self.hybrid {

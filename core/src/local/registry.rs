@@ -91,6 +91,17 @@ macro_rules! local_solvers {
             ) -> LocalOutcome {
                 match self { $(AnyLocalSolver::$kind(s) => s.solve_with_rho(p, rho, r),)+ }
             }
+
+            #[inline]
+            fn solve_in_sweep(
+                &mut self,
+                p: &LocalProblem<'_>,
+                rho: (f64, f64),
+                memory: &mut f64,
+                r: &mut Vec3,
+            ) -> LocalOutcome {
+                match self { $(AnyLocalSolver::$kind(s) => s.solve_in_sweep(p, rho, memory, r),)+ }
+            }
         }
     };
 }

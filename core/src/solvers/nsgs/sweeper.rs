@@ -75,6 +75,8 @@ pub struct Sweeper {
     deadline: Option<Instant>,
     /// Each contact's penalty parameters for the local solver (they depend on W_cc only).
     rho: Vec<(f64, f64)>,
+    /// Each contact's local-solver state carried from sweep to sweep (553's step length).
+    memory: Vec<f64>,
     plan: SweepPlan,
 }
 
@@ -89,12 +91,14 @@ impl Sweeper {
         let rho = (0..rows.n_contacts())
             .map(|c| local_solver.rho(rows.diagonal(c)))
             .collect();
+        let memory = vec![1.0; rows.n_contacts()];
         Ok(Sweeper {
             rows,
             local_options: *local,
             local: local_solver,
             deadline: None,
             rho,
+            memory,
             plan: SweepPlan::default(),
         })
     }
@@ -190,7 +194,8 @@ impl Sweeper {
                     mu: mu[c],
                 };
                 let mut rc = old;
-                self.local.solve_with_rho(&p, self.rho[c], &mut rc);
+                self.local
+                    .solve_in_sweep(&p, self.rho[c], &mut self.memory[c], &mut rc);
                 if rc.iter().all(|v| v.is_finite()) {
                     rc
                 } else {
