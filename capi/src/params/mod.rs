@@ -44,6 +44,31 @@ pub(crate) const DPARAM_TIME_BUDGET: usize = super::FC3D_DPARAM_TIME_BUDGET as u
 pub(crate) const DPARAM_DUMONT_CRITERION: usize = super::FC3D_DPARAM_DUMONT_CRITERION as usize;
 
 use super::FC3D_RHO_STRATEGY_DUMONT;
+use super::{FC3D_IPARAM_VARIANT, FC3D_VARIANT_FC3D, FC3D_VARIANT_SICONOS};
+use fc3d_core::AlgorithmVariant;
+
+/// Where Siconos' or fc3d's iteration is chosen (`FC3D_IPARAM_VARIANT`), for the ids that have
+/// both.
+pub(crate) const IPARAM_VARIANT: usize = FC3D_IPARAM_VARIANT as usize;
+
+impl Params<'_> {
+    /// The variant in `iparam[FC3D_IPARAM_VARIANT]`.
+    pub fn variant(&self) -> CResult<AlgorithmVariant> {
+        match self.iparam[IPARAM_VARIANT] {
+            FC3D_VARIANT_SICONOS => Ok(AlgorithmVariant::Siconos),
+            FC3D_VARIANT_FC3D => Ok(AlgorithmVariant::Fc3d),
+            other => Err(invalid(format!("variant (iparam[{IPARAM_VARIANT}]) = {other} is not one of {FC3D_VARIANT_SICONOS} (Siconos) and {FC3D_VARIANT_FC3D} (fc3d)"))),
+        }
+    }
+}
+
+/// The code of `variant` in `iparam[FC3D_IPARAM_VARIANT]`.
+pub(crate) fn variant_code(variant: AlgorithmVariant) -> c_int {
+    match variant {
+        AlgorithmVariant::Siconos => FC3D_VARIANT_SICONOS,
+        AlgorithmVariant::Fc3d => FC3D_VARIANT_FC3D,
+    }
+}
 
 /// The slot each setting the core may reject comes from, for messages.
 const SETTING_SLOTS: &[(&str, &str)] = &[

@@ -4,11 +4,12 @@
 //! iparam[11] line search (-1 none, 0 Goldstein-Price, 1 Armijo), iparam[12] line-search trials,
 //! iparam[13] linear solver (0 or 1: both mean a sparse LU, faer's here). Rejected: the adaptive
 //! rho (iparam[9] = 4), hybrid strategies (iparam[14] != 0). iparam[3], [5], [8], [17], [18] are
-//! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour.
+//! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour. iparam[19]
+//! (`FC3D_IPARAM_VARIANT`): Siconos' iteration (0, default) or fc3d's (1).
 
 use std::os::raw::c_int;
 
-use super::{invalid, Encoded, Params};
+use super::{invalid, variant_code, Encoded, Params, IPARAM_VARIANT};
 use crate::CResult;
 use fc3d_core::{NsnFormulation, NsnLineSearch, NsnOptions, RhoRule};
 
@@ -61,6 +62,7 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         }
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+    n.variant = p.variant()?;
     Ok(n)
 }
 
@@ -94,5 +96,6 @@ pub(super) fn write(n: &NsnOptions) -> Encoded {
     };
     e.iparam[IPARAM_LINESEARCH_MAX_ITER] =
         c_int::try_from(n.line_search_max_iter).unwrap_or(c_int::MAX);
+    e.iparam[IPARAM_VARIANT] = variant_code(n.variant);
     e
 }

@@ -109,7 +109,7 @@ impl EnhancedBipotential {
         let mut proj = *options;
         proj.max_iter = options.hybrid_max_iter;
         // EBP is fc3d's: its restart is fc3d's 553 iteration (from rho at every solve).
-        proj.variant = crate::local::LocalVariant::Fc3d;
+        proj.variant = crate::local::AlgorithmVariant::Fc3d;
         EnhancedBipotential {
             tolerance: options.tolerance,
             max_iter: options.max_iter,

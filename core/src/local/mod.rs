@@ -22,7 +22,7 @@ pub use regularized::{
     ProjectionOnConeVelocity, ProjectionOnConeWithDiagonalization,
     ProjectionOnConeWithRegularization, ProjectionOnCylinderWithLocalIteration,
 };
-pub use settings::{LocalSolverOptions, LocalVariant, NewtonFormulation, RhoRule};
+pub use settings::{AlgorithmVariant, LocalSolverOptions, NewtonFormulation, RhoRule};
 pub use vi_upk::FpViUpk;
 
 use crate::math::linalg::{lambda_max_sym2, lambda_min_sym2, Mat3, Vec3};
@@ -109,15 +109,16 @@ pub trait LocalSolver {
 /// A non-positive or non-finite estimate (a degenerate block) falls back to the inverse of the
 /// largest diagonal entry, or to 1 for a zero block.
 pub fn local_rho(w: &Mat3, rule: RhoRule) -> (f64, f64) {
-    local_rho_of_variant(w, rule, LocalVariant::Fc3d)
+    local_rho_of_variant(w, rule, AlgorithmVariant::Fc3d)
 }
 
 /// [`local_rho`] as `variant` computes it. Siconos 4.4's split rules take the spread of the
 /// tangent block from `s^2 - 4 (s - W_ST + W_TS)` with `s = W_TT + W_SS` (where the
 /// eigenvalues of `W_T` would use `s^2 - 4 det W_T`): `rho_T = 2 / (s + d)` and
 /// `2 (s - d) / (s + d)^2` with `d` the square root of that value (0 when negative). fc3d's
-/// rules use the eigenvalues of the symmetric part of `W_T`.
-pub fn local_rho_of_variant(w: &Mat3, rule: RhoRule, variant: LocalVariant) -> (f64, f64) {
+/// rules use the eigenvalues of the symmetric part of `W_T`. For the spectral rule Siconos takes
+/// `W_NN` as the largest eigenvalue of a block whose upper triangle is zero.
+pub fn local_rho_of_variant(w: &Mat3, rule: RhoRule, variant: AlgorithmVariant) -> (f64, f64) {
     let wnn = w[0][0];
     let siconos_spread = || {
         let s = w[1][1] + w[2][2];
@@ -126,11 +127,18 @@ pub fn local_rho_of_variant(w: &Mat3, rule: RhoRule, variant: LocalVariant) -> (
     };
     let lt_max = lambda_max_sym2(w[1][1], w[1][2], w[2][1], w[2][2]);
     let (rn, rt) = match (rule, variant) {
-        (RhoRule::SplitSpectralNorm, LocalVariant::Siconos) => {
+        (RhoRule::SplitSpectralNorm, AlgorithmVariant::Siconos) => {
             let (s, d) = siconos_spread();
             (1.0 / wnn, 2.0 / (s + d))
         }
-        (RhoRule::SplitSpectralNormCond, LocalVariant::Siconos) => {
+        // Siconos takes W_NN for the largest eigenvalue of a block whose upper triangle is
+        // zero.
+        (RhoRule::SpectralNorm, AlgorithmVariant::Siconos)
+            if w[0][1] == 0.0 && w[0][2] == 0.0 && w[1][2] == 0.0 =>
+        {
+            (1.0 / wnn, 1.0 / wnn)
+        }
+        (RhoRule::SplitSpectralNormCond, AlgorithmVariant::Siconos) => {
             let (s, d) = siconos_spread();
             (1.0 / wnn, 2.0 * (s - d) / ((s + d) * (s + d)))
         }

@@ -16,7 +16,7 @@
 //! Jean-Moreau (59) ("NSN-JM" of Table 3, Siconos formulation 1) only changes the radius to
 //! `R = mu (r_N)_+`: in the slide branch `A_T[., 0] = -mu [r_N > 0] e` and `B_T[., 0] = 0`.
 //!
-//! Two variants ([`LocalVariant`]). Siconos 4.4's (default): `q_N > -eps` is a take-off
+//! Two variants ([`AlgorithmVariant`]). Siconos 4.4's (default): `q_N > -eps` is a take-off
 //! (`r = 0`) without iterating; each Newton iteration steps first and then stops when
 //! `||F||^2 / (2 ||q||) < tolerance`; a Goldstein-Price search that finds no acceptable step
 //! in its trials takes its last bisection point; 565 runs Newton, then (while the local error
@@ -31,7 +31,7 @@ use super::{
     local_rho_of_variant, LocalOutcome, LocalProblem, LocalSolver,
     ProjectionOnConeWithLocalIteration,
 };
-use crate::local::{LocalSolverKind, LocalSolverOptions, LocalVariant, NewtonFormulation};
+use crate::local::{AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation};
 use std::time::Instant;
 
 use crate::contract::past_deadline;
@@ -143,7 +143,7 @@ pub struct AlartCurnierNewton {
     line_search: bool,
     hybrid: bool,
     jean_moreau: bool,
-    variant: LocalVariant,
+    variant: AlgorithmVariant,
     projection: ProjectionOnConeWithLocalIteration,
     deadline: Option<Instant>,
 }
@@ -467,7 +467,7 @@ impl LocalSolver for AlartCurnierNewton {
         step: &mut f64,
         r: &mut Vec3,
     ) -> LocalOutcome {
-        if self.variant == LocalVariant::Siconos {
+        if self.variant == AlgorithmVariant::Siconos {
             return self.solve_siconos(p, rho, step, r);
         }
         let start = *r;

@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use super::adaptive::{self_adaptive_projection, siconos_cone_iteration, ProjectionStep};
 use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
-use crate::local::{LocalSolverOptions, LocalVariant, RhoRule};
+use crate::local::{AlgorithmVariant, LocalSolverOptions, RhoRule};
 use crate::math::cone::{modified_velocity, project_on_cone, project_on_cylinder};
 use crate::math::linalg::{norm3, sub3, Mat3, Vec3};
 
@@ -113,14 +113,14 @@ impl LocalSolver for ProjectionOnCylinder {
 }
 
 /// [553] Projection steps on the cone until the local error is below the local tolerance.
-/// [`LocalVariant::Siconos`] (default): Siconos 4.4's iteration
+/// [`AlgorithmVariant::Siconos`] (default): Siconos 4.4's iteration
 /// ([`siconos_cone_iteration`]), whose step length each contact keeps from one sweep to the
-/// next. [`LocalVariant::Fc3d`]: the self-adaptive rho of [`super::adaptive`] from `1 / W_NN`
+/// next. [`AlgorithmVariant::Fc3d`]: the self-adaptive rho of [`super::adaptive`] from `1 / W_NN`
 /// at every solve, to a relative residual.
 pub struct ProjectionOnConeWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
-    variant: LocalVariant,
+    variant: AlgorithmVariant,
     deadline: Option<Instant>,
 }
 
@@ -158,10 +158,10 @@ impl LocalSolver for ProjectionOnConeWithLocalIteration {
         r: &mut Vec3,
     ) -> LocalOutcome {
         match self.variant {
-            LocalVariant::Siconos => {
+            AlgorithmVariant::Siconos => {
                 siconos_cone_iteration(p, step, self.tolerance, self.max_iter, self.deadline, r)
             }
-            LocalVariant::Fc3d => self_adaptive_projection(
+            AlgorithmVariant::Fc3d => self_adaptive_projection(
                 &ConeStep,
                 p,
                 rho.0,

@@ -17,7 +17,7 @@ pub enum NewtonFormulation {
 /// Which of two variants of the same one-contact algorithm runs (550, 551, 565 and 553; the
 /// other local solvers have one variant).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum LocalVariant {
+pub enum AlgorithmVariant {
     /// Siconos 4.4's algorithm, step for step (default): a contact with `q_N >= -eps` takes off
     /// at once; Newton stops when `||F||^2 / (2 ||q||) < tolerance` after a step and takes the
     /// last trial of a failed Goldstein-Price search; 565 keeps a new point only when its local
@@ -76,7 +76,7 @@ pub struct LocalSolverOptions {
     pub regularization: f64,
     /// 550/551/565/553: Siconos 4.4's algorithm (default) or fc3d's refinements (the default
     /// of fc3d's own ids 570-572, which reuse these iterations).
-    pub variant: LocalVariant,
+    pub variant: AlgorithmVariant,
 }
 
 impl LocalSolverOptions {
@@ -96,9 +96,9 @@ impl LocalSolverOptions {
             // fc3d's own solvers (570-572) keep fc3d's iteration where they share code with
             // Siconos' ids.
             variant: if kind.siconos_id() >= 570 {
-                LocalVariant::Fc3d
+                AlgorithmVariant::Fc3d
             } else {
-                LocalVariant::Siconos
+                AlgorithmVariant::Siconos
             },
         }
     }

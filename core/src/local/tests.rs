@@ -625,7 +625,7 @@ fn line_search_newton_can_stall_at_a_kink() {
     };
     // fc3d's variant: Siconos' takes the last trial of a failed search and moves on.
     let mut options = LocalSolverOptions::new(LocalSolverKind::NewtonAlartCurnierGp);
-    options.variant = LocalVariant::Fc3d;
+    options.variant = AlgorithmVariant::Fc3d;
     let mut solver = AnyLocalSolver::new(&options);
     let mut r = [0.0; 3];
     assert!(!solver.solve(&p, &mut r).converged);
@@ -654,7 +654,7 @@ fn hybrid_default_budget_can_be_too_short() {
     };
     // fc3d's variant (Siconos' keeps or discards differently and restarts 553 from its rho).
     let mut options = LocalSolverOptions::new(LocalSolverKind::NewtonHybrid);
-    options.variant = LocalVariant::Fc3d;
+    options.variant = AlgorithmVariant::Fc3d;
     let mut solver = AnyLocalSolver::new(&options);
     let mut r = [0.0; 3];
     for _ in 0..20 {
@@ -777,7 +777,7 @@ fn eal_is_plain_alart_curnier_newton_with_dumont_rho() {
     let mut ac_options = LocalSolverOptions::new(LocalSolverKind::NewtonAlartCurnier);
     ac_options.rho_rule = RhoRule::Dumont(1.0);
     ac_options.max_iter = 20;
-    ac_options.variant = LocalVariant::Fc3d;
+    ac_options.variant = AlgorithmVariant::Fc3d;
     let mut ac = AnyLocalSolver::new(&ac_options);
     let (mut r1, mut r2) = ([0.0; 3], [0.0; 3]);
     let o1 = eal.solve(&p, &mut r1);

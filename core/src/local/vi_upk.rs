@@ -8,7 +8,7 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
-use crate::local::{LocalSolverOptions, LocalVariant, RhoRule};
+use crate::local::{AlgorithmVariant, LocalSolverOptions, RhoRule};
 use crate::math::linalg::{Mat3, Vec3};
 
 pub struct FpViUpk {
@@ -22,7 +22,7 @@ impl FpViUpk {
             rule: options.rho_rule,
             // 570 is fc3d's: its iteration starts from the rule's rho at every solve.
             iteration: ProjectionOnConeWithLocalIteration::new(&LocalSolverOptions {
-                variant: LocalVariant::Fc3d,
+                variant: AlgorithmVariant::Fc3d,
                 ..*options
             }),
         }
