@@ -124,13 +124,31 @@ pub(crate) fn invalid(msg: impl Into<String>) -> CError {
 }
 
 pub(crate) fn unsupported_solver(id: c_int) -> CError {
-    CError::new(
-        FC3D_ERR_UNSUPPORTED_SOLVER,
-        format!(
-            "solver id {id} ({}) is not implemented in fc3d",
-            solver_name(id).to_string_lossy()
+    let name = solver_name(id).to_string_lossy();
+    let message = match unfinished_in_siconos(id) {
+        Some(reason) => format!("solver id {id} ({name}) is rejected by fc3d: {reason}"),
+        None => format!("solver id {id} ({name}) is not implemented in fc3d"),
+    };
+    CError::new(FC3D_ERR_UNSUPPORTED_SOLVER, message)
+}
+
+/// Why fc3d rejects an id that is an unfinished experiment in Siconos 4.4 itself (evidence from
+/// Siconos' sources and runs of the installed library, README "Solver ids").
+fn unfinished_in_siconos(id: c_int) -> Option<&'static str> {
+    match id {
+        501 => Some(
+            "Siconos 4.4's NSGSV (fc3d_nsgs_velocity) is unfinished: it accepts only the local \
+             solver 558 while solver_options_create(501) gives it 550 (Siconos exits), passes a \
+             NULL local problem to 558 (Siconos crashes), handles dense matrices only, and \
+             overwrites W with its pseudo-inverse",
         ),
-    )
+        521 => Some(
+            "Siconos 4.4's NSN_AC_TEST is an experiment its driver marks \"XXX to delete\" \
+             (a second Alart-Curnier Newton on the generic newton_LSA, rho = 1); it fails every \
+             case of Siconos' own test suite that uses it; use 504 (NSN_AC)",
+        ),
+        _ => None,
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -238,6 +256,13 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
         517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
         523 => Method::Admm(admm::read(&p)?),
+        // QUARTIC as a top-level solver (Siconos 4.4 solves a one-contact problem with it):
+        // NSGS sweeps with the exact one-contact solution, which solve one contact in a sweep
+        // and extend it to any number of contacts.
+        562 | 563 => Method::Nsgs(fc3d_core::NsgsOptions {
+            local: local::read(o)?,
+            ..Default::default()
+        }),
         _ => return Err(unsupported_solver(id)),
     };
     let mut config = SolverConfig::new(method);

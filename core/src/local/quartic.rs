@@ -28,6 +28,10 @@ use super::{local_rho, AlartCurnierNewton, LocalOutcome, LocalProblem, LocalSolv
 use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
 use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
 
+/// Durand-Kerner iterations at most, and the relative move below which it stops.
+const DURAND_KERNER_MAX_ITER: usize = 100;
+const DURAND_KERNER_STEP: f64 = 1e-10;
+
 pub struct Quartic {
     tolerance: f64,
     fallback: AlartCurnierNewton,
@@ -149,7 +153,9 @@ fn real_roots(c: [f64; 5]) -> ([f64; 4], usize) {
         };
         pw = pw.mul(seed);
     }
-    for _ in 0..500 {
+    // The roots only seed the Newton polish on the trigonometric equation: a few digits
+    // suffice, and clustered roots (where Durand-Kerner converges linearly) stop at the cap.
+    for _ in 0..DURAND_KERNER_MAX_ITER {
         let mut moved = 0.0f64;
         for i in 0..degree {
             let mut den = Complex { re: 1.0, im: 0.0 };
@@ -165,7 +171,7 @@ fn real_roots(c: [f64; 5]) -> ([f64; 4], usize) {
                 }
             }
         }
-        if moved < 1e-15 {
+        if moved < DURAND_KERNER_STEP {
             break;
         }
     }
@@ -241,7 +247,11 @@ impl Quartic {
                 if !next.is_finite() || (next - theta).abs() > 0.5 {
                     break;
                 }
+                let converged = (next - theta).abs() <= 4.0 * f64::EPSILON * (1.0 + theta.abs());
                 theta = next;
+                if converged {
+                    break;
+                }
             }
             let (s, c) = theta.sin_cos();
             if let Some(r) = slide_candidate(p, [c, s]) {

@@ -157,6 +157,11 @@ local_solvers! {
     /// root of a quartic (Bonnefon-Daviet) [562 QUARTIC].
     Quartic = 562, "FC3D_QUARTIC", ["QUARTIC"],
         (1e-12, 1000, RhoRule::SplitSpectralNorm), Quartic;
+    /// The same exact solution by enumeration [563 QUARTIC_NU]. Siconos 4.4 parametrizes the
+    /// slide by the multiplier nu of the tangential block instead of the slide angle; both
+    /// solve the same equations, and fc3d computes them with the slide-angle quartic of 562.
+    QuarticNu = 563, "FC3D_QUARTIC_NU", ["QUARTIC-NU"],
+        (1e-12, 1000, RhoRule::SplitSpectralNorm), Quartic;
     /// Augmented-Lagrangian steps on the cylinder (557) with a self-adaptive rho until the local
     /// residual is below the local tolerance [564 ProjectionOnCylinderWithLocalIteration].
     ProjectionOnCylinderWithLocalIteration = 564, "FC3D_projectionOnCylinderWithLocalIteration",
