@@ -74,6 +74,9 @@ pub(crate) fn self_adaptive_projection(
     }
 }
 
+/// Largest reaction entry [`siconos_cone_iteration`] moves to.
+const REACTION_CAP: f64 = 1e150;
+
 /// Trial steps per iteration of [`siconos_cone_iteration`] before the last trial is taken.
 const SICONOS_TRIALS: usize = 10;
 
@@ -139,7 +142,9 @@ pub(crate) fn siconos_cone_iteration(
         } else {
             rho_k
         };
-        if !r.iter().all(|x| x.is_finite()) {
+        // Beyond REACTION_CAP the step follows a ray (no bounded solution, e.g. W_cc = 0 with
+        // q_N < 0, where rho grows every iteration): stop before the reaction overflows.
+        if !r.iter().all(|x| x.is_finite() && x.abs() <= REACTION_CAP) {
             *r = r_k;
             break;
         }

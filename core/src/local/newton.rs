@@ -34,7 +34,7 @@ use super::{
 use crate::local::{AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation};
 use std::time::Instant;
 
-use crate::contract::past_deadline;
+use crate::contract::{deadline_passed, past_deadline};
 use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 
 /// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
@@ -135,6 +135,53 @@ fn ac_eval<const JAC: bool, const JEAN_MOREAU: bool>(
         }
     }
     (f, jac)
+}
+
+/// Gaussian elimination with partial pivoting as Siconos 4.4 solves its 3x3 Newton systems
+/// (same pivots, same operation order, so the same bits): a pivot of magnitude at most
+/// `f64::EPSILON` in the first two columns means singular (`None`); the last pivot is not
+/// tested, and a non-finite solution is `None`.
+fn solve3_partial_pivoting(m: &Mat3, b: &Vec3) -> Option<Vec3> {
+    let col = [m[0][0].abs(), m[1][0].abs(), m[2][0].abs()];
+    let (p, i, j) = if col[0] >= col[1] {
+        if col[0] >= col[2] {
+            (0, 1, 2)
+        } else {
+            (2, 0, 1)
+        }
+    } else if col[1] >= col[2] {
+        (1, 0, 2)
+    } else {
+        (2, 0, 1)
+    };
+    let pivot = m[p][0];
+    let (f1, f2) = (m[i][0] / pivot, m[j][0] / pivot);
+    let (lp1, lp2) = (m[p][1], m[p][2]);
+    let (lm1, lm2) = (m[i][1] - f1 * lp1, m[i][2] - f1 * lp2);
+    let (ln1, ln2) = (m[j][1] - f2 * lp1, m[j][2] - f2 * lp2);
+    let bl = b[p];
+    let (bm, bn) = (b[i] - f1 * bl, b[j] - f2 * bl);
+    if pivot.abs() <= f64::EPSILON {
+        return None;
+    }
+    let (x1, x2) = if lm1.abs() >= ln1.abs() {
+        if lm1.abs() < f64::EPSILON {
+            return None;
+        }
+        let f = ln1 / lm1;
+        let x2 = (bn - f * bm) / (ln2 - f * lm2);
+        ((bm - lm2 * x2) / lm1, x2)
+    } else {
+        if ln1.abs() < f64::EPSILON {
+            return None;
+        }
+        let f = lm1 / ln1;
+        let x2 = (bm - f * bn) / (lm2 - f * ln2);
+        ((bn - ln2 * x2) / ln1, x2)
+    };
+    let x0 = (bl - x1 * lp1 - x2 * lp2) / pivot;
+    let x = [x0, x1, x2];
+    x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
 /// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
@@ -250,11 +297,19 @@ impl AlartCurnierNewton {
                 alart_curnier_function(p, rho_n, rho_t, r)
             };
             // A singular Jacobian ends the iterations where they are.
-            let Some(d) = solve3(&jac, &[-f[0], -f[1], -f[2]]) else {
+            let Some(d) = solve3_partial_pivoting(&jac, &[-f[0], -f[1], -f[2]]) else {
                 return (false, it);
             };
             let t = if self.line_search {
-                self.goldstein_price_siconos(p, rho, r, &d, f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+                // The slope F . J d (-||F||^2 up to rounding), formed as Siconos forms it.
+                let jd = [
+                    jac[0][0] * d[0] + jac[0][1] * d[1] + jac[0][2] * d[2],
+                    jac[1][0] * d[0] + jac[1][1] * d[1] + jac[1][2] * d[2],
+                    jac[2][0] * d[0] + jac[2][1] * d[1] + jac[2][2] * d[2],
+                ];
+                let slope = f[0] * jd[0] + f[1] * jd[1] + f[2] * jd[2];
+                let f_sq = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+                self.goldstein_price_siconos(p, rho, r, &d, f_sq, slope)
             } else {
                 1.0
             };
@@ -272,7 +327,7 @@ impl AlartCurnierNewton {
     }
 
     /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` (slope
-    /// `-||F||^2`): bisection of `[lo, hi]` from `alpha = 1`, `hi` starting at 1e20; after the
+    /// `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]` from `alpha = 1`, `hi` starting at 1e20; after the
     /// last trial the next bisection point is returned untested.
     fn goldstein_price_siconos(
         &self,
@@ -281,10 +336,10 @@ impl AlartCurnierNewton {
         r: &Vec3,
         d: &Vec3,
         f_sq: f64,
+        slope0: f64,
     ) -> f64 {
         const UNBOUNDED: f64 = 1e20;
         let psi0 = 0.5 * f_sq;
-        let slope0 = -f_sq;
         let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
         let mut alpha = 1.0;
         for trial in 0..self.options.line_search_max_iter {
@@ -365,7 +420,9 @@ impl AlartCurnierNewton {
         keep_or_discard(r, &mut kept, &mut kept_error);
         let mut round = 0;
         while kept_error > tol && round < self.options.hybrid_max_loop {
-            if past_deadline(self.deadline, round) {
+            // A round runs two iterations whose clocks tick every CLOCK_PERIOD steps: read the
+            // clock at every round.
+            if deadline_passed(self.deadline) {
                 break;
             }
             round += 1;
