@@ -130,6 +130,12 @@ pub(crate) fn nsgs(
         if test.tested {
             last_measured = measured;
         }
+        if test.stalled && !sweeper.any_frozen() {
+            return Ok(SolverOutcome {
+                dumont_criterion: dumont,
+                ..SolverOutcome::stopped(iteration, false).with_final_error(measured)
+            });
+        }
         if let Some(outcome) = run.end_of_iteration(iteration, converged) {
             let outcome = if outcome.out_of_time {
                 if let Some(b) = &best {
