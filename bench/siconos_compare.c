@@ -7,8 +7,9 @@
  *
  * Modes:
  *   solve <problem.dat> <solver> <tol> <max_iter> <reps> <out_reaction_file>
- *       solver = 500 (NSGS, default local solver) or 500/<local id> (solver_options_update_internal
- *       on internal solver 0). Each repetition starts from r = u = 0 with fresh options; only
+ *       solver = a Siconos id (solver_options_create(id), e.g. 500 NSGS with its default local
+ *       solver, 504 NSN_AC, 562 QUARTIC on a one-contact problem) or 500/<local id> and
+ *       501/<local id> (solver_options_update_internal on internal solver 0). Each repetition starts from r = u = 0 with fresh options; only
  *       fc3d_driver is timed (CLOCK_MONOTONIC). Prints one line
  *         info <info> iterations <iter> error <dparam[1]> seconds <median> self_score <e> reps <done>
  *       where self_score is this library's fc3d_compute_error of the returned reaction (not timed),
@@ -79,13 +80,16 @@ static double score(FrictionContactProblem* problem, double* reaction, double* w
   return error;
 }
 
-static int parse_solver(const char* spec, int* local) {
+/* "<id>" or "<id>/<local id>" (the latter for the solvers with a one-contact internal solver 0:
+ * NSGS 500 and NSGSV 501). */
+static int parse_solver(const char* spec, int* solver, int* local) {
   char* end = NULL;
   long id = strtol(spec, &end, 10);
-  if (end == spec || id != SICONOS_FRICTION_3D_NSGS) return -1;
+  if (end == spec || id <= 0 || id > 100000) return -1;
+  *solver = (int)id;
   *local = 0;
   if (*end == '\0') return 0;
-  if (*end != '/') return -1;
+  if (*end != '/' || (id != SICONOS_FRICTION_3D_NSGS && id != SICONOS_FRICTION_3D_NSGSV)) return -1;
   const char* rest = end + 1;
   long l = strtol(rest, &end, 10);
   if (end == rest || *end != '\0' || l <= 0) return -1;
@@ -99,9 +103,9 @@ static int mode_solve(int argc, char** argv) {
             argv[0]);
     return 2;
   }
-  int local = 0;
-  if (parse_solver(argv[3], &local) != 0) {
-    fprintf(stderr, "solver must be 500 or 500/<local id>, got %s\n", argv[3]);
+  int solver = 0, local = 0;
+  if (parse_solver(argv[3], &solver, &local) != 0) {
+    fprintf(stderr, "solver must be <id> or 500/<local id> (501/<local id>), got %s\n", argv[3]);
     return 2;
   }
   double tol = atof(argv[4]);
@@ -130,7 +134,11 @@ static int mode_solve(int argc, char** argv) {
     if (rep > 0 && budget > 0.0 && spent + longest > budget) break;
     memset(reaction, 0, ((size_t)n + 1) * sizeof(double));
     memset(velocity, 0, ((size_t)n + 1) * sizeof(double));
-    SolverOptions* options = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+    SolverOptions* options = solver_options_create(solver);
+    if (!options) {
+      fprintf(stderr, "solver_options_create(%d) returned NULL\n", solver);
+      return 3;
+    }
     if (local) solver_options_update_internal(options, 0, local);
     options->dparam[SICONOS_DPARAM_TOL] = tol;
     options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;

@@ -21,6 +21,20 @@
 // reported error `dparam[1]` stays the natural-map error.
 #define FC3D_ERROR_EVALUATION_DUMONT 20
 
+// Index in a local solver's `iparam` (NSGS's internal solver 0) choosing the variant of the
+// one-contact solvers 550, 551, 565 and 553: `FC3D_VARIANT_SICONOS` (0, the default of
+// `solver_options_create`) runs Siconos 4.4's iteration step for step,
+// `FC3D_VARIANT_FC3D` fc3d's refinements (relative stop test before each Newton step, a
+// failed line search keeps its best decrease, 565 keeps the best point of all rounds, 553
+// restarts from `rho = 1 / W_NN` and stops on the relative residual). Unused by Siconos.
+#define FC3D_IPARAM_VARIANT 19
+
+// `iparam[FC3D_IPARAM_VARIANT]`: Siconos 4.4's one-contact iteration (default).
+#define FC3D_VARIANT_SICONOS 0
+
+// `iparam[FC3D_IPARAM_VARIANT]`: fc3d's refined one-contact iteration.
+#define FC3D_VARIANT_FC3D 1
+
 // Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
 #define OPTIONS_PARAM_SIZE 20
 

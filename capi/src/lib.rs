@@ -58,6 +58,17 @@ pub const FC3D_DPARAM_DUMONT_CRITERION: c_int = 18;
 /// stopping test, beside Siconos' 0 (full), 1 (light) and 2 (light with full final). The
 /// reported error `dparam[1]` stays the natural-map error.
 pub const FC3D_ERROR_EVALUATION_DUMONT: c_int = 20;
+/// Index in a local solver's `iparam` (NSGS's internal solver 0) choosing the variant of the
+/// one-contact solvers 550, 551, 565 and 553: `FC3D_VARIANT_SICONOS` (0, the default of
+/// `solver_options_create`) runs Siconos 4.4's iteration step for step,
+/// `FC3D_VARIANT_FC3D` fc3d's refinements (relative stop test before each Newton step, a
+/// failed line search keeps its best decrease, 565 keeps the best point of all rounds, 553
+/// restarts from `rho = 1 / W_NN` and stops on the relative residual). Unused by Siconos.
+pub const FC3D_IPARAM_VARIANT: c_int = 19;
+/// `iparam[FC3D_IPARAM_VARIANT]`: Siconos 4.4's one-contact iteration (default).
+pub const FC3D_VARIANT_SICONOS: c_int = 0;
+/// `iparam[FC3D_IPARAM_VARIANT]`: fc3d's refined one-contact iteration.
+pub const FC3D_VARIANT_FC3D: c_int = 1;
 /// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
 pub const OPTIONS_PARAM_SIZE: c_int = 20;
 /// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule

@@ -33,7 +33,9 @@ pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
 pub use error::Fc3dError;
-pub use local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule};
+pub use local::{
+    AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule,
+};
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
 pub use problem::{FrictionProblem, FrictionProblem2d};

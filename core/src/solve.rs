@@ -158,20 +158,28 @@ fn grows_where_no_solution_is(
     u: &[f64],
     error: f64,
 ) -> bool {
-    let nr = norm(r);
-    if !(nr > 0.0 && nr.is_finite()) {
+    // ||r|| scaled by its largest entry: a reaction beyond 1e154 (a ray followed with a growing
+    // step) has no finite sum of squares.
+    let largest = r.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if !(largest > 0.0 && largest.is_finite()) {
         return false;
     }
+    // d = r / ||r|| = (r / largest) / s.
+    let s = r.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt();
     let q = problem.q();
     let nq = norm(q);
     // ||W d|| and q·d, divided by ||r|| term by term (no overflow).
     let w_d = u
         .iter()
         .zip(q)
-        .map(|(ui, qi)| ((ui - qi) / nr).powi(2))
+        .map(|(ui, qi)| ((ui - qi) / largest / s).powi(2))
         .sum::<f64>()
         .sqrt();
-    let q_d: f64 = q.iter().zip(r).map(|(qi, ri)| qi * (ri / nr)).sum();
+    let q_d: f64 = q
+        .iter()
+        .zip(r)
+        .map(|(qi, ri)| qi * (ri / largest / s))
+        .sum();
     let w_scale = (0..problem.n_contacts())
         .filter_map(|c| problem.w().diagonal_block(c))
         .flat_map(|b| [b[0][0].abs(), b[1][1].abs(), b[2][2].abs()])

@@ -1,12 +1,14 @@
 //! One-contact solvers (NSGS's internal solver 0): iparam[0] iterations, dparam[0] tolerance,
 //! iparam[9] rho rule with dparam[3] (Newton solvers, 570-572), dparam[3] the regularization of
 //! 554, iparam[10] formulation and iparam[11] line search (Newton solvers; they select 550, 551
-//! or 565), iparam[12] line-search trials, iparam[15]/[16] the hybrid rounds of 565.
+//! or 565), iparam[12] line-search trials, iparam[15]/[16] the hybrid rounds of 565,
+//! iparam[19] (`FC3D_IPARAM_VARIANT`) Siconos' or fc3d's iteration of 550/551/565/553.
 
 use std::os::raw::c_int;
 
 use super::{
-    invalid, unsupported_solver, Encoded, Params, FC3D_RHO_STRATEGY_DUMONT, IPARAM_MAX_ITER,
+    invalid, unsupported_solver, variant_code, Encoded, Params, FC3D_RHO_STRATEGY_DUMONT,
+    IPARAM_MAX_ITER, IPARAM_VARIANT,
 };
 use crate::types::SolverOptions;
 use crate::CResult;
@@ -19,6 +21,18 @@ const IPARAM_LINE_SEARCH_MAX_ITER: usize = 12;
 const IPARAM_HYBRID_MAX_LOOP: usize = 15;
 const IPARAM_HYBRID_MAX_ITER: usize = 16;
 const DPARAM_RHO: usize = 3;
+
+/// Kinds with a Siconos and an fc3d variant (iparam[19]).
+fn has_variant(kind: LocalSolverKind) -> bool {
+    use LocalSolverKind::*;
+    matches!(
+        kind,
+        NewtonAlartCurnier
+            | NewtonAlartCurnierGp
+            | NewtonHybrid
+            | ProjectionOnConeWithLocalIteration
+    )
+}
 
 /// Kinds whose rho comes from a rule (iparam[9]); the projection solvers use `1 / W_NN`.
 fn has_rho_rule(kind: LocalSolverKind) -> bool {
@@ -100,6 +114,9 @@ pub(super) unsafe fn read(o: &SolverOptions) -> CResult<LocalSolverOptions> {
         l.hybrid_max_loop = p.count(IPARAM_HYBRID_MAX_LOOP, "hybrid max loops")?;
         l.hybrid_max_iter = p.count(IPARAM_HYBRID_MAX_ITER, "hybrid max iterations")?;
     }
+    if has_variant(l.kind) && has_variant(kind) {
+        l.variant = p.variant()?;
+    }
     Ok(l)
 }
 
@@ -152,6 +169,9 @@ pub(super) fn write(l: &LocalSolverOptions) -> Encoded {
     if is_alart_curnier_newton(kind) {
         e.iparam[IPARAM_HYBRID_MAX_LOOP] = c_int::try_from(l.hybrid_max_loop).unwrap_or(c_int::MAX);
         e.iparam[IPARAM_HYBRID_MAX_ITER] = c_int::try_from(l.hybrid_max_iter).unwrap_or(c_int::MAX);
+    }
+    if has_variant(kind) {
+        e.iparam[IPARAM_VARIANT] = variant_code(l.variant);
     }
     e
 }

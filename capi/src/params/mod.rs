@@ -48,6 +48,31 @@ pub(crate) const DPARAM_TIME_BUDGET: usize = super::FC3D_DPARAM_TIME_BUDGET as u
 pub(crate) const DPARAM_DUMONT_CRITERION: usize = super::FC3D_DPARAM_DUMONT_CRITERION as usize;
 
 use super::FC3D_RHO_STRATEGY_DUMONT;
+use super::{FC3D_IPARAM_VARIANT, FC3D_VARIANT_FC3D, FC3D_VARIANT_SICONOS};
+use fc3d_core::AlgorithmVariant;
+
+/// Where Siconos' or fc3d's iteration is chosen (`FC3D_IPARAM_VARIANT`), for the ids that have
+/// both.
+pub(crate) const IPARAM_VARIANT: usize = FC3D_IPARAM_VARIANT as usize;
+
+impl Params<'_> {
+    /// The variant in `iparam[FC3D_IPARAM_VARIANT]`.
+    pub fn variant(&self) -> CResult<AlgorithmVariant> {
+        match self.iparam[IPARAM_VARIANT] {
+            FC3D_VARIANT_SICONOS => Ok(AlgorithmVariant::Siconos),
+            FC3D_VARIANT_FC3D => Ok(AlgorithmVariant::Fc3d),
+            other => Err(invalid(format!("variant (iparam[{IPARAM_VARIANT}]) = {other} is not one of {FC3D_VARIANT_SICONOS} (Siconos) and {FC3D_VARIANT_FC3D} (fc3d)"))),
+        }
+    }
+}
+
+/// The code of `variant` in `iparam[FC3D_IPARAM_VARIANT]`.
+pub(crate) fn variant_code(variant: AlgorithmVariant) -> c_int {
+    match variant {
+        AlgorithmVariant::Siconos => FC3D_VARIANT_SICONOS,
+        AlgorithmVariant::Fc3d => FC3D_VARIANT_FC3D,
+    }
+}
 
 /// The slot each setting the core may reject comes from, for messages.
 const SETTING_SLOTS: &[(&str, &str)] = &[
@@ -105,6 +130,15 @@ pub(crate) fn invalid(msg: impl Into<String>) -> CError {
 /// `FC3D_ERR_UNSUPPORTED_SOLVER` for an id fc3d does not run where it was given, naming the
 /// solver and saying why.
 pub(crate) fn unsupported_solver(id: c_int) -> CError {
+    if let Some(reason) = unfinished_in_siconos(id) {
+        return CError::new(
+            FC3D_ERR_UNSUPPORTED_SOLVER,
+            format!(
+                "solver id {id} ({}) is rejected by fc3d: {reason}",
+                solver_name(id).to_string_lossy()
+            ),
+        );
+    }
     let why = match id {
         514 | 515 | 518 | 519 | 608 | 609 => {
             "is not provided by fc3d: it calls GAMS/PATH, a commercial solver fc3d does not link"
@@ -128,6 +162,25 @@ pub(crate) fn unsupported_solver(id: c_int) -> CError {
             solver_name(id).to_string_lossy()
         ),
     )
+}
+
+/// Why fc3d rejects an id that is an unfinished experiment in Siconos 4.4 itself (evidence from
+/// Siconos' sources and runs of the installed library, README "Solver ids").
+fn unfinished_in_siconos(id: c_int) -> Option<&'static str> {
+    match id {
+        501 => Some(
+            "Siconos 4.4's NSGSV (fc3d_nsgs_velocity) is unfinished: it accepts only the local \
+             solver 558 while solver_options_create(501) gives it 550 (Siconos exits), passes a \
+             NULL local problem to 558 (Siconos crashes), handles dense matrices only, and \
+             overwrites W with its pseudo-inverse",
+        ),
+        521 => Some(
+            "Siconos 4.4's NSN_AC_TEST is an experiment its driver marks \"XXX to delete\" \
+             (a second Alart-Curnier Newton on the generic newton_LSA, rho = 1); it fails every \
+             case of Siconos' own test suite that uses it; use 504 (NSN_AC)",
+        ),
+        _ => None,
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -261,6 +314,13 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
                 format!("solver id {id} ({what}) solves 2D problems: call fc2d_driver"),
             ))
         }
+        // QUARTIC as a top-level solver (Siconos 4.4 solves a one-contact problem with it):
+        // NSGS sweeps with the exact one-contact solution, which solve one contact in a sweep
+        // and extend it to any number of contacts.
+        562 | 563 => Method::Nsgs(fc3d_core::NsgsOptions {
+            local: local::read(o)?,
+            ..Default::default()
+        }),
         _ => return Err(unsupported_solver(id)),
     };
     let mut config = SolverConfig::new(method);

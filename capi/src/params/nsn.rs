@@ -4,7 +4,8 @@
 //! iparam[11] line search (-1 none, 0 Goldstein-Price, 1 Armijo), iparam[12] line-search trials,
 //! iparam[13] linear solver (0 or 1: both mean a sparse LU, faer's here). Rejected: the adaptive
 //! rho (iparam[9] = 4), hybrid strategies (iparam[14] != 0). iparam[3], [5], [8], [17], [18] are
-//! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour.
+//! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour. iparam[19]
+//! (`FC3D_IPARAM_VARIANT`): Siconos' iteration (0, default) or fc3d's (1).
 
 use std::os::raw::c_int;
 
@@ -61,5 +62,6 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         }
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+    n.variant = p.variant()?;
     Ok(n)
 }

@@ -43,6 +43,10 @@ pub(crate) struct Test {
     pub converged: bool,
     /// This iteration was a test.
     pub tested: bool,
+    /// [`ErrorEvaluation::LightWithFullFinal`]: the cheap test passed but the full error is above
+    /// the tolerance, and the cheap tolerance tightened to 0 (the iteration left r unchanged).
+    /// Siconos' NSGS stops there; a deterministic sweep from the same r can only repeat.
+    pub stalled: bool,
 }
 
 /// The error-evaluation schedule of a run: which error is measured, how often, and the cheap
@@ -92,9 +96,11 @@ impl ErrorSchedule {
                 full: false,
                 converged: false,
                 tested,
+                stalled: false,
             };
         }
         let tol = self.tolerance;
+        let mut stalled = false;
         let (error, full, converged) = match self.evaluation {
             ErrorEvaluation::Full => {
                 let e = measure(Measure::NaturalMap);
@@ -112,6 +118,7 @@ impl ErrorSchedule {
                         // Assume full/light stays roughly proportional and ask the cheap error
                         // for what the full one still lacks.
                         self.light_tolerance = light * tol / full;
+                        stalled = !(self.light_tolerance > 0.0);
                     }
                     (full, true, full <= tol)
                 } else {
@@ -129,6 +136,7 @@ impl ErrorSchedule {
             full,
             converged,
             tested,
+            stalled,
         }
     }
 }

@@ -73,3 +73,87 @@ pub(crate) fn self_adaptive_projection(
         iterations: max_iter,
     }
 }
+
+/// Largest reaction entry [`siconos_cone_iteration`] moves to.
+const REACTION_CAP: f64 = 1e150;
+
+/// Trial steps per iteration of [`siconos_cone_iteration`] before the last trial is taken.
+const SICONOS_TRIALS: usize = 10;
+
+/// Siconos 4.4's iteration of 553 (ProjectionOnConeWithLocalIteration), step for step: from
+/// `rho = *step` (the contact's step length left by its previous solve; 1 at the first), each
+/// iteration tries `r+ = P_K(r - rho_k ũ(r))` with `rho_k = rho, NU rho, ...` until
+/// `rho_k ||u(r+) - u(r)|| <= L ||r+ - r||` or the tenth trial (taken in any case); the next
+/// rho is `rho_k / NU` when the ratio fell below `L_MIN` and the error decreased, `rho_k`
+/// otherwise. The error is the squared absolute residual `||r - P_K(r - ũ)||^2`, and the
+/// iteration runs while it is above `tolerance` (the first iteration always runs). `*step`
+/// receives the last rho.
+pub(crate) fn siconos_cone_iteration(
+    p: &LocalProblem<'_>,
+    step: &mut f64,
+    tolerance: f64,
+    max_iter: usize,
+    deadline: Option<Instant>,
+    r: &mut Vec3,
+) -> LocalOutcome {
+    use crate::math::cone::{modified_velocity, project_on_cone};
+    use crate::measure::contact_residual_sq;
+    let mut rho = if *step > 0.0 && step.is_finite() {
+        *step
+    } else {
+        1.0
+    };
+    let mut error = 1.0_f64;
+    let mut it = 0;
+    while error > tolerance && it < max_iter {
+        if past_deadline(deadline, it) {
+            break;
+        }
+        it += 1;
+        let previous_error = error;
+        let r_k = *r;
+        let u_k = p.velocity(&r_k);
+        let field = modified_velocity(&u_k, p.mu);
+        let mut rho_k = rho;
+        let (mut a1, mut a2) = (0.0, 0.0);
+        let mut u = u_k;
+        for trial in 0..SICONOS_TRIALS {
+            if trial > 0 {
+                rho_k *= NU;
+            }
+            *r = project_on_cone(
+                &[
+                    r_k[0] - rho_k * field[0],
+                    r_k[1] - rho_k * field[1],
+                    r_k[2] - rho_k * field[2],
+                ],
+                p.mu,
+            );
+            u = p.velocity(r);
+            a1 = norm3(&sub3(&u_k, &u));
+            a2 = norm3(&sub3(&r_k, r));
+            if rho_k * a1 <= L * a2 {
+                break;
+            }
+        }
+        error = contact_residual_sq(r, &u, p.mu);
+        rho = if rho_k * a1 < L_MIN * a2 && error < previous_error {
+            rho_k / NU
+        } else {
+            rho_k
+        };
+        // Beyond REACTION_CAP the step follows a ray (no bounded solution, e.g. W_cc = 0 with
+        // q_N < 0, where rho grows every iteration): stop before the reaction overflows.
+        if !r.iter().all(|x| x.is_finite() && x.abs() <= REACTION_CAP) {
+            *r = r_k;
+            break;
+        }
+    }
+    if rho > 0.0 && rho.is_finite() {
+        *step = rho;
+    }
+    LocalOutcome {
+        converged: error <= tolerance,
+        iterations: it,
+    }
+}

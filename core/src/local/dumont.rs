@@ -108,6 +108,8 @@ impl EnhancedBipotential {
     pub fn new(options: &LocalSolverOptions) -> Self {
         let mut proj = *options;
         proj.max_iter = options.hybrid_max_iter;
+        // EBP is fc3d's: its restart is fc3d's 553 iteration (from rho at every solve).
+        proj.variant = crate::local::AlgorithmVariant::Fc3d;
         EnhancedBipotential {
             tolerance: options.tolerance,
             max_iter: options.max_iter,

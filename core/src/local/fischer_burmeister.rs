@@ -74,6 +74,8 @@ impl FischerBurmeisterNewton {
         let mut finish = LocalSolverOptions::new(LocalSolverKind::NewtonAlartCurnierGp);
         finish.tolerance = options.tolerance;
         finish.max_iter = 20;
+        // The finishing Newton stops on fc3d's residual test, the one 561 converges on.
+        finish.variant = crate::local::AlgorithmVariant::Fc3d;
         FischerBurmeisterNewton {
             tolerance: options.tolerance,
             max_iter: options.max_iter,

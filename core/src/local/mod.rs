@@ -24,7 +24,7 @@ pub use regularized::{
     ProjectionOnConeVelocity, ProjectionOnConeWithDiagonalization,
     ProjectionOnConeWithRegularization, ProjectionOnCylinderWithLocalIteration,
 };
-pub use settings::{LocalSolverOptions, NewtonFormulation, RhoRule};
+pub use settings::{AlgorithmVariant, LocalSolverOptions, NewtonFormulation, RhoRule};
 pub use vi_upk::FpViUpk;
 
 use crate::math::linalg::{lambda_max_sym2, lambda_min_sym2, Mat3, Vec3};
@@ -85,6 +85,20 @@ pub trait LocalSolver {
     /// (`None`: no limit). One-step solvers ignore it.
     fn set_deadline(&mut self, _deadline: Option<std::time::Instant>) {}
 
+    /// Solves one contact of a sweep. `memory` is the contact's own state, kept by the sweep from
+    /// one visit to the next and set to 1 before the first (Siconos' 553 keeps its step length
+    /// there). Solvers without such state ignore it.
+    #[inline]
+    fn solve_in_sweep(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        _memory: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        self.solve_with_rho(p, rho, r)
+    }
+
     /// Solves, computing rho from `p.w`.
     #[inline]
     fn solve(&mut self, p: &LocalProblem<'_>, r: &mut Vec3) -> LocalOutcome {
@@ -97,20 +111,52 @@ pub trait LocalSolver {
 /// A non-positive or non-finite estimate (a degenerate block) falls back to the inverse of the
 /// largest diagonal entry, or to 1 for a zero block.
 pub fn local_rho(w: &Mat3, rule: RhoRule) -> (f64, f64) {
+    local_rho_of_variant(w, rule, AlgorithmVariant::Fc3d)
+}
+
+/// [`local_rho`] as `variant` computes it. Siconos 4.4's split rules take the spread of the
+/// tangent block from `s^2 - 4 (s - W_ST + W_TS)` with `s = W_TT + W_SS` (where the
+/// eigenvalues of `W_T` would use `s^2 - 4 det W_T`): `rho_T = 2 / (s + d)` and
+/// `2 (s - d) / (s + d)^2` with `d` the square root of that value (0 when negative). fc3d's
+/// rules use the eigenvalues of the symmetric part of `W_T`. For the spectral rule Siconos takes
+/// `W_NN` as the largest eigenvalue of a block whose upper triangle is zero.
+pub fn local_rho_of_variant(w: &Mat3, rule: RhoRule, variant: AlgorithmVariant) -> (f64, f64) {
     let wnn = w[0][0];
+    let siconos_spread = || {
+        let s = w[1][1] + w[2][2];
+        let disc = s * s - 4.0 * (s - w[2][1] + w[1][2]);
+        (s, if disc > 0.0 { disc.sqrt() } else { 0.0 })
+    };
     let lt_max = lambda_max_sym2(w[1][1], w[1][2], w[2][1], w[2][2]);
-    let (rn, rt) = match rule {
-        RhoRule::Constant(rho) => (rho, rho),
-        RhoRule::SpectralNorm => {
-            let l = lambda_max_sym3(w);
-            (1.0 / l, 1.0 / l)
+    let (rn, rt) = match (rule, variant) {
+        (RhoRule::SplitSpectralNorm, AlgorithmVariant::Siconos) => {
+            let (s, d) = siconos_spread();
+            (1.0 / wnn, 2.0 / (s + d))
         }
-        RhoRule::SplitSpectralNorm => (1.0 / wnn, 1.0 / lt_max),
-        RhoRule::SplitSpectralNormCond => {
-            let lt_min = lambda_min_sym2(w[1][1], w[1][2], w[2][1], w[2][2]);
-            (1.0 / wnn, lt_min / (lt_max * lt_max))
+        // Siconos takes W_NN for the largest eigenvalue of a block whose upper triangle is
+        // zero.
+        (RhoRule::SpectralNorm, AlgorithmVariant::Siconos)
+            if w[0][1] == 0.0 && w[0][2] == 0.0 && w[1][2] == 0.0 =>
+        {
+            (1.0 / wnn, 1.0 / wnn)
         }
-        RhoRule::Dumont(alpha) => (alpha / wnn, alpha / wnn),
+        (RhoRule::SplitSpectralNormCond, AlgorithmVariant::Siconos) => {
+            let (s, d) = siconos_spread();
+            (1.0 / wnn, 2.0 * (s - d) / ((s + d) * (s + d)))
+        }
+        (rule, _) => match rule {
+            RhoRule::Constant(rho) => (rho, rho),
+            RhoRule::SpectralNorm => {
+                let l = lambda_max_sym3(w);
+                (1.0 / l, 1.0 / l)
+            }
+            RhoRule::SplitSpectralNorm => (1.0 / wnn, 1.0 / lt_max),
+            RhoRule::SplitSpectralNormCond => {
+                let lt_min = lambda_min_sym2(w[1][1], w[1][2], w[2][1], w[2][2]);
+                (1.0 / wnn, lt_min / (lt_max * lt_max))
+            }
+            RhoRule::Dumont(alpha) => (alpha / wnn, alpha / wnn),
+        },
     };
     let fallback = {
         let d = w[0][0].abs().max(w[1][1].abs()).max(w[2][2].abs());

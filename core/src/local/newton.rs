@@ -15,14 +15,26 @@
 //!
 //! Jean-Moreau (59) ("NSN-JM" of Table 3, Siconos formulation 1) only changes the radius to
 //! `R = mu (r_N)_+`: in the slide branch `A_T[., 0] = -mu [r_N > 0] e` and `B_T[., 0] = 0`.
+//!
+//! Two variants ([`AlgorithmVariant`]). Siconos 4.4's (default): `q_N > -eps` is a take-off
+//! (`r = 0`) without iterating; each Newton iteration steps first and then stops when
+//! `||F||^2 / (2 ||q||) < tolerance`; a Goldstein-Price search that finds no acceptable step
+//! in its trials takes its last bisection point; 565 runs Newton, then (while the local error
+//! `||r - P_K(r - ũ)|| / ||q||` is at or above the tolerance, `hybrid_max_loop` times) 553's
+//! iteration for `hybrid_max_iter` steps and Newton again, keeping a new point only when its
+//! local error is within the tolerance or not larger than the kept one's. fc3d's: the stop
+//! test `||F|| <= tolerance * max(||r||, rho_N ||q||)` comes before each step, a failed search
+//! keeps its best decrease (or stops Newton), and 565 keeps the best point of every round.
 
+use super::adaptive::siconos_cone_iteration;
 use super::{
-    local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
+    local_rho_of_variant, LocalOutcome, LocalProblem, LocalSolver,
+    ProjectionOnConeWithLocalIteration,
 };
-use crate::local::{LocalSolverKind, LocalSolverOptions, NewtonFormulation};
+use crate::local::{AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation};
 use std::time::Instant;
 
-use crate::contract::past_deadline;
+use crate::contract::{deadline_passed, past_deadline};
 use crate::math::linalg::{mat3_mul, norm2, norm3, solve3, Mat3, Vec3};
 
 /// The Alart-Curnier function and one element of its generalized Jacobian at `r`.
@@ -125,12 +137,60 @@ fn ac_eval<const JAC: bool, const JEAN_MOREAU: bool>(
     (f, jac)
 }
 
+/// Gaussian elimination with partial pivoting as Siconos 4.4 solves its 3x3 Newton systems
+/// (same pivots, same operation order, so the same bits): a pivot of magnitude at most
+/// `f64::EPSILON` in the first two columns means singular (`None`); the last pivot is not
+/// tested, and a non-finite solution is `None`.
+fn solve3_partial_pivoting(m: &Mat3, b: &Vec3) -> Option<Vec3> {
+    let col = [m[0][0].abs(), m[1][0].abs(), m[2][0].abs()];
+    let (p, i, j) = if col[0] >= col[1] {
+        if col[0] >= col[2] {
+            (0, 1, 2)
+        } else {
+            (2, 0, 1)
+        }
+    } else if col[1] >= col[2] {
+        (1, 0, 2)
+    } else {
+        (2, 0, 1)
+    };
+    let pivot = m[p][0];
+    let (f1, f2) = (m[i][0] / pivot, m[j][0] / pivot);
+    let (lp1, lp2) = (m[p][1], m[p][2]);
+    let (lm1, lm2) = (m[i][1] - f1 * lp1, m[i][2] - f1 * lp2);
+    let (ln1, ln2) = (m[j][1] - f2 * lp1, m[j][2] - f2 * lp2);
+    let bl = b[p];
+    let (bm, bn) = (b[i] - f1 * bl, b[j] - f2 * bl);
+    if pivot.abs() <= f64::EPSILON {
+        return None;
+    }
+    let (x1, x2) = if lm1.abs() >= ln1.abs() {
+        if lm1.abs() < f64::EPSILON {
+            return None;
+        }
+        let f = ln1 / lm1;
+        let x2 = (bn - f * bm) / (ln2 - f * lm2);
+        ((bm - lm2 * x2) / lm1, x2)
+    } else {
+        if ln1.abs() < f64::EPSILON {
+            return None;
+        }
+        let f = lm1 / ln1;
+        let x2 = (bm - f * bn) / (lm2 - f * ln2);
+        ((bn - ln2 * x2) / ln1, x2)
+    };
+    let x0 = (bl - x1 * lp1 - x2 * lp2) / pivot;
+    let x = [x0, x1, x2];
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
 /// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
 pub struct AlartCurnierNewton {
     options: LocalSolverOptions,
     line_search: bool,
     hybrid: bool,
     jean_moreau: bool,
+    variant: AlgorithmVariant,
     projection: ProjectionOnConeWithLocalIteration,
     deadline: Option<Instant>,
 }
@@ -153,6 +213,7 @@ impl AlartCurnierNewton {
             line_search,
             hybrid,
             jean_moreau: options.formulation == NewtonFormulation::JeanMoreau,
+            variant: options.variant,
             projection: ProjectionOnConeWithLocalIteration::new(&proj),
             deadline: None,
         }
@@ -215,6 +276,179 @@ impl AlartCurnierNewton {
         (norm3(&f) <= tol * scale, self.options.max_iter)
     }
 
+    /// Siconos 4.4's Newton iterations from `r` (module documentation); `inv_q` is
+    /// `1 / ||q||` (1 for a tiny q). Returns (converged, iterations).
+    fn newton_siconos(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        inv_q: f64,
+        r: &mut Vec3,
+    ) -> (bool, usize) {
+        let (rho_n, rho_t) = rho;
+        let tol = self.options.tolerance;
+        for it in 0..self.options.max_iter {
+            if past_deadline(self.deadline, it) {
+                return (false, it);
+            }
+            let (f, jac) = if self.jean_moreau {
+                jean_moreau_function(p, rho_n, rho_t, r)
+            } else {
+                alart_curnier_function(p, rho_n, rho_t, r)
+            };
+            // A singular Jacobian ends the iterations where they are.
+            let Some(d) = solve3_partial_pivoting(&jac, &[-f[0], -f[1], -f[2]]) else {
+                return (false, it);
+            };
+            let t = if self.line_search {
+                // The slope F . J d (-||F||^2 up to rounding), formed as Siconos forms it.
+                let jd = [
+                    jac[0][0] * d[0] + jac[0][1] * d[1] + jac[0][2] * d[2],
+                    jac[1][0] * d[0] + jac[1][1] * d[1] + jac[1][2] * d[2],
+                    jac[2][0] * d[0] + jac[2][1] * d[1] + jac[2][2] * d[2],
+                ];
+                let slope = f[0] * jd[0] + f[1] * jd[1] + f[2] * jd[2];
+                let f_sq = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
+                self.goldstein_price_siconos(p, rho, r, &d, f_sq, slope)
+            } else {
+                1.0
+            };
+            let next = [r[0] + t * d[0], r[1] + t * d[1], r[2] + t * d[2]];
+            if !next.iter().all(|v| v.is_finite()) {
+                return (false, it + 1);
+            }
+            *r = next;
+            let f = self.residual(p, rho_n, rho_t, r);
+            if 0.5 * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * inv_q < tol {
+                return (true, it + 1);
+            }
+        }
+        (false, self.options.max_iter)
+    }
+
+    /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` (slope
+    /// `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]` from `alpha = 1`, `hi` starting at 1e20; after the
+    /// last trial the next bisection point is returned untested.
+    fn goldstein_price_siconos(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        r: &Vec3,
+        d: &Vec3,
+        f_sq: f64,
+        slope0: f64,
+    ) -> f64 {
+        const UNBOUNDED: f64 = 1e20;
+        let psi0 = 0.5 * f_sq;
+        let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
+        let mut alpha = 1.0;
+        for trial in 0..self.options.line_search_max_iter {
+            if past_deadline(self.deadline, trial) {
+                break;
+            }
+            let rt = [
+                r[0] + alpha * d[0],
+                r[1] + alpha * d[1],
+                r[2] + alpha * d[2],
+            ];
+            let ft = self.residual(p, rho.0, rho.1, &rt);
+            let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+            let slope = (psi - psi0) / alpha;
+            let long_enough = slope >= GP_M2 * slope0;
+            let short_enough = slope <= GP_M1 * slope0;
+            if long_enough && short_enough {
+                return alpha;
+            }
+            if !long_enough {
+                lo = alpha;
+            } else {
+                hi = alpha;
+            }
+            alpha = if alpha < UNBOUNDED {
+                0.5 * (lo + hi)
+            } else {
+                10.0 * alpha
+            };
+        }
+        alpha
+    }
+
+    /// Siconos 4.4's 550 / 551 / 565 on one contact (module documentation); `step` is the
+    /// contact's 553 step length kept between sweeps.
+    fn solve_siconos(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        step: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        if p.q[0] > -f64::EPSILON {
+            *r = [0.0; 3];
+            return LocalOutcome {
+                converged: true,
+                iterations: 0,
+            };
+        }
+        let norm_q = norm3(&p.q);
+        let inv_q = if norm_q > f64::EPSILON {
+            1.0 / norm_q
+        } else {
+            1.0
+        };
+        if !self.hybrid {
+            let (converged, iterations) = self.newton_siconos(p, rho, inv_q, r);
+            return LocalOutcome {
+                converged,
+                iterations,
+            };
+        }
+        let tol = self.options.tolerance;
+        let local_error = |x: &Vec3| p.residual(x) * inv_q;
+        let mut kept = *r;
+        let mut kept_error = local_error(r);
+        // A new point replaces the kept one when it is good enough or no worse.
+        let keep_or_discard = |x: &mut Vec3, kept: &mut Vec3, kept_error: &mut f64| {
+            let e = local_error(x);
+            if e <= tol || e <= *kept_error {
+                *kept = *x;
+                *kept_error = e;
+            } else {
+                *x = *kept;
+            }
+        };
+        let (_, mut iterations) = self.newton_siconos(p, rho, inv_q, r);
+        keep_or_discard(r, &mut kept, &mut kept_error);
+        let mut round = 0;
+        while kept_error > tol && round < self.options.hybrid_max_loop {
+            // A round runs two iterations whose clocks tick every CLOCK_PERIOD steps: read the
+            // clock at every round.
+            if deadline_passed(self.deadline) {
+                break;
+            }
+            round += 1;
+            let pr = siconos_cone_iteration(
+                p,
+                step,
+                tol,
+                self.options.hybrid_max_iter,
+                self.deadline,
+                r,
+            );
+            iterations += pr.iterations;
+            keep_or_discard(r, &mut kept, &mut kept_error);
+            if kept_error < tol {
+                break;
+            }
+            let (_, it) = self.newton_siconos(p, rho, inv_q, r);
+            iterations += it;
+            keep_or_discard(r, &mut kept, &mut kept_error);
+        }
+        LocalOutcome {
+            converged: kept_error <= tol,
+            iterations,
+        }
+    }
+
     /// Goldstein-Price search along the Newton direction `d` on `psi = ||F||^2 / 2`, whose slope
     /// along `d` is `-||F||^2`. Returns the accepted point with its F, or the best point that
     /// decreased psi, or `None` when no trial step decreased it.
@@ -265,7 +499,7 @@ impl AlartCurnierNewton {
 
 impl LocalSolver for AlartCurnierNewton {
     fn rho(&self, w: &Mat3) -> (f64, f64) {
-        local_rho(w, self.options.rho_rule)
+        local_rho_of_variant(w, self.options.rho_rule, self.variant)
     }
 
     fn set_deadline(&mut self, deadline: Option<Instant>) {
@@ -279,6 +513,20 @@ impl LocalSolver for AlartCurnierNewton {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
+        let mut step = 1.0;
+        self.solve_in_sweep(p, rho, &mut step, r)
+    }
+
+    fn solve_in_sweep(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        step: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        if self.variant == AlgorithmVariant::Siconos {
+            return self.solve_siconos(p, rho, step, r);
+        }
         let start = *r;
         let (converged, mut iterations) = self.newton(p, rho, r);
         if converged || !self.hybrid {

@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
-use super::adaptive::{self_adaptive_projection, ProjectionStep};
+use super::adaptive::{self_adaptive_projection, siconos_cone_iteration, ProjectionStep};
 use super::{local_rho, take_step, LocalOutcome, LocalProblem, LocalSolver};
-use crate::local::{LocalSolverOptions, RhoRule};
+use crate::local::{AlgorithmVariant, LocalSolverOptions, RhoRule};
 use crate::math::cone::{modified_velocity, project_on_cone, project_on_cylinder};
 use crate::math::linalg::{norm3, sub3, Mat3, Vec3};
 
@@ -112,11 +112,15 @@ impl LocalSolver for ProjectionOnCylinder {
     }
 }
 
-/// [553] Projection steps on the cone until the natural-map residual of the contact is below
-/// the local tolerance, with the self-adaptive rho of [`super::adaptive`], from `1 / W_NN`.
+/// [553] Projection steps on the cone until the local error is below the local tolerance.
+/// [`AlgorithmVariant::Siconos`] (default): Siconos 4.4's iteration
+/// ([`siconos_cone_iteration`]), whose step length each contact keeps from one sweep to the
+/// next. [`AlgorithmVariant::Fc3d`]: the self-adaptive rho of [`super::adaptive`] from `1 / W_NN`
+/// at every solve, to a relative residual.
 pub struct ProjectionOnConeWithLocalIteration {
     tolerance: f64,
     max_iter: usize,
+    variant: AlgorithmVariant,
     deadline: Option<Instant>,
 }
 
@@ -125,6 +129,7 @@ impl ProjectionOnConeWithLocalIteration {
         ProjectionOnConeWithLocalIteration {
             tolerance: options.tolerance,
             max_iter: options.max_iter,
+            variant: options.variant,
             deadline: None,
         }
     }
@@ -141,15 +146,31 @@ impl LocalSolver for ProjectionOnConeWithLocalIteration {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
-        self_adaptive_projection(
-            &ConeStep,
-            p,
-            rho.0,
-            self.tolerance,
-            self.max_iter,
-            self.deadline,
-            r,
-        )
+        let mut step = 1.0;
+        self.solve_in_sweep(p, rho, &mut step, r)
+    }
+
+    fn solve_in_sweep(
+        &mut self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        step: &mut f64,
+        r: &mut Vec3,
+    ) -> LocalOutcome {
+        match self.variant {
+            AlgorithmVariant::Siconos => {
+                siconos_cone_iteration(p, step, self.tolerance, self.max_iter, self.deadline, r)
+            }
+            AlgorithmVariant::Fc3d => self_adaptive_projection(
+                &ConeStep,
+                p,
+                rho.0,
+                self.tolerance,
+                self.max_iter,
+                self.deadline,
+                r,
+            ),
+        }
     }
 
     fn set_deadline(&mut self, deadline: Option<Instant>) {

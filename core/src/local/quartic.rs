@@ -15,8 +15,9 @@
 //!
 //!   `t = tan(theta/2)` turns it into the quartic
 //!   `(A - D) t^4 + 2(E - B) t^3 + (4C - 2A) t^2 + 2(B + E) t + (A + D) = 0`,
-//!   `d = (-1, 0)` (t = ∞) being checked directly. Real roots are found by Durand-Kerner
-//!   iterations on the monic polynomial, polished by Newton on the trigonometric equation, and
+//!   `d = (-1, 0)` (t = ∞) being checked directly. Real roots are isolated between the critical
+//!   points of the quartic (the real roots of its derivative, recursively) and found by
+//!   bracketed Newton steps, then polished by Newton on the trigonometric equation, and
 //!   each admissible one (`r_N > 0`, `u_T·d > 0`) is a candidate; the one with the smallest
 //!   natural-map residual wins.
 //!
@@ -77,39 +78,16 @@ fn slide_eq_theta(k: &[f64; 5], theta: f64) -> (f64, f64) {
     (f, df)
 }
 
-#[derive(Clone, Copy)]
-struct Complex {
-    re: f64,
-    im: f64,
-}
+/// Largest root `|t|` searched for (`t = tan(theta / 2)`).
+const ROOT_CAP: f64 = 1e8;
+/// Step (relative to `1 + |t|`) at which the root iteration stops.
+const ROOT_STEP: f64 = 1e-14;
 
-impl Complex {
-    fn mul(self, o: Complex) -> Complex {
-        Complex {
-            re: self.re * o.re - self.im * o.im,
-            im: self.re * o.im + self.im * o.re,
-        }
-    }
-    fn sub(self, o: Complex) -> Complex {
-        Complex {
-            re: self.re - o.re,
-            im: self.im - o.im,
-        }
-    }
-    fn div(self, o: Complex) -> Option<Complex> {
-        let den = o.re * o.re + o.im * o.im;
-        if den == 0.0 || !den.is_finite() {
-            return None;
-        }
-        Some(Complex {
-            re: (self.re * o.re + self.im * o.im) / den,
-            im: (self.im * o.re - self.re * o.im) / den,
-        })
-    }
-}
-
-/// Real roots (at most 4) of `sum_i c[i] t^(4-i)`, leading zero coefficients dropped.
-/// Returns them in a fixed array with a count.
+/// Real roots (at most 4) of `sum_i c[i] t^(4-i)`, leading zero coefficients dropped, in a
+/// fixed array with a count. Between consecutive critical points (the real roots of the
+/// derivative, found the same way) the polynomial is monotone: each interval whose ends differ
+/// in sign holds one root, found by Newton steps kept inside the bracket (bisection when a step
+/// leaves it); a critical point where the polynomial nearly vanishes is a double root.
 fn real_roots(c: [f64; 5]) -> ([f64; 4], usize) {
     let scale = c.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let mut out = [0.0; 4];
@@ -120,63 +98,138 @@ fn real_roots(c: [f64; 5]) -> ([f64; 4], usize) {
     while start < 5 && c[start].abs() <= 1e-14 * scale {
         start += 1;
     }
-    let degree = 4usize.saturating_sub(start);
     if start >= 4 {
         return (out, 0);
     }
-    let lead = c[start];
+    let degree = 4 - start;
     let mut monic = [0.0; 5];
     for i in 0..=degree {
-        monic[i] = c[start + i] / lead;
+        monic[i] = c[start + i] / c[start];
     }
-    let eval = |z: Complex| {
-        let mut acc = Complex { re: 1.0, im: 0.0 };
-        for coef in monic.iter().take(degree + 1).skip(1) {
-            acc = acc.mul(z);
-            acc.re += coef;
-        }
-        acc
-    };
-    // Durand-Kerner from the classical non-real starting points, inside a radius bound.
-    let radius = 1.0 + monic[1..=degree].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut z = [Complex { re: 0.0, im: 0.0 }; 4];
-    let seed = Complex { re: 0.4, im: 0.9 };
-    let mut pw = Complex { re: 1.0, im: 0.0 };
-    for zi in z.iter_mut().take(degree) {
-        *zi = Complex {
-            re: pw.re * radius.min(10.0),
-            im: pw.im * radius.min(10.0),
-        };
-        pw = pw.mul(seed);
-    }
-    for _ in 0..500 {
-        let mut moved = 0.0f64;
-        for i in 0..degree {
-            let mut den = Complex { re: 1.0, im: 0.0 };
-            for j in 0..degree {
-                if i != j {
-                    den = den.mul(z[i].sub(z[j]));
-                }
-            }
-            if let Some(step) = eval(z[i]).div(den) {
-                if step.re.is_finite() && step.im.is_finite() {
-                    z[i] = z[i].sub(step);
-                    moved = moved.max(norm2(step.re, step.im) / (1.0 + norm2(z[i].re, z[i].im)));
-                }
-            }
-        }
-        if moved < 1e-15 {
-            break;
-        }
-    }
-    let mut n = 0;
-    for zi in z.iter().take(degree) {
-        if zi.im.abs() <= 1e-6 * (1.0 + zi.re.abs()) && zi.re.is_finite() {
-            out[n] = zi.re;
-            n += 1;
-        }
-    }
+    let n = monic_real_roots(&monic[..=degree], &mut out);
     (out, n)
+}
+
+/// Real roots of the monic polynomial `a[0] t^d + ... + a[d]` (`a[0] = 1`, `d <= 4`) into `out`;
+/// returns their number, in increasing order.
+fn monic_real_roots(a: &[f64], out: &mut [f64; 4]) -> usize {
+    let d = a.len() - 1;
+    match d {
+        0 => return 0,
+        1 => {
+            out[0] = -a[1];
+            return 1;
+        }
+        2 => {
+            let (b, c) = (a[1], a[2]);
+            let disc = b * b - 4.0 * c;
+            if disc < 0.0 {
+                return 0;
+            }
+            // The root away from cancellation first, the other from the product.
+            let big = -0.5 * (b + b.signum() * disc.sqrt());
+            if big == 0.0 {
+                out[0] = 0.0;
+                return 1;
+            }
+            let (x, y) = (big, c / big);
+            out[0] = x.min(y);
+            out[1] = x.max(y);
+            return 2;
+        }
+        _ => {}
+    }
+    let eval = |t: f64| {
+        let (mut p, mut dp) = (0.0, 0.0);
+        for &k in a {
+            dp = dp * t + p;
+            p = p * t + k;
+        }
+        (p, dp)
+    };
+    // |p(t)| below this is rounding: the sum of the magnitudes of the terms.
+    let noise = |t: f64| {
+        let mut m = 0.0;
+        for &k in a {
+            m = m * t.abs() + k.abs();
+        }
+        1e-10 * m
+    };
+    // Critical points: roots of p' / d (monic).
+    let mut derivative = [0.0; 4];
+    for (i, k) in a[..d].iter().enumerate() {
+        derivative[i] = k * (d - i) as f64 / d as f64;
+    }
+    let mut critical = [0.0; 4];
+    let nc = monic_real_roots(&derivative[..d], &mut critical);
+    // Every root lies inside Fujiwara's bound `2 max |a_k|^(1/k)` (`|a_d / 2|^(1/d)` for the
+    // last), made strict. Roots beyond ROOT_CAP (slide angles within 2 / ROOT_CAP of pi) are
+    // left to the polish from the candidate theta = pi.
+    let mut fujiwara = 0.0f64;
+    for (k, &ak) in a.iter().enumerate().skip(1) {
+        let v = if k == d { 0.5 * ak.abs() } else { ak.abs() };
+        fujiwara = fujiwara.max(v.powf(1.0 / k as f64));
+    }
+    let bound = (2.0 * fujiwara * (1.0 + 1e-12) + f64::MIN_POSITIVE).min(ROOT_CAP);
+    let mut ends = [0.0; 5];
+    ends[0] = -bound;
+    ends[1..=nc].copy_from_slice(&critical[..nc]);
+    ends[nc + 1] = bound;
+    let mut n = 0;
+    let mut push = |x: f64, n: &mut usize| {
+        if *n < 4 && (*n == 0 || x > out[*n - 1]) {
+            out[*n] = x;
+            *n += 1;
+        }
+    };
+    let mut left = eval(ends[0]).0;
+    for k in 0..=nc {
+        let (lo, hi) = (ends[k], ends[k + 1]);
+        let right = eval(hi).0;
+        let left_zero = k > 0 && left.abs() <= noise(lo);
+        let right_zero = k < nc && right.abs() <= noise(hi);
+        if left_zero {
+            // A double root at the critical point (recorded once).
+            push(lo, &mut n);
+        } else if !right_zero && (left < 0.0) != (right < 0.0) {
+            push(bracketed_root(&eval, lo, hi, left), &mut n);
+        }
+        left = right;
+    }
+    n
+}
+
+/// The root of `p` (value and derivative from `eval`) in `[lo, hi]`, where `p(lo) = p_lo` and
+/// `p(hi)` differ in sign.
+fn bracketed_root(eval: &dyn Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, p_lo: f64) -> f64 {
+    let lo_negative = p_lo < 0.0;
+    let mut t = 0.5 * (lo + hi);
+    for _ in 0..100 {
+        let (p, dp) = eval(t);
+        if p == 0.0 {
+            return t;
+        }
+        if (p < 0.0) == lo_negative {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let newton = t - p / dp;
+        let next = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        // The polish on theta follows: t to 1e-14 (absolute near 0) is plenty, and rounding
+        // keeps Newton from settling tighter near a root at 0.
+        if (next - t).abs() <= ROOT_STEP * (1.0 + t.abs())
+            || hi - lo <= ROOT_STEP * (1.0 + lo.abs().max(hi.abs()))
+        {
+            return next;
+        }
+        t = next;
+    }
+    t
 }
 
 /// The slide candidate along `d` with its natural-map residual, if admissible.
@@ -210,6 +263,10 @@ impl Quartic {
         };
         if let Some(r) = solve3(p.w, &[-p.q[0], -p.q[1], -p.q[2]]) {
             if r[0] >= 0.0 && norm2(r[1], r[2]) <= p.mu * r[0] {
+                // As in Siconos, a stick that solves the contact ends the enumeration.
+                if p.residual(&r) <= self.tolerance * p.scale(&r) {
+                    return Some(r);
+                }
                 consider(r);
             }
         }
@@ -231,18 +288,7 @@ impl Quartic {
             thetas[i] = 2.0 * roots[i].atan();
         }
         for &theta0 in thetas.iter().take(n + 1) {
-            let mut theta = theta0;
-            for _ in 0..8 {
-                let (f, df) = slide_eq_theta(&k, theta);
-                if df == 0.0 || f == 0.0 {
-                    break;
-                }
-                let next = theta - f / df;
-                if !next.is_finite() || (next - theta).abs() > 0.5 {
-                    break;
-                }
-                theta = next;
-            }
+            let theta = polish_slide_angle(&k, theta0);
             let (s, c) = theta.sin_cos();
             if let Some(r) = slide_candidate(p, [c, s]) {
                 consider(r);
@@ -250,6 +296,43 @@ impl Quartic {
         }
         best.map(|b| b.1)
     }
+
+    /// Within a sweep a sliding contact usually slides on in nearly the same direction: the
+    /// slide along the direction of `previous` (a reaction on the boundary of the cone), polished
+    /// on the slide equation, when it solves the contact to the local tolerance. The
+    /// enumeration gives the same point (a solution is verified, not assumed) in more time.
+    fn warm_slide(&self, p: &LocalProblem<'_>, previous: &Vec3) -> Option<Vec3> {
+        let norm_t = norm2(previous[1], previous[2]);
+        let on_boundary = (norm_t - p.mu * previous[0]).abs() <= 1e-9 * norm_t;
+        if p.q[0] >= 0.0 || p.mu == 0.0 || !(previous[0] > 0.0 && norm_t > 0.0 && on_boundary) {
+            return None;
+        }
+        let theta0 = (-previous[2]).atan2(-previous[1]);
+        let theta = polish_slide_angle(&slide_equation(p), theta0);
+        let (s, c) = theta.sin_cos();
+        let r = slide_candidate(p, [c, s])?;
+        (p.residual(&r) <= self.tolerance * p.scale(&r)).then_some(r)
+    }
+}
+
+/// Newton on the slide equation in theta from `theta`, at most 8 steps of at most 0.5.
+fn polish_slide_angle(k: &[f64; 5], mut theta: f64) -> f64 {
+    for _ in 0..8 {
+        let (f, df) = slide_eq_theta(k, theta);
+        if df == 0.0 || f == 0.0 {
+            break;
+        }
+        let next = theta - f / df;
+        if !next.is_finite() || (next - theta).abs() > 0.5 {
+            break;
+        }
+        let converged = (next - theta).abs() <= 4.0 * f64::EPSILON * (1.0 + theta.abs());
+        theta = next;
+        if converged {
+            break;
+        }
+    }
+    theta
 }
 
 impl LocalSolver for Quartic {
@@ -263,6 +346,13 @@ impl LocalSolver for Quartic {
         rho: (f64, f64),
         r: &mut Vec3,
     ) -> LocalOutcome {
+        if let Some(x) = self.warm_slide(p, r) {
+            *r = x;
+            return LocalOutcome {
+                converged: true,
+                iterations: 1,
+            };
+        }
         if let Some(x) = self.enumerate(p) {
             if p.residual(&x) <= self.tolerance * p.scale(&x) {
                 *r = x;

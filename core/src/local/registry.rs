@@ -91,6 +91,17 @@ macro_rules! local_solvers {
             ) -> LocalOutcome {
                 match self { $(AnyLocalSolver::$kind(s) => s.solve_with_rho(p, rho, r),)+ }
             }
+
+            #[inline]
+            fn solve_in_sweep(
+                &mut self,
+                p: &LocalProblem<'_>,
+                rho: (f64, f64),
+                memory: &mut f64,
+                r: &mut Vec3,
+            ) -> LocalOutcome {
+                match self { $(AnyLocalSolver::$kind(s) => s.solve_in_sweep(p, rho, memory, r),)+ }
+            }
         }
     };
 }
@@ -145,6 +156,11 @@ local_solvers! {
     /// The exact solution by enumeration of take-off, stick and slide; the slide direction is a
     /// root of a quartic (Bonnefon-Daviet) [562 QUARTIC].
     Quartic = 562, "FC3D_QUARTIC", ["QUARTIC"],
+        (1e-12, 1000, RhoRule::SplitSpectralNorm), Quartic;
+    /// The same exact solution by enumeration [563 QUARTIC_NU]. Siconos 4.4 parametrizes the
+    /// slide by the multiplier nu of the tangential block instead of the slide angle; both
+    /// solve the same equations, and fc3d computes them with the slide-angle quartic of 562.
+    QuarticNu = 563, "FC3D_QUARTIC_NU", ["QUARTIC-NU"],
         (1e-12, 1000, RhoRule::SplitSpectralNorm), Quartic;
     /// Augmented-Lagrangian steps on the cylinder (557) with a self-adaptive rho until the local
     /// residual is below the local tolerance [564 ProjectionOnCylinderWithLocalIteration].

@@ -14,6 +14,25 @@ pub enum NewtonFormulation {
     JeanMoreau,
 }
 
+/// Which of two variants of the same one-contact algorithm runs (550, 551, 565 and 553; the
+/// other local solvers have one variant).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AlgorithmVariant {
+    /// Siconos 4.4's algorithm, step for step (default): a contact with `q_N >= -eps` takes off
+    /// at once; Newton stops when `||F||^2 / (2 ||q||) < tolerance` after a step and takes the
+    /// last trial of a failed Goldstein-Price search; 565 keeps a new point only when its local
+    /// error `||r - P_K(r - ũ)|| / ||q||` did not grow; 553 keeps each contact's rho from one
+    /// sweep to the next (starting at 1), stops when the squared absolute residual is below the
+    /// tolerance and takes the tenth trial of a failed step search.
+    #[default]
+    Siconos,
+    /// fc3d's refinements (fc3d 0.2's behaviour): Newton stops when `||F|| <= tolerance *
+    /// max(||r||, rho_N ||q||)` before a step, a failed search keeps the best decrease, 565
+    /// keeps the best point of all rounds; 553 starts every solve at `rho = 1 / W_NN` and stops
+    /// on the relative residual `||r - P_K(r - ũ)|| <= tolerance * max(||r||, ||q||)`.
+    Fc3d,
+}
+
 /// How the penalty parameters rho (rho_N, rho_T) of a local solver are taken from the diagonal
 /// block `W_cc` of the contact (section 5.4 of Acary-Brémond-Huber).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -55,6 +74,9 @@ pub struct LocalSolverOptions {
     /// 554: the proximal regularization `eps` added to W_NN in the step (default 0, Siconos'
     /// dparam[3]).
     pub regularization: f64,
+    /// 550/551/565/553: Siconos 4.4's algorithm (default) or fc3d's refinements (the default
+    /// of fc3d's own ids 570-572, which reuse these iterations).
+    pub variant: AlgorithmVariant,
 }
 
 impl LocalSolverOptions {
@@ -71,6 +93,13 @@ impl LocalSolverOptions {
             hybrid_max_iter: 100,
             formulation: NewtonFormulation::AlartCurnier,
             regularization: 0.0,
+            // fc3d's own solvers (570-572) keep fc3d's iteration where they share code with
+            // Siconos' ids.
+            variant: if kind.siconos_id() >= 570 {
+                AlgorithmVariant::Fc3d
+            } else {
+                AlgorithmVariant::Siconos
+            },
         }
     }
 }

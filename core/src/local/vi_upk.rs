@@ -8,7 +8,7 @@
 use super::{
     local_rho, LocalOutcome, LocalProblem, LocalSolver, ProjectionOnConeWithLocalIteration,
 };
-use crate::local::{LocalSolverOptions, RhoRule};
+use crate::local::{AlgorithmVariant, LocalSolverOptions, RhoRule};
 use crate::math::linalg::{Mat3, Vec3};
 
 pub struct FpViUpk {
@@ -20,7 +20,11 @@ impl FpViUpk {
     pub fn new(options: &LocalSolverOptions) -> Self {
         FpViUpk {
             rule: options.rho_rule,
-            iteration: ProjectionOnConeWithLocalIteration::new(options),
+            // 570 is fc3d's: its iteration starts from the rule's rho at every solve.
+            iteration: ProjectionOnConeWithLocalIteration::new(&LocalSolverOptions {
+                variant: AlgorithmVariant::Fc3d,
+                ..*options
+            }),
         }
     }
 }

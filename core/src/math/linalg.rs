@@ -58,11 +58,9 @@ pub fn mat3_vec(m: &Mat3, x: &Vec3) -> Vec3 {
 /// `y + m * x`.
 #[inline(always)]
 pub fn mat3_vec_add(m: &Mat3, x: &Vec3, y: &Vec3) -> Vec3 {
-    [
-        y[0] + dot3(&m[0], x),
-        y[1] + dot3(&m[1], x),
-        y[2] + dot3(&m[2], x),
-    ]
+    // Accumulated column by column into y, in Siconos' order (bit-identical local problems).
+    let row = |i: usize| y[i] + m[i][0] * x[0] + m[i][1] * x[1] + m[i][2] * x[2];
+    [row(0), row(1), row(2)]
 }
 
 /// Row-major `D x D` block of W (`D` = 2 or 3, the contact dimension): a diagonal or coupling

@@ -159,6 +159,12 @@ pub(crate) fn run_sweeps<const D: usize, S: ContactStep<D>>(
         if test.tested {
             last_measured = measured;
         }
+        if test.stalled && !sweeper.any_frozen() {
+            return Ok(SolverOutcome {
+                dumont_criterion: dumont,
+                ..SolverOutcome::stopped(iteration, false).with_final_error(measured)
+            });
+        }
         if let Some(outcome) = run.end_of_iteration(iteration, converged) {
             let outcome = if outcome.out_of_time {
                 if let Some(b) = &best {

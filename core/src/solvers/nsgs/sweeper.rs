@@ -69,6 +69,8 @@ pub struct LocalStep {
     options: LocalSolverOptions,
     solver: AnyLocalSolver,
     rho: Vec<(f64, f64)>,
+    /// Each contact's local-solver state carried from sweep to sweep (553's step length).
+    memory: Vec<f64>,
     deadline: Option<Instant>,
 }
 
@@ -82,6 +84,7 @@ impl LocalStep {
             options: *options,
             solver,
             rho,
+            memory: vec![1.0; rows.n_contacts()],
             deadline: None,
         }
     }
@@ -92,7 +95,8 @@ impl ContactStep<3> for LocalStep {
     fn solve(&mut self, c: usize, w: &Block<3>, q: &[f64; 3], mu: f64, r: &mut [f64; 3]) {
         let p = LocalProblem { w, q: *q, mu };
         let old = *r;
-        self.solver.solve_with_rho(&p, self.rho[c], r);
+        self.solver
+            .solve_in_sweep(&p, self.rho[c], &mut self.memory[c], r);
         if !r.iter().all(|v| v.is_finite()) {
             *r = old;
         }

@@ -109,6 +109,48 @@ pub(crate) fn search(
     last
 }
 
+/// Siconos 4.4's Goldstein-Price search of its global Newton methods: bisection of
+/// `[lo, hi]` from `t = 1` with `hi` starting at 1e10 (so a first step found too short jumps
+/// to about 5e9), the same tests as [`search`]. Returns the accepted step, or `None` when
+/// `max_iter` trials accept none, a merit is not finite or the deadline passed: Siconos then
+/// takes the full Newton step.
+pub(crate) fn siconos_goldstein_price(
+    q0: f64,
+    slope: f64,
+    max_iter: usize,
+    deadline: Option<Instant>,
+    merit: &mut dyn FnMut(f64) -> f64,
+) -> Option<Step> {
+    const UNBOUNDED: f64 = 1e10;
+    if !q0.is_finite() {
+        return None;
+    }
+    let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
+    let mut t = 1.0;
+    for trial in 0..max_iter {
+        if trial > 0 && deadline_passed(deadline) {
+            return None;
+        }
+        let q = merit(t);
+        if !q.is_finite() {
+            return None;
+        }
+        let delta = (q - q0) / t;
+        let long_enough = delta >= M2 * slope;
+        let short_enough = delta <= M1 * slope;
+        if long_enough && short_enough {
+            return Some(Step { t, merit: q });
+        }
+        if !long_enough {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        t = if t < UNBOUNDED { 0.5 * (lo + hi) } else { lo };
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

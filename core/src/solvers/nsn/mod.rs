@@ -36,6 +36,7 @@ pub fn alart_curnier_parts(
 
 use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::Fc3dError;
+use crate::local::AlgorithmVariant;
 use crate::math::linalg::{norm, Mat3, Vec3};
 use crate::matrix::BlockSparseMatrix;
 use crate::measure::{absolute_natural_map_residual, relative_scale};
@@ -157,7 +158,11 @@ impl NewtonSolver {
             for (i, row) in wcc.iter_mut().enumerate() {
                 row[i] += shift;
             }
-            let (rho_n, rho_t) = crate::local::local_rho(&wcc, self.options.rho_rule);
+            let (rho_n, rho_t) = crate::local::local_rho_of_variant(
+                &wcc,
+                self.options.rho_rule,
+                self.options.variant,
+            );
             *d = ContactData {
                 mu: mu[c],
                 rho_n,
@@ -243,15 +248,32 @@ impl NewtonSolver {
                 }
                 0.5 * sum
             };
-            let step = linesearch::search(
-                self.options.line_search,
-                merit,
-                slope,
-                reference,
-                self.options.line_search_max_iter,
-                run.deadline(),
-                &mut trial_merit,
-            );
+            let step = match (self.options.variant, self.options.line_search) {
+                (AlgorithmVariant::Siconos, NsnLineSearch::GoldsteinPrice) => {
+                    linesearch::siconos_goldstein_price(
+                        merit,
+                        slope,
+                        self.options.line_search_max_iter,
+                        run.deadline(),
+                        &mut trial_merit,
+                    )
+                    .or_else(|| {
+                        // Siconos takes the full step; fc3d only a finite one.
+                        let q = trial_merit(1.0);
+                        q.is_finite()
+                            .then_some(linesearch::Step { t: 1.0, merit: q })
+                    })
+                }
+                _ => linesearch::search(
+                    self.options.line_search,
+                    merit,
+                    slope,
+                    reference,
+                    self.options.line_search_max_iter,
+                    run.deadline(),
+                    &mut trial_merit,
+                ),
+            };
             outcome.iterations = iteration;
             let Some(step) = step else {
                 // No finite trial point: keep r and stop.

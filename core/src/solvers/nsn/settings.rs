@@ -2,7 +2,7 @@
 //! defaults.
 
 use crate::error::{require_setting, Fc3dError};
-use crate::local::RhoRule;
+use crate::local::{AlgorithmVariant, RhoRule};
 
 /// The nonsmooth equation `F(r) = 0` Newton is applied to (section 3 of Acary-Brémond-Huber).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -70,6 +70,12 @@ pub struct NsnOptions {
     pub line_search: NsnLineSearch,
     /// Maximum trial steps per line search (Siconos: 100).
     pub line_search_max_iter: usize,
+    /// [`AlgorithmVariant::Siconos`] (default): Siconos 4.4's iteration (its Goldstein-Price
+    /// search, bisecting from an upper bound of 1e10, and the full Newton step when the search
+    /// fails; Siconos' rho rules). [`AlgorithmVariant::Fc3d`]: fc3d's search (extrapolation by
+    /// 2 up to 8 Newton steps, the best trial when the search fails), the eigenvalues of `W_T`
+    /// in the split rho rules.
+    pub variant: AlgorithmVariant,
 }
 
 impl NsnOptions {
@@ -88,6 +94,7 @@ impl NsnOptions {
             rho_rule,
             line_search: NsnLineSearch::GoldsteinPrice,
             line_search_max_iter: 100,
+            variant: AlgorithmVariant::Siconos,
         }
     }
 
