@@ -193,8 +193,8 @@ const SLOTS: &[SiconosSlots] = &[
     },
     SiconosSlots {
         id: 508,
-        iparam: &[(0, 20000)],
-        dparam: &[(0, 1e-3)],
+        iparam: &[(0, 2_000_000), (12, 50)],
+        dparam: &[(0, 1e-3), (4, 0.99)],
         internal: &[],
     },
     SiconosSlots {
