@@ -425,6 +425,15 @@ int capi_check_bad_input(const char* data_dir) {
   EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
   CHECK(strstr(fc3d_last_error_message(), "FC3D_GAMS_PATH") != NULL, "message should name the solver: %s",
         fc3d_last_error_message());
+  /* Not top-level solvers in Siconos 4.4 either (its fc3d_driver: "Unknown solver"). */
+  int not_top_level[] = {SICONOS_FRICTION_3D_NCPGlockerFBFixedPoint, SICONOS_FRICTION_3D_VI_FPP_Cylinder,
+                         SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER};
+  for (size_t k = 0; k < sizeof not_top_level / sizeof not_top_level[0]; k++) {
+    o->solverId = not_top_level[k];
+    EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
+    CHECK(strstr(fc3d_last_error_message(), "not a top-level friction solver") != NULL,
+          "message should give the reason: %s", fc3d_last_error_message());
+  }
   o->solverId = SICONOS_FRICTION_3D_NSGS;
   o->internalSolvers[0]->solverId = SICONOS_FRICTION_3D_NCPGlockerFBPATH; /* needs PATH too */
   EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);

@@ -108,6 +108,33 @@ pub(crate) fn unsupported_solver(id: c_int) -> CError {
     )
 }
 
+/// Ids of Friction_cst.h that Siconos 4.4 itself does not run as top-level solvers: its
+/// `fc3d_driver` has no case for them and stops with "Unknown solver". fc3d rejects them with
+/// the reason (the evidence is in Siconos 4.4.0's sources, cited in README.md).
+fn not_a_top_level_solver(id: c_int) -> Option<CError> {
+    let why = match id {
+        510 => {
+            "in Siconos 4.4 an NSGS local solver only, and an unfinished one: its fixed point \
+             (NCP_FixedP.c, compute_Z_GlockerFixedP) never recomputes the Glocker map inside the \
+             loop, fc3d_FixedP_solve never maps the result back to the contact's reaction (the call \
+             to its post-solver is commented out) and exits the process when it does not converge"
+        }
+        566 | 567 => {
+            "in Siconos 4.4 a Tresca (cylinder) sub-problem solver of TFP (503) only: set it as \
+             TFP's internal solver (internalSolvers[0]->solverId)"
+        }
+        _ => return None,
+    };
+    Some(CError::new(
+        FC3D_ERR_UNSUPPORTED_SOLVER,
+        format!(
+            "solver id {id} ({}) is not a top-level friction solver: {why}; Siconos' fc3d_driver \
+             rejects it too (\"Unknown solver\")",
+            solver_name(id).to_string_lossy()
+        ),
+    ))
+}
+
 // ---------------------------------------------------------------------------------------------
 // Reading.
 
@@ -213,7 +240,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
         517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
         523 => Method::Admm(admm::read(&p)?),
-        _ => return Err(unsupported_solver(id)),
+        _ => return Err(not_a_top_level_solver(id).unwrap_or_else(|| unsupported_solver(id))),
     };
     let mut config = SolverConfig::new(method);
     config.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
