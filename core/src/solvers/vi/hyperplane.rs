@@ -32,13 +32,13 @@ pub(super) fn run(
     let run = limits.start();
     let mut schedule = ErrorSchedule::new(options.error_evaluation, run.tolerance, 1, run.max_iter);
 
-    // Work vectors, allocated once: F(r), the prediction, r - r̄, the search point w, its
-    // velocity v and the next iterate.
+    // Work vectors, allocated once: F(r), the prediction r̄ and its velocity, r - r̄, the velocity
+    // v at the accepted search point and the next iterate.
     let mut f = vec![0.0; n];
     let mut prediction = vec![0.0; n];
+    let mut prediction_u = vec![0.0; n];
     let mut direction = vec![0.0; n];
-    let mut point = vec![0.0; n];
-    let mut point_u = vec![0.0; n];
+    let mut v = vec![0.0; n];
     let mut next = vec![0.0; n];
 
     evaluate(problem, r, u, &mut f);
@@ -49,9 +49,13 @@ pub(super) fn run(
         }
         let threshold = search.sigma / rho * dot(&direction, &direction);
 
-        // w = 2^-m r̄ + (1 - 2^-m) r, m = 0, 1, ...: the first w with v·(r - r̄) >= threshold
-        // (the last one tried when none passes).
-        let mut lhs = f64::NAN;
+        // The search points w = t r̄ + (1 - t) r, t = 2^-m, m = 0, 1, ...: the first with
+        // v·(r - r̄) >= threshold (the last one tried when none passes). v = W w + q is affine in
+        // t, v = t u(r̄) + (1 - t) u(r), so one product with W per iteration serves the whole
+        // search (Siconos forms W w + q for every trial: same points, same test).
+        problem.velocity(&prediction, &mut prediction_u);
+        let along_prediction = dot(&prediction_u, &direction);
+        let along_iterate = dot(u, &direction);
         let mut weight = 1.0;
         for m in 0..=search.max_halvings {
             if m > 0 {
@@ -60,22 +64,25 @@ pub(super) fn run(
                 }
                 weight *= 0.5;
             }
-            for ((w, &a), &b) in point.iter_mut().zip(r.iter()).zip(&prediction) {
-                *w = weight * b + (1.0 - weight) * a;
-            }
-            problem.velocity(&point, &mut point_u);
-            lhs = dot(&point_u, &direction);
-            if lhs >= threshold {
+            let lhs = weight * along_prediction + (1.0 - weight) * along_iterate;
+            // Once t underflows to 0 every further trial is w = r.
+            if lhs >= threshold || weight == 0.0 {
                 break;
             }
         }
-        let v_sq = dot(&point_u, &point_u);
+        for ((vi, &a), &b) in v.iter_mut().zip(&prediction_u).zip(u.iter()) {
+            *vi = weight * a + (1.0 - weight) * b;
+        }
+        let lhs = dot(&v, &direction);
+        let v_sq = dot(&v, &v);
         if v_sq == 0.0 {
             // v = 0: the velocity at w vanishes and w is in K (a convex combination of points
             // of K), so w is a solution.
-            next.copy_from_slice(&point);
+            for ((x, &a), &b) in next.iter_mut().zip(&prediction).zip(r.iter()) {
+                *x = weight * a + (1.0 - weight) * b;
+            }
         } else {
-            project_step(mu, r, &point_u, lhs / v_sq, &mut next);
+            project_step(mu, r, &v, lhs / v_sq, &mut next);
         }
         if !bounded(&next) {
             return Ok(SolverOutcome::diverged(iteration));
