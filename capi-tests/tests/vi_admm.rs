@@ -58,7 +58,7 @@ const CASES: [(&str, c_int, bool); 16] = [
     ("Confeti-ex03-Fc3D-SBM.dat", 508, false),
     ("Confeti-ex03-Fc3D-SBM.dat", 511, true),
     ("Confeti-ex03-Fc3D-SBM.dat", 512, true),
-    ("Confeti-ex03-Fc3D-SBM.dat", 523, true),
+    ("Confeti-ex03-Fc3D-SBM.dat", 523, false),
     ("Rover1040.dat", 506, true),
     ("Rover1040.dat", 523, true),
     ("OneObject-i1028-138.hdf5.dat", 511, false),

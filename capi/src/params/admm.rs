@@ -73,8 +73,11 @@ pub(super) fn write(a: &AdmmOptions) -> Encoded {
     };
     e.iparam[IPARAM_ACCELERATION] = match a.acceleration {
         AdmmAcceleration::None => 0,
-        AdmmAcceleration::Accelerated => 1,
+        AdmmAcceleration::Accelerated => 2,
     };
+    // Siconos' default, FORCED_SYMMETRY: its "symmetric" iteration with an LU solve, which is
+    // fc3d's for any W.
+    e.iparam[IPARAM_SYMMETRY] = 1;
     e.dparam[DPARAM_RHO] = a.rho;
     e.dparam[DPARAM_RESTART_ETA] = a.restart_eta;
     e.dparam[DPARAM_BALANCING_TAU] = a.balancing_tau;
