@@ -964,6 +964,7 @@ int capi_check_vi_admm_options(void) {
       {SICONOS_FRICTION_3D_ADMM, 0, 9, 1},      /* unknown rho strategy */
       {SICONOS_FRICTION_3D_ADMM, 0, 12, 3},     /* symmetrizing W */
       {SICONOS_FRICTION_3D_ADMM, 0, 15, 1},     /* frozen De Saxce term */
+      {SICONOS_FRICTION_3D_ADMM, 0, 3, 2},      /* balancing rescaling (Siconos ADMM: scalar only) */
       {SICONOS_FRICTION_3D_ADMM, 1, 5, 0.5},    /* balancing tau <= 1 with balancing on */
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {

@@ -74,6 +74,15 @@ fn variants(tol: f64, max_iter: usize) -> Vec<(&'static str, SolverConfig)> {
                 ..base
             },
         ),
+        (
+            // Siconos' test_admm_1 third block: residual balancing on (W, q) / ||W||_inf.
+            "rescaled-residual-balancing",
+            AdmmOptions {
+                rho_strategy: AdmmRhoStrategy::ResidualBalancing,
+                scalar_rescaling: true,
+                ..base
+            },
+        ),
     ];
     options
         .into_iter()
@@ -164,6 +173,7 @@ fn nespheres_dense() {
             "plain-given-rho",
             "norm-inf",
             "eigenvalues",
+            "rescaled-residual-balancing",
         ],
     );
 }
@@ -175,7 +185,12 @@ fn confeti_ex03_sparse_block() {
     shared_problem(
         "Confeti-ex03-Fc3D-SBM.dat",
         2000,
-        &["scaled-residual-balancing", "norm-inf", "eigenvalues"],
+        &[
+            "scaled-residual-balancing",
+            "norm-inf",
+            "eigenvalues",
+            "rescaled-residual-balancing",
+        ],
     );
 }
 
@@ -193,6 +208,7 @@ fn rover_dense_singular_w() {
             "scaled-residual-balancing",
             "norm-inf",
             "eigenvalues",
+            "rescaled-residual-balancing",
         ],
     );
 }

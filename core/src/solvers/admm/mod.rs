@@ -192,6 +192,14 @@ fn power_iteration(
     lambda
 }
 
+/// `||W||_inf`, the largest absolute row sum, when positive and finite.
+fn norm_inf(problem: &FrictionProblem<'_>) -> Option<f64> {
+    let mut row_sums = vec![0.0; problem.size()];
+    problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
+    let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
+    (norm_inf > 0.0 && norm_inf.is_finite()).then_some(norm_inf)
+}
+
 /// See [`AdmmInitialRho::Eigenvalues`].
 const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
 
@@ -205,16 +213,7 @@ fn initial_rho(
     let (x, y) = work;
     match options.initial_rho {
         AdmmInitialRho::Given => options.rho,
-        AdmmInitialRho::NormInf => {
-            let mut row_sums = vec![0.0; problem.size()];
-            problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
-            let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
-            if norm_inf > 0.0 && norm_inf.is_finite() {
-                norm_inf
-            } else {
-                options.rho
-            }
-        }
+        AdmmInitialRho::NormInf => norm_inf(problem).unwrap_or(options.rho),
         AdmmInitialRho::Eigenvalues => {
             let w = problem.w();
             let lambda_max = power_iteration(x, y, deadline, |a, b| {
@@ -290,6 +289,15 @@ fn admm(
     if !(rho > 0.0 && rho.is_finite()) {
         rho = 1.0;
     }
+    // Siconos' scalar rescaling runs the iteration on (W / a, q / a), a = ||W||_inf, with the
+    // rho chosen for W: the same iterates as rho a on (W, q), with the dual residual in the
+    // rescaled units (rho ||z - ẑ||, divided by a).
+    let scale = if options.scalar_rescaling {
+        norm_inf(problem).unwrap_or(1.0)
+    } else {
+        1.0
+    };
+    rho *= scale;
     if !system.factor(rho) {
         return Err(Fc3dError::InvalidStructure(format!(
             "ADMM: W + rho I is singular for rho = {rho}"
@@ -346,7 +354,7 @@ fn admm(
         }
 
         let primal = distance_sq(&x, &z).sqrt();
-        let dual = rho * distance_sq(&z, &z_hat).sqrt();
+        let dual = rho / scale * distance_sq(&z, &z_hat).sqrt();
 
         // Next extrapolation point.
         let combined = primal * primal + dual * dual;
@@ -382,7 +390,7 @@ fn admm(
             AdmmRhoStrategy::ResidualBalancing => (primal, dual),
             AdmmRhoStrategy::ScaledResidualBalancing => {
                 let scale_p = norm(&x).max(norm(&z));
-                let scale_d = rho * norm(&xi);
+                let scale_d = rho / scale * norm(&xi);
                 (
                     if scale_p > 0.0 {
                         primal / scale_p
@@ -407,14 +415,10 @@ fn admm(
             continue;
         }
         rho = new_rho;
+        // Siconos rescales the scaled duals and keeps the extrapolation and its momentum.
         for v in [&mut xi, &mut xi_hat, &mut xi_prev] {
             v.iter_mut().for_each(|e| *e /= factor);
         }
-        // Momentum does not carry over a change of metric.
-        alpha = 1.0;
-        combined_prev = f64::INFINITY;
-        z_hat.copy_from_slice(&z);
-        xi_hat.copy_from_slice(&xi);
     }
     Ok(run.exhausted())
 }

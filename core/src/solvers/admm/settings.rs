@@ -59,6 +59,9 @@ pub struct AdmmOptions {
     pub balancing_tau: f64,
     /// Residual-balancing ratio phi > 1 (default 2).
     pub balancing_phi: f64,
+    /// Siconos' scalar rescaling (`iparam[3]` = 1): the iteration runs on `(W / a, q / a)`,
+    /// `a = ||W||_inf` (the same reactions), keeping the rho chosen for W. Default false.
+    pub scalar_rescaling: bool,
 }
 
 impl Default for AdmmOptions {
@@ -71,6 +74,7 @@ impl Default for AdmmOptions {
             restart_eta: 0.999,
             balancing_tau: 2.0,
             balancing_phi: 2.0,
+            scalar_rescaling: false,
         }
     }
 }
