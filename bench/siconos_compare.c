@@ -7,9 +7,11 @@
  *
  * Modes:
  *   solve <problem.dat> <solver> <tol> <max_iter> <reps> <out_reaction_file>
- *       solver = a Siconos id (solver_options_create(id), e.g. 500 NSGS with its default local
- *       solver, 504 NSN_AC, 562 QUARTIC on a one-contact problem) or 500/<local id> and
- *       501/<local id> (solver_options_update_internal on internal solver 0). Each repetition starts from r = u = 0 with fresh options; only
+ *       solver = a Friction_cst.h id with Siconos' defaults (500: NSGS, default local solver), or
+ *       500/<local id> (solver_options_update_internal on internal solver 0), followed by any
+ *       number of ":i<k>=<v>" / ":d<k>=<v>" settings of iparam[k] / dparam[k] (k < 20), e.g.
+ *       "506:i10=1" (VI_FPP with the update inside the line search) or "512:d3=1" (EG, fixed rho).
+ *       Each repetition starts from r = u = 0 with fresh options; only
  *       fc3d_driver is timed (CLOCK_MONOTONIC). Prints one line
  *         info <info> iterations <iter> error <dparam[1]> seconds <median> self_score <e> reps <done>
  *       where self_score is this library's fc3d_compute_error of the returned reaction (not timed),
@@ -80,21 +82,48 @@ static double score(FrictionContactProblem* problem, double* reaction, double* w
   return error;
 }
 
-/* "<id>" or "<id>/<local id>" (the latter for the solvers with a one-contact internal solver 0:
- * NSGS 500 and NSGSV 501). */
-static int parse_solver(const char* spec, int* solver, int* local) {
+/* A solver spec: <id>, or 500/<local id>, followed by any number of ":i<k>=<v>" / ":d<k>=<v>"
+   settings applied to the created options (e.g. "506:i10=1", "512:d3=1"). */
+#define MAX_SETTINGS 8
+struct solver_spec {
+  int id, local, n_settings;
+  struct {
+    char kind; /* 'i' or 'd' */
+    int index;
+    double value;
+  } settings[MAX_SETTINGS];
+};
+
+static int parse_solver(const char* spec, struct solver_spec* out) {
   char* end = NULL;
   long id = strtol(spec, &end, 10);
-  if (end == spec || id <= 0 || id > 100000) return -1;
-  *solver = (int)id;
-  *local = 0;
-  if (*end == '\0') return 0;
-  if (*end != '/' || (id != SICONOS_FRICTION_3D_NSGS && id != SICONOS_FRICTION_3D_NSGSV)) return -1;
-  const char* rest = end + 1;
-  long l = strtol(rest, &end, 10);
-  if (end == rest || *end != '\0' || l <= 0) return -1;
-  *local = (int)l;
-  return 0;
+  if (end == spec || id <= 0) return -1;
+  out->id = (int)id;
+  out->local = 0;
+  out->n_settings = 0;
+  if (*end == '/') {
+    if (id != SICONOS_FRICTION_3D_NSGS) return -1;
+    const char* rest = end + 1;
+    long l = strtol(rest, &end, 10);
+    if (end == rest || l <= 0) return -1;
+    out->local = (int)l;
+  }
+  while (*end == ':') {
+    if (out->n_settings == MAX_SETTINGS) return -1;
+    char kind = end[1];
+    if (kind != 'i' && kind != 'd') return -1;
+    const char* rest = end + 2;
+    long k = strtol(rest, &end, 10);
+    if (end == rest || k < 0 || k >= 20 || *end != '=') return -1;
+    rest = end + 1;
+    double v = strtod(rest, &end);
+    if (end == rest) return -1;
+    out->settings[out->n_settings].kind = kind;
+    out->settings[out->n_settings].index = (int)k;
+    out->settings[out->n_settings].value = v;
+    out->n_settings++;
+  }
+  return *end == '\0' ? 0 : -1;
 }
 
 static int mode_solve(int argc, char** argv) {
@@ -103,9 +132,10 @@ static int mode_solve(int argc, char** argv) {
             argv[0]);
     return 2;
   }
-  int solver = 0, local = 0;
-  if (parse_solver(argv[3], &solver, &local) != 0) {
-    fprintf(stderr, "solver must be <id> or 500/<local id> (501/<local id>), got %s\n", argv[3]);
+  struct solver_spec spec;
+  if (parse_solver(argv[3], &spec) != 0) {
+    fprintf(stderr, "solver must be <id>, 500/<local id>, then :i<k>=<v> or :d<k>=<v> settings; got %s\n",
+            argv[3]);
     return 2;
   }
   double tol = atof(argv[4]);
@@ -134,14 +164,20 @@ static int mode_solve(int argc, char** argv) {
     if (rep > 0 && budget > 0.0 && spent + longest > budget) break;
     memset(reaction, 0, ((size_t)n + 1) * sizeof(double));
     memset(velocity, 0, ((size_t)n + 1) * sizeof(double));
-    SolverOptions* options = solver_options_create(solver);
+    SolverOptions* options = solver_options_create(spec.id);
     if (!options) {
-      fprintf(stderr, "solver_options_create(%d) returned NULL\n", solver);
-      return 3;
+      fprintf(stderr, "solver_options_create(%d) failed\n", spec.id);
+      return 2;
     }
-    if (local) solver_options_update_internal(options, 0, local);
+    if (spec.local) solver_options_update_internal(options, 0, spec.local);
     options->dparam[SICONOS_DPARAM_TOL] = tol;
     options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+    for (int k = 0; k < spec.n_settings; k++) {
+      if (spec.settings[k].kind == 'i')
+        options->iparam[spec.settings[k].index] = (int)spec.settings[k].value;
+      else
+        options->dparam[spec.settings[k].index] = spec.settings[k].value;
+    }
 
     double t0 = now_seconds();
     int rep_info = fc3d_driver(problem, reaction, velocity, options);

@@ -11,11 +11,12 @@
 # Options (lists are comma- or space-separated; $DATA is $FC3D_SICONOS_DATA, default ../shared/data/siconos):
 #   --problems LIST    names in $DATA (with or without .dat) or paths to .dat files
 #                      (default: every 3D local problem of $DATA; --quick: 6 small ones)
-#   --solvers LIST     500 or 500/<local id> (default: 500/565,500/550,500/551,500/552,500/553,500/557;
-#                      --quick: 500/565,500/552)
+#   --solvers LIST     a solver id, or 500/<local id>, each optionally followed by ":i<k>=<v>" /
+#                      ":d<k>=<v>" settings, e.g. 507 or 506:i10=1 (default: 500/565,500/550,500/551,
+#                      500/552,500/553,500/557; --quick: 500/565,500/552)
 #   --tols LIST        tolerances (default 1e-8)
 #   --reps N           timed repetitions, median reported (default 3; --quick: 1)
-#   --max-iter N       NSGS iteration limit (default 100000)
+#   --max-iter N       iteration limit (default 100000)
 #   --timeout S        cap on each solve process, recorded as "timeout" (default 60)
 #   --rep-budget S     repeat a solve only while the time spent plus its longest repetition stays
 #                      within S seconds, so long solves get fewer repetitions (default: timeout / 2)

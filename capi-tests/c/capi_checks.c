@@ -426,6 +426,15 @@ int capi_check_bad_input(const char* data_dir) {
   EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
   CHECK(strstr(fc3d_last_error_message(), "FC3D_GAMS_PATH") != NULL, "message should name the solver: %s",
         fc3d_last_error_message());
+  /* Not top-level solvers in Siconos 4.4 either (its fc3d_driver: "Unknown solver"). */
+  int not_top_level[] = {SICONOS_FRICTION_3D_NCPGlockerFBFixedPoint, SICONOS_FRICTION_3D_VI_FPP_Cylinder,
+                         SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER};
+  for (size_t k = 0; k < sizeof not_top_level / sizeof not_top_level[0]; k++) {
+    o->solverId = not_top_level[k];
+    EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
+    CHECK(strstr(fc3d_last_error_message(), "not a top-level friction solver") != NULL,
+          "message should give the reason: %s", fc3d_last_error_message());
+  }
   o->solverId = SICONOS_FRICTION_3D_NSGS;
   o->internalSolvers[0]->solverId = SICONOS_FRICTION_3D_NCPGlockerFBPATH; /* needs PATH too */
   EXPECT_CODE(fc3d_driver(&p, r, u, o), FC3D_ERR_UNSUPPORTED_SOLVER);
@@ -873,6 +882,9 @@ int capi_check_options(void) {
 
 /* ---- VI / fixed-point family (505, 506, 507, 511, 512) and ADMM (523) ------------------------ */
 
+/* When 1, solve_one_with sets Siconos' in-line-search update (iparam[10] = 1) on 506/507. */
+static int vi_update_in_line_search = 0;
+
 static int solve_one_with(const char* name, int id, double W[9], double q[3], double mu, const double r_exp[3],
                           const double u_exp[3]) {
   NumericsMatrix M = {0};
@@ -884,6 +896,7 @@ static int solve_one_with(const char* name, int id, double W[9], double q[3], do
   CHECK(o != NULL, "solver_options_create(%d)", id);
   o->dparam[SICONOS_DPARAM_TOL] = 1e-13;
   o->iparam[SICONOS_IPARAM_MAX_ITER] = 100000;
+  if (vi_update_in_line_search) o->iparam[10] = 1; /* SICONOS_VI_IPARAM_ACTIVATE_UPDATE */
   double r[3] = {0, 0, 0}, u[3] = {0, 0, 0};
   int info = fc3d_driver(&p, r, u, o);
   double err = o->dparam[SICONOS_DPARAM_RESIDU];
@@ -900,24 +913,35 @@ static int solve_one_with(const char* name, int id, double W[9], double q[3], do
 }
 
 int capi_check_vi_admm_single_contacts(void) {
-  int ids[] = {SICONOS_FRICTION_3D_DSFP, SICONOS_FRICTION_3D_VI_FPP, SICONOS_FRICTION_3D_VI_EG,
-               SICONOS_FRICTION_3D_FPP,  SICONOS_FRICTION_3D_EG,     SICONOS_FRICTION_3D_ADMM};
-  for (size_t k = 0; k < sizeof ids / sizeof ids[0]; k++) {
-    int id = ids[k];
+  /* HP (508) is Siconos' algorithm: its search along W w + q (no De Saxce term) stalls on a
+     sliding contact, so it is checked on take-off and stick only. */
+  struct {
+    int id, update, slides;
+  } cases[] = {
+      {SICONOS_FRICTION_3D_DSFP, 0, 1}, {SICONOS_FRICTION_3D_VI_FPP, 0, 1}, {SICONOS_FRICTION_3D_VI_EG, 0, 1},
+      {SICONOS_FRICTION_3D_VI_FPP, 1, 1}, {SICONOS_FRICTION_3D_VI_EG, 1, 1}, {SICONOS_FRICTION_3D_HP, 0, 0},
+      {SICONOS_FRICTION_3D_FPP, 0, 1},  {SICONOS_FRICTION_3D_EG, 0, 1},     {SICONOS_FRICTION_3D_ADMM, 0, 1},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+    int id = cases[k].id;
+    vi_update_in_line_search = cases[k].update;
     /* W_NN = 1.25 keeps the fixed rho = 1 of 505/511 inside the stability range rho < 2 / W_NN. */
     double Wd[9] = {1.25, 0, 0, 0, 1, 0, 0, 0, 1};
+    int failed = 0;
     { /* take-off: q_N > 0 gives r = 0, u = q */
       double q[3] = {1, 0.5, 0}, re[3] = {0, 0, 0}, ue[3] = {1, 0.5, 0};
-      if (solve_one_with("take-off", id, Wd, q, 0.3, re, ue)) return 1;
+      failed = failed || solve_one_with("take-off", id, Wd, q, 0.3, re, ue);
     }
     { /* stick: r_N = 2 / 1.25 = 1.6, ||r_T|| = 0.1 < mu r_N */
       double q[3] = {-2, 0.1, 0}, re[3] = {1.6, -0.1, 0}, ue[3] = {0, 0, 0};
-      if (solve_one_with("stick", id, Wd, q, 0.5, re, ue)) return 1;
+      failed = failed || solve_one_with("stick", id, Wd, q, 0.5, re, ue);
     }
-    { /* slide: r_N = 1.6, r_T = -mu r_N (0.6, 0.8), u_T = q_T + r_T along q_T */
+    if (cases[k].slides) { /* slide: r_N = 1.6, r_T = -mu r_N (0.6, 0.8), u_T = q_T + r_T along q_T */
       double q[3] = {-2, 3, 4}, re[3] = {1.6, -0.48, -0.64}, ue[3] = {0, 2.52, 3.36};
-      if (solve_one_with("slide", id, Wd, q, 0.5, re, ue)) return 1;
+      failed = failed || solve_one_with("slide", id, Wd, q, 0.5, re, ue);
     }
+    vi_update_in_line_search = 0;
+    if (failed) return 1;
   }
   return 0;
 }
@@ -939,11 +963,12 @@ int capi_check_vi_admm_options(void) {
       {SICONOS_FRICTION_3D_FPP, 1, 3, 0.0},     /* rho = 0 */
       {SICONOS_FRICTION_3D_VI_FPP, 0, 6, 2},    /* Han-Sun line search */
       {SICONOS_FRICTION_3D_VI_EG, 0, 7, 3},     /* adaptive error evaluation */
-      {SICONOS_FRICTION_3D_VI_EG, 0, 10, 1},    /* update inside the line search */
+      {SICONOS_FRICTION_3D_VI_EG, 0, 10, 2},    /* update inside the line search: 0 or 1 */
       {SICONOS_FRICTION_3D_VI_FPP, 1, 6, 1.5},  /* L outside (0, 1) */
       {SICONOS_FRICTION_3D_ADMM, 0, 9, 1},      /* unknown rho strategy */
       {SICONOS_FRICTION_3D_ADMM, 0, 12, 3},     /* symmetrizing W */
       {SICONOS_FRICTION_3D_ADMM, 0, 15, 1},     /* frozen De Saxce term */
+      {SICONOS_FRICTION_3D_ADMM, 0, 3, 2},      /* balancing rescaling (Siconos ADMM: scalar only) */
       {SICONOS_FRICTION_3D_ADMM, 1, 5, 0.5},    /* balancing tau <= 1 with balancing on */
   };
   for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {

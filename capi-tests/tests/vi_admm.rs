@@ -1,4 +1,4 @@
-//! The VI / fixed-point family (505, 506, 507, 511, 512) and ADMM (523) through `fc3d_driver`:
+//! The VI / projection family (505, 506, 507, 508, 511, 512) and ADMM (523) through `fc3d_driver`:
 //! analytic single contacts and rejected options in C, and shared problems in every storage,
 //! cross-checked bit for bit against the Rust API with the same (Siconos default) options.
 
@@ -52,7 +52,7 @@ fn rust_problem(p: &FrictionProblem<'static>, storage: c_int) -> FrictionProblem
 }
 
 /// (problem, solver id, expected to converge at 1e-8 within max_iter).
-const CASES: [(&str, c_int, bool); 14] = [
+const CASES: [(&str, c_int, bool); 16] = [
     ("NESpheres_10_1.dat", 505, true),
     ("NESpheres_10_1.dat", 506, true),
     ("NESpheres_10_1.dat", 507, true),
@@ -62,6 +62,8 @@ const CASES: [(&str, c_int, bool); 14] = [
     ("Confeti-ex03-Fc3D-SBM.dat", 505, false),
     ("Confeti-ex03-Fc3D-SBM.dat", 506, true),
     ("Confeti-ex03-Fc3D-SBM.dat", 507, true),
+    ("Confeti-ex03-Fc3D-SBM.dat", 508, false),
+    ("Confeti-ex03-Fc3D-SBM.dat", 511, true),
     ("Confeti-ex03-Fc3D-SBM.dat", 512, true),
     // With Siconos' default (given rho = 1) ADMM stops at 3000 iterations with 6.33e-4, as
     // Siconos 4.4 does (info 1, 3000 iterations, 6.33186e-4).

@@ -49,7 +49,10 @@ pub use solvers::planar::{PlanarMethod, PlanarNsgsOptions};
 pub use solvers::prox::{ProxInternal, ProxOptions};
 pub use solvers::soclcp::SoclcpOptions;
 pub use solvers::tresca::{TrescaInnerSolver, TrescaOptions};
-pub use solvers::vi::{SelfAdaptiveStep, StepRatio, StepSize, ViOptions, ViSolver};
+pub use solvers::vi::{
+    ExtraGradientCorrection, HyperplaneSearch, SelfAdaptiveStep, StepRatio, StepSize, TrialStart,
+    ViIteration, ViOptions, ViSolver,
+};
 
 /// The README's Rust examples are compiled and run as doctests.
 #[cfg(doctest)]

@@ -111,6 +111,39 @@ fn shared_problems_in_every_storage() {
 }
 
 #[test]
+fn shift_grows_tenfold_when_the_internal_solve_fails() {
+    // Siconos' proximal strategy: the internal Newton fails on BoxesStack1 at the small first
+    // shifts, and the shift grows by 10 until it succeeds. Siconos 4.4 (test_prox_1, case 1:
+    // tol 1e-8, alpha 1e4): 7 proximal iterations, error 1.2e-9; without the growth fc3d ran
+    // past 120 s.
+    let p = shared("BoxesStack1-i100000-32.hdf5.dat");
+    let c = SolverConfig::new(ProxOptions::default())
+        .with_tolerance(1e-8)
+        .with_max_iter(1000);
+    let (rep, r, _) = run(&p, &c);
+    assert_eq!(rep.status, SolveStatus::Converged, "{rep:?}");
+    assert_eq!(rep.iterations, 7);
+    let mut u = vec![0.0; p.size()];
+    assert!(natural_map_error(&p, &r, &mut u) <= 1e-8);
+}
+
+#[test]
+fn negative_alpha_is_a_fixed_shift() {
+    // Siconos' dparam[3] < 0: the shift stays at -alpha.
+    let p = shared("NESpheres_10_1.dat");
+    let c = SolverConfig::new(ProxOptions {
+        alpha: -1.0,
+        ..ProxOptions::default()
+    })
+    .with_tolerance(1e-8)
+    .with_max_iter(1000);
+    let (rep, r, _) = run(&p, &c);
+    assert_eq!(rep.status, SolveStatus::Converged, "{rep:?}");
+    let mut u = vec![0.0; p.size()];
+    assert!(natural_map_error(&p, &r, &mut u) <= 1e-8);
+}
+
+#[test]
 fn failures_are_honest_and_finite() {
     let p = shared("Confeti-ex13-Fc3D-SBM.dat");
     for internal in internals() {
@@ -139,6 +172,14 @@ fn bad_options_are_rejected() {
         },
         ProxOptions {
             internal: ProxInternal::NsnAc(NsnOptions::new(NsnFormulation::NaturalMap)),
+            ..ProxOptions::default()
+        },
+        ProxOptions {
+            alpha: 0.0,
+            ..ProxOptions::default()
+        },
+        ProxOptions {
+            alpha: f64::NAN,
             ..ProxOptions::default()
         },
     ] {

@@ -5,7 +5,7 @@
 //! a general sparse LU, exact for any W: the symmetry choices of iparam[12] that keep W as it is
 //! (0 check, 1 forced symmetric, 2 forced asymmetric, 4 assume) all lead there; 3 would
 //! symmetrize W, i.e. solve another problem. iparam[13] (forced sparse storage) is what fc3d
-//! always does: any value is accepted.
+//! always does: any value is accepted. iparam[3] rescaling: 0 none, 1 scalar (||W||_inf).
 
 use super::{invalid, Params, IPARAM_RESCALING};
 use crate::CResult;
@@ -52,7 +52,11 @@ pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
         0 | 1 | 2 | 4 => {}
         other => return Err(invalid(format!("ADMM: symmetry (iparam[12]) = {other} is not implemented in fc3d (W is never symmetrized; 0, 1, 2, 4 accepted)"))),
     }
-    p.require(IPARAM_RESCALING, 0, "rescaling")?;
+    a.scalar_rescaling = match p.iparam[IPARAM_RESCALING] {
+        0 => false,
+        1 => true,
+        other => return Err(invalid(format!("ADMM: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none, 1 scalar; Siconos' ADMM ignores the balancing values)"))),
+    };
     p.require(IPARAM_GET_PROBLEM_INFO, 0, "problem info printing")?;
     p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
     p.require(IPARAM_FULL_H, 0, "full H")?;

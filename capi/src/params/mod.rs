@@ -183,6 +183,33 @@ fn unfinished_in_siconos(id: c_int) -> Option<&'static str> {
     }
 }
 
+/// Ids of Friction_cst.h that Siconos 4.4 itself does not run as top-level solvers: its
+/// `fc3d_driver` has no case for them and stops with "Unknown solver". fc3d rejects them with
+/// the reason (the evidence is in Siconos 4.4.0's sources, cited in README.md).
+fn not_a_top_level_solver(id: c_int) -> Option<CError> {
+    let why = match id {
+        510 => {
+            "in Siconos 4.4 an NSGS local solver only, and an unfinished one: its fixed point \
+             (NCP_FixedP.c, compute_Z_GlockerFixedP) never recomputes the Glocker map inside the \
+             loop, fc3d_FixedP_solve never maps the result back to the contact's reaction (the call \
+             to its post-solver is commented out) and exits the process when it does not converge"
+        }
+        566 | 567 => {
+            "in Siconos 4.4 a Tresca (cylinder) sub-problem solver of TFP (503) only: set it as \
+             TFP's internal solver (internalSolvers[0]->solverId)"
+        }
+        _ => return None,
+    };
+    Some(CError::new(
+        FC3D_ERR_UNSUPPORTED_SOLVER,
+        format!(
+            "solver id {id} ({}) is not a top-level friction solver: {why}; Siconos' fc3d_driver \
+             rejects it too (\"Unknown solver\")",
+            solver_name(id).to_string_lossy()
+        ),
+    ))
+}
+
 // ---------------------------------------------------------------------------------------------
 // Reading.
 
@@ -300,7 +327,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
     let internal = first_internal(o);
     let method = match id {
         500 => Method::Nsgs(nsgs::read(&p, internal)?),
-        505 | 506 | 507 | 511 | 512 => Method::Vi(vi::read(id, &p)?),
+        505 | 506 | 507 | 508 | 511 | 512 => Method::Vi(vi::read(id, &p)?),
         504 | 513 | 520 => Method::Nsn(nsn::read(id, &p)?),
         502 => Method::Prox(prox::read(&p, internal)?),
         503 => Method::Tresca(fixed_point::read_tfp(&p, internal)?),
@@ -321,7 +348,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
             local: local::read(o)?,
             ..Default::default()
         }),
-        _ => return Err(unsupported_solver(id)),
+        _ => return Err(not_a_top_level_solver(id).unwrap_or_else(|| unsupported_solver(id))),
     };
     let mut config = SolverConfig::new(method);
     config.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;

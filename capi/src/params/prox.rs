@@ -1,7 +1,9 @@
-//! PROX (502): dparam[3] alpha, dparam[4] sigma, dparam[5] nu; internal solver 0 is NSN_AC
-//! (504, Siconos' default) or NSGS (500), whose iteration limit bounds each internal solve (its
-//! tolerance is replaced by the proximal rule). Rejected: iparam[2] (internal error strategy
-//! other than error / 10), iparam[8] (relaxation), iparam[9] (other proximal strategies).
+//! PROX (502): dparam[3] alpha (> 0 variable shift, < 0 fixed shift -alpha, as Siconos),
+//! dparam[4] sigma, dparam[5] nu; internal solver 0 is NSN_AC (504, Siconos' default) or NSGS
+//! (500), whose iteration limit bounds each internal solve (its tolerance is replaced by the
+//! proximal rule). Rejected: iparam[2] (internal error strategy other than Siconos' adaptive
+//! max(error / 10, tol / contacts)), iparam[8] (relaxation), iparam[9] (other proximal
+//! strategies).
 
 use super::{config_from_node, Params};
 use crate::types::SolverOptions;
@@ -28,7 +30,7 @@ pub(super) unsafe fn read(
     p.require(
         IPARAM_ERROR_STRATEGY,
         0,
-        "proximal internal error strategy (0 = error / 10)",
+        "proximal internal error strategy (0 = adaptive)",
     )?;
     p.require(IPARAM_RELAXATION, 0, "proximal relaxation")?;
     p.require(IPARAM_STRATEGY, 0, "proximal strategy (0 = proximal point)")?;

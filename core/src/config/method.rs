@@ -53,7 +53,7 @@ macro_rules! methods {
 methods! {
     /// Nonsmooth Gauss-Seidel (Siconos id 500).
     Nsgs(NsgsOptions),
-    /// Projection / extragradient methods on the VI form (Siconos ids 505, 506, 507, 511, 512).
+    /// Projection / extragradient / hyperplane methods on the VI form (Siconos ids 505, 506, 507, 508, 511, 512).
     Vi(ViOptions),
     /// Nonsmooth Newton: Alart-Curnier / Jean-Moreau (504), Fischer-Burmeister (513), natural
     /// map (520).

@@ -89,6 +89,26 @@ impl ErrorSchedule {
         r: &[f64],
         measure: impl FnOnce(Measure) -> f64,
     ) -> Test {
+        self.test_with(iteration, || cheap_error(increment_sq, r), measure)
+    }
+
+    /// [`ErrorSchedule::test`] with the cheap error given by the caller (a family whose cheap
+    /// error is not the increment (134), such as Siconos' VI extragradient).
+    pub fn test_light(
+        &mut self,
+        iteration: usize,
+        light: f64,
+        measure: impl FnOnce(Measure) -> f64,
+    ) -> Test {
+        self.test_with(iteration, || light, measure)
+    }
+
+    fn test_with(
+        &mut self,
+        iteration: usize,
+        light: impl FnOnce() -> f64,
+        measure: impl FnOnce(Measure) -> f64,
+    ) -> Test {
         let tested = iteration.is_multiple_of(self.frequency) || iteration == self.max_iter;
         if !tested {
             return Test {
@@ -107,11 +127,11 @@ impl ErrorSchedule {
                 (e, true, e <= tol)
             }
             ErrorEvaluation::Light => {
-                let e = cheap_error(increment_sq, r);
+                let e = light();
                 (e, false, e <= tol)
             }
             ErrorEvaluation::LightWithFullFinal => {
-                let light = cheap_error(increment_sq, r);
+                let light = light();
                 if light <= self.light_tolerance {
                     let full = measure(Measure::NaturalMap);
                     if full > tol {

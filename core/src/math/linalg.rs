@@ -207,6 +207,11 @@ pub fn bounded(v: &[f64]) -> bool {
 /// See [`bounded`].
 pub const DIVERGENCE_BOUND: f64 = 1e100;
 
+/// `a·b` for slices of equal length.
+pub fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
 /// `||a - b||^2` for slices of equal length.
 pub fn distance_sq(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()

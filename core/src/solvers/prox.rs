@@ -1,9 +1,10 @@
 //! Proximal point method (PROX, Siconos id 502; Algorithm 8 of Acary-Brémond-Huber with
 //! omega = 1): from `r_k`, solve the regularized problem FC(W + a_k I, q - a_k r_k, mu) with an
 //! internal solver (NSN-AC: PPA-NSN-AC, or NSGS: PPA-NSGS-AC) to the internal tolerance
-//! `error_k / 10` (section 6.3), take its solution as `r_{k+1}`, and update the shift by
-//! Siconos' variable rule `a_k = sigma error_k^nu` (read off Siconos 4.4's trace: its first shift
-//! is `sigma` times the error of the initial guess), capped by `alpha`.
+//! `max(error_k / 10, tol / n_contacts)` (Siconos' adaptive rule), and take its solution as
+//! `r_{k+1}`. The shift follows Siconos 4.4's proximal strategy: with `alpha > 0` it starts at
+//! `sigma error_0^nu` and, after each step, becomes `sigma error_{k+1}^nu` when the internal
+//! solve converged and `10 a_k` when it did not; with `alpha < 0` it is the fixed `-alpha`.
 
 use std::time::{Duration, Instant};
 
@@ -38,7 +39,8 @@ impl ProxInternal {
 /// proximal iterations and a tolerance of 1e-4.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProxOptions {
-    /// Largest diagonal shift `a_k` (Siconos' alpha, dparam[3], 1e4).
+    /// Siconos' alpha (dparam[3], default 1e4): > 0 selects the variable shift (its value is
+    /// then not used, as in Siconos), < 0 the fixed shift `-alpha`.
     pub alpha: f64,
     /// Factor of the shift rule `a_k = sigma error_k^nu` (dparam[4], 5).
     pub sigma: f64,
@@ -75,11 +77,13 @@ impl ProxOptions {
 
 impl ProxOptions {
     fn validate(&self) -> Result<(), Fc3dError> {
-        for (setting, v) in [
-            ("prox.alpha", self.alpha),
-            ("prox.sigma", self.sigma),
-            ("prox.nu", self.nu),
-        ] {
+        require_setting(
+            self.alpha.is_finite() && self.alpha.abs() >= 1e-12,
+            "prox.alpha",
+            self.alpha,
+            "finite with |alpha| >= 1e-12 (> 0 variable shift, < 0 fixed shift -alpha)",
+        )?;
+        for (setting, v) in [("prox.sigma", self.sigma), ("prox.nu", self.nu)] {
             require_setting(v > 0.0 && v.is_finite(), setting, v, "finite and > 0")?;
         }
         if let ProxInternal::NsnAc(n) = &self.internal {
@@ -215,18 +219,26 @@ fn prox(
     }
     let mut iterations = 0;
     let mut out_of_time = false;
+    let variable = options.alpha > 0.0;
+    let mut shift = if variable {
+        options.sigma * error.powf(options.nu)
+    } else {
+        -options.alpha
+    };
+    let tolerance_floor = run.tolerance / problem.n_contacts().max(1) as f64;
     for iteration in 1..=run.max_iter {
         iterations = iteration;
-        let shift = (options.sigma * error.powf(options.nu)).min(options.alpha);
         for ((sq, q), ri) in shifted_q.iter_mut().zip(problem.q()).zip(r.iter()) {
             *sq = q - shift * ri;
         }
-        let internal_tol = error / 10.0;
-        match &options.internal {
+        let internal_tol = (error / 10.0).max(tolerance_floor);
+        let internal_converged = match &options.internal {
             ProxInternal::NsnAc(_) => {
                 let solver = newton.as_mut().expect("built for NSN-AC");
                 let inner = run.inner(internal_tol, internal_max_iter);
-                solver.run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
+                solver
+                    .run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {})
+                    .converged
             }
             ProxInternal::Nsgs(g) => {
                 let inner = FrictionProblem::new(
@@ -244,9 +256,13 @@ fn prox(
                     max_iter: internal_max_iter,
                     time_budget,
                 };
-                nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
+                let outcome = nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
+                let inner_error = outcome
+                    .final_error
+                    .unwrap_or_else(|| natural_map_error(&inner, r, u));
+                inner_error <= internal_tol
             }
-        }
+        };
         error = natural_map_error(problem, r, u);
         best.offer(r, error);
         observer(&IterationEvent {
@@ -259,6 +275,16 @@ fn prox(
         }
         if !error.is_finite() {
             break;
+        }
+        if variable {
+            shift = if internal_converged {
+                options.sigma * error.powf(options.nu)
+            } else {
+                10.0 * shift
+            };
+            if !(shift.is_finite() && shift > 0.0) {
+                break;
+            }
         }
         if run.out_of_time() {
             out_of_time = true;

@@ -1,13 +1,15 @@
 //! ADMM on the local formulation (Siconos' `fc3d_admm`, id 523).
 //!
 //! With De Saxcé's term `s(u)_c = (mu_c ||u_{T,c}||, 0, 0)` frozen at the last velocity, r solves
-//! FC(W, q, mu) iff `0 ∈ W r + q + s + N_K(r)`. ADMM splits `r = z`, `z ∈ K` (scaled dual `ξ`):
+//! FC(W, q, mu) iff `0 ∈ W r + q + s + N_K(r)`. ADMM splits `r = z`, `z ∈ K` (scaled dual `ξ`);
+//! each iteration, as Siconos 4.4's (its "symmetric" variant, the one its default options run):
 //!
+//! * `s = s(W x + q)` at the previous x (the starting reaction for the first iteration);
 //! * `x = (W + rho I)^{-1} (rho (ẑ - ξ̂) - q - s)` (the resolvent of the affine part: valid for
 //!   a non-symmetric W, which is never symmetrized);
 //! * `z = P_K(x + ξ̂)`;
 //! * `ξ = ξ̂ + x - z`;
-//! * `u = W z + q`, `s = s(u)` (Siconos' UPDATE_S = yes); the returned reaction is `z`.
+//! * the iterate measured and returned is x (as Siconos'; x = z at a fixed point).
 //!
 //! At a fixed point `rho ξ = -(W z + q + s) ∈ N_K(z)`, which is the frictional contact law.
 //! `(ẑ, ξ̂)` are the previous iterates, or their Nesterov extrapolation when accelerated (fast ADMM
@@ -15,6 +17,11 @@
 //! The penalty rho starts from a given value, `||W||_inf`, or `sqrt(lambda_max lambda_min)` of W,
 //! and may follow residual balancing (Boyd et al. §3.4.1). `W + rho I` is factored with faer's
 //! sparse LU once per rho value (symbolic analysis once per solve).
+//!
+//! One difference from Siconos, in the stopping test only: fc3d measures the natural-map error
+//! of x at every iteration (free: `W x + q` is needed for the next De Saxcé term), where Siconos
+//! measures it only once its primal and dual residuals pass; fc3d therefore stops at the first
+//! iteration whose error is below the tolerance, never later than Siconos on the same iterates.
 
 mod settings;
 
@@ -185,6 +192,14 @@ fn power_iteration(
     lambda
 }
 
+/// `||W||_inf`, the largest absolute row sum, when positive and finite.
+fn norm_inf(problem: &FrictionProblem<'_>) -> Option<f64> {
+    let mut row_sums = vec![0.0; problem.size()];
+    problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
+    let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
+    (norm_inf > 0.0 && norm_inf.is_finite()).then_some(norm_inf)
+}
+
 /// See [`AdmmInitialRho::Eigenvalues`].
 const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
 
@@ -198,16 +213,7 @@ fn initial_rho(
     let (x, y) = work;
     match options.initial_rho {
         AdmmInitialRho::Given => options.rho,
-        AdmmInitialRho::NormInf => {
-            let mut row_sums = vec![0.0; problem.size()];
-            problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
-            let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
-            if norm_inf > 0.0 && norm_inf.is_finite() {
-                norm_inf
-            } else {
-                options.rho
-            }
-        }
+        AdmmInitialRho::NormInf => norm_inf(problem).unwrap_or(options.rho),
         AdmmInitialRho::Eigenvalues => {
             let w = problem.w();
             let lambda_max = power_iteration(x, y, deadline, |a, b| {
@@ -264,6 +270,7 @@ fn admm(
 
     // Work vectors, allocated once.
     let mut x = vec![0.0; n];
+    let mut z = vec![0.0; n];
     let mut xi = vec![0.0; n];
     let mut z_prev = vec![0.0; n];
     let mut xi_prev = vec![0.0; n];
@@ -282,20 +289,27 @@ fn admm(
     if !(rho > 0.0 && rho.is_finite()) {
         rho = 1.0;
     }
+    // Siconos' scalar rescaling runs the iteration on (W / a, q / a), a = ||W||_inf, with the
+    // rho chosen for W: the same iterates as rho a on (W, q), with the dual residual in the
+    // rescaled units (rho ||z - ẑ||, divided by a).
+    let scale = if options.scalar_rescaling {
+        norm_inf(problem).unwrap_or(1.0)
+    } else {
+        1.0
+    };
+    rho *= scale;
     if !system.factor(rho) {
         return Err(Fc3dError::InvalidStructure(format!(
             "ADMM: W + rho I is singular for rho = {rho}"
         )));
     }
 
-    // Start from the given reaction, projected on K (z must be feasible).
-    for (c, &m) in mu.iter().enumerate() {
-        let k = 3 * c;
-        let p = project_on_cone(&[r[k], r[k + 1], r[k + 2]], m);
-        r[k..k + 3].copy_from_slice(&p);
-    }
+    // Siconos' iteration (its "symmetric" ADMM, the one its default options run): the iterate
+    // is the solution x of the linear step, the De Saxcé term is taken at u = W x + q, and x is
+    // what is measured and returned (z = P_K(x + ξ̂) is the feasible copy; x = z at a fixed
+    // point). It starts from the given reaction as x, z and ẑ, with ξ = 0.
     problem.velocity(r, u);
-    de_saxce_term(mu, u, &mut s);
+    x.copy_from_slice(r);
     z_prev.copy_from_slice(r);
     z_hat.copy_from_slice(r);
 
@@ -303,17 +317,18 @@ fn admm(
     let mut combined_prev = f64::INFINITY;
 
     for iteration in 1..=run.max_iter {
-        // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s.
+        // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s(W x_prev + q).
+        de_saxce_term(mu, u, &mut s);
         for i in 0..n {
             x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - s[i];
         }
         system.solve_in_place(&mut x);
         if !bounded(&x) {
-            // Diverging, or the factorization lost all accuracy: keep the last z (r and
+            // Diverging, or the factorization lost all accuracy: keep the last x (r and
             // u = W r + q are still those of the previous iteration) and stop.
             return Ok(SolverOutcome::diverged(iteration));
         }
-        // z- and dual updates; r holds z.
+        // z- and dual updates.
         for (c, &m) in mu.iter().enumerate() {
             let k = 3 * c;
             let v = [
@@ -321,13 +336,13 @@ fn admm(
                 x[k + 1] + xi_hat[k + 1],
                 x[k + 2] + xi_hat[k + 2],
             ];
-            r[k..k + 3].copy_from_slice(&project_on_cone(&v, m));
+            z[k..k + 3].copy_from_slice(&project_on_cone(&v, m));
         }
         for i in 0..n {
-            xi[i] = xi_hat[i] + x[i] - r[i];
+            xi[i] = xi_hat[i] + x[i] - z[i];
         }
+        r.copy_from_slice(&x);
         problem.velocity(r, u);
-        de_saxce_term(mu, u, &mut s);
         let error = natural_map_error_of(problem, r, u);
         observer(&IterationEvent {
             iteration,
@@ -338,21 +353,21 @@ fn admm(
             return Ok(outcome);
         }
 
-        let primal = distance_sq(&x, r).sqrt();
-        let dual = rho * distance_sq(r, &z_hat).sqrt();
+        let primal = distance_sq(&x, &z).sqrt();
+        let dual = rho / scale * distance_sq(&z, &z_hat).sqrt();
 
         // Next extrapolation point.
         let combined = primal * primal + dual * dual;
         match options.acceleration {
             AdmmAcceleration::None => {
-                z_hat.copy_from_slice(r);
+                z_hat.copy_from_slice(&z);
                 xi_hat.copy_from_slice(&xi);
             }
             AdmmAcceleration::Accelerated if combined < options.restart_eta * combined_prev => {
                 let alpha_next = 0.5 * (1.0 + (1.0 + 4.0 * alpha * alpha).sqrt());
                 let beta = (alpha - 1.0) / alpha_next;
                 for i in 0..n {
-                    z_hat[i] = r[i] + beta * (r[i] - z_prev[i]);
+                    z_hat[i] = z[i] + beta * (z[i] - z_prev[i]);
                     xi_hat[i] = xi[i] + beta * (xi[i] - xi_prev[i]);
                 }
                 alpha = alpha_next;
@@ -366,7 +381,7 @@ fn admm(
                 combined_prev /= options.restart_eta;
             }
         }
-        z_prev.copy_from_slice(r);
+        z_prev.copy_from_slice(&z);
         xi_prev.copy_from_slice(&xi);
 
         // Penalty update (residual balancing); the scaled dual follows rho so that rho ξ is kept.
@@ -374,8 +389,8 @@ fn admm(
             AdmmRhoStrategy::Constant => continue,
             AdmmRhoStrategy::ResidualBalancing => (primal, dual),
             AdmmRhoStrategy::ScaledResidualBalancing => {
-                let scale_p = norm(&x).max(norm(r));
-                let scale_d = rho * norm(&xi);
+                let scale_p = norm(&x).max(norm(&z));
+                let scale_d = rho / scale * norm(&xi);
                 (
                     if scale_p > 0.0 {
                         primal / scale_p
@@ -400,14 +415,10 @@ fn admm(
             continue;
         }
         rho = new_rho;
+        // Siconos rescales the scaled duals and keeps the extrapolation and its momentum.
         for v in [&mut xi, &mut xi_hat, &mut xi_prev] {
             v.iter_mut().for_each(|e| *e /= factor);
         }
-        // Momentum does not carry over a change of metric.
-        alpha = 1.0;
-        combined_prev = f64::INFINITY;
-        z_hat.copy_from_slice(r);
-        xi_hat.copy_from_slice(&xi);
     }
     Ok(run.exhausted())
 }

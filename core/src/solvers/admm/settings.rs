@@ -5,12 +5,12 @@ use crate::error::{require_setting, Fc3dError};
 /// How the first rho is chosen (Siconos' iparam[10]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AdmmInitialRho {
-    /// [`AdmmOptions::rho`] as given [0].
+    /// [`AdmmOptions::rho`] as given [0, Siconos' default].
     Given,
     /// `||W||_inf`, the largest absolute row sum [1].
     NormInf,
     /// `sqrt(lambda_max max(lambda_min, 1e-2 lambda_max))`, from the moduli of W's extreme
-    /// eigenvalues by power iterations on W and W^{-1} [2, Siconos' default]. The floor matters
+    /// eigenvalues by power iterations on W and W^{-1} [2]. The floor matters
     /// for the singular W of scenes with more contacts than degrees of freedom: there
     /// `lambda_min ≈ 0` gives a rho so small that `W + rho I` is numerically singular and the
     /// iteration diverges (measured on Rover1040, OneObject-i1028-138); with the floor, rho lies
@@ -37,7 +37,7 @@ pub enum AdmmAcceleration {
     None,
     /// Extrapolation, restarted from the previous iterate whenever the combined residual
     /// `||x - z||^2 + rho^2 ||z - ẑ||^2` does not decrease by the factor eta [1 and 2: Siconos 4.4
-    /// restarts in both modes; 1 is its default].
+    /// restarts in both modes; 2 is its default].
     Accelerated,
 }
 
@@ -47,7 +47,7 @@ pub enum AdmmAcceleration {
 pub struct AdmmOptions {
     /// rho for [`AdmmInitialRho::Given`] (default 1).
     pub rho: f64,
-    /// Default [`AdmmInitialRho::Eigenvalues`].
+    /// Default [`AdmmInitialRho::Given`].
     pub initial_rho: AdmmInitialRho,
     /// Default [`AdmmRhoStrategy::Constant`].
     pub rho_strategy: AdmmRhoStrategy,
@@ -59,18 +59,22 @@ pub struct AdmmOptions {
     pub balancing_tau: f64,
     /// Residual-balancing ratio phi > 1 (default 2).
     pub balancing_phi: f64,
+    /// Siconos' scalar rescaling (`iparam[3]` = 1): the iteration runs on `(W / a, q / a)`,
+    /// `a = ||W||_inf` (the same reactions), keeping the rho chosen for W. Default false.
+    pub scalar_rescaling: bool,
 }
 
 impl Default for AdmmOptions {
     fn default() -> Self {
         AdmmOptions {
             rho: 1.0,
-            initial_rho: AdmmInitialRho::Eigenvalues,
+            initial_rho: AdmmInitialRho::Given,
             rho_strategy: AdmmRhoStrategy::Constant,
             acceleration: AdmmAcceleration::Accelerated,
             restart_eta: 0.999,
             balancing_tau: 2.0,
             balancing_phi: 2.0,
+            scalar_rescaling: false,
         }
     }
 }
