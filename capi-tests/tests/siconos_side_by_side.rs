@@ -27,8 +27,10 @@ fn small_functions_agree_with_siconos() {
     build
         .args(["build", "-p", "fc3d", "--lib"])
         .current_dir(root());
-    if profile_dir.file_name().unwrap() == "release" {
-        build.arg("--release");
+    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
+    let profile = profile_dir.file_name().unwrap().to_str().unwrap();
+    if profile != "debug" {
+        build.args(["--profile", profile]);
     }
     assert!(build.status().unwrap().success(), "cargo build -p fc3d");
     let lib = profile_dir.join("libfc3d.so");

@@ -138,8 +138,10 @@ fn exported() -> Option<BTreeSet<String>> {
     let profile_dir = exe.parent()?.parent()?;
     let mut build = Command::new(env!("CARGO"));
     build.args(["build", "-p", "fc3d", "--lib"]);
-    if profile_dir.file_name()? == "release" {
-        build.arg("--release");
+    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
+    let profile = profile_dir.file_name()?.to_str()?;
+    if profile != "debug" {
+        build.args(["--profile", profile]);
     }
     let status = build.current_dir(root()).status().ok()?;
     assert!(status.success(), "cargo build -p fc3d failed");
