@@ -26,6 +26,11 @@ typedef void (*verbose_fn)(int);
 typedef FrictionContactProblem* (*copy_fn)(FrictionContactProblem*);
 typedef void (*rescale_fn)(FrictionContactProblem*, double, double);
 typedef void (*free_problem_fn)(FrictionContactProblem*);
+typedef NumericsMatrix* (*nm_new_fn)(void);
+typedef NumericsMatrix* (*nm_create_fn)(int, int, int);
+typedef NumericsMatrix* (*nm_create_from_data_fn)(int, int, int, void*);
+typedef void (*nm_null_fn)(NumericsMatrix*);
+typedef NumericsMatrix* (*nm_free_fn)(NumericsMatrix*);
 
 static void* libs[2];
 static const char* lib_names[2] = {"fc3d", "Siconos"};
@@ -401,6 +406,86 @@ static void check_copy_and_rescaling(void) {
   }
 }
 
+/* What a host can see of a matrix the library made: storage, sizes, versions, which storage
+   pointers are set, whether it is its own destructible matrix. */
+static int matrix_state(NumericsMatrix* M, double* out) {
+  int k = 0;
+  out[k++] = M->storageType;
+  out[k++] = M->size0;
+  out[k++] = M->size1;
+  out[k++] = (double)M->version.number;
+  out[k++] = M->destructible == M;
+  out[k++] = M->matrix0 != NULL;
+  out[k++] = M->matrix1 != NULL;
+  out[k++] = M->matrix2 != NULL;
+  out[k++] = M->internalData != NULL;
+  if (M->matrix1) {
+    out[k++] = (double)M->matrix1->version.number;
+    out[k++] = M->matrix1->nbblocks;
+    out[k++] = M->matrix1->filled1;
+  }
+  if (M->matrix2) {
+    out[k++] = M->matrix2->origin;
+    /* Slot 0 (NSM_UNKNOWN) is left uninitialised by Siconos' NSM_new. */
+    for (int v = 1; v < 5; v++) out[k++] = (double)M->matrix2->versions[v].number;
+    out[k++] = M->matrix2->triplet != NULL;
+    out[k++] = M->matrix2->csc != NULL;
+  }
+  if (M->storageType == NM_DENSE && M->matrix0)
+    for (int i = 0; i < M->size0 * M->size1; i++) out[k++] = M->matrix0[i];
+  return k;
+}
+
+/* NM_new, NM_null, NM_create, NM_create_from_data: the same state (Siconos' NM_null state,
+   versions counted alike, destructible). */
+static void check_matrix_creation(void) {
+  nm_new_fn nw[2] = {(nm_new_fn)sym(0, "NM_new"), (nm_new_fn)sym(1, "NM_new")};
+  nm_create_fn cr[2] = {(nm_create_fn)sym(0, "NM_create"), (nm_create_fn)sym(1, "NM_create")};
+  nm_create_from_data_fn cd[2] = {(nm_create_from_data_fn)sym(0, "NM_create_from_data"),
+                                  (nm_create_from_data_fn)sym(1, "NM_create_from_data")};
+  nm_null_fn nl[2] = {(nm_null_fn)sym(0, "NM_null"), (nm_null_fn)sym(1, "NM_null")};
+  nm_free_fn fr[2] = {(nm_free_fn)sym(0, "NM_free"), (nm_free_fn)sym(1, "NM_free")};
+  static double st[2][200];
+  int len[2];
+  for (int c = 0; c < 7; c++) {
+    for (int w = 0; w < 2; w++) {
+      NumericsMatrix* M = NULL;
+      NumericsMatrix on_stack;
+      switch (c) {
+        case 0: M = nw[w](); break;
+        case 1: M = cr[w](NM_DENSE, 3, 4); break;
+        case 2: M = cr[w](NM_SPARSE_BLOCK, 6, 6); break;
+        case 3: M = cr[w](NM_SPARSE, 6, 6); break;
+        case 4: {
+          double* data = malloc(6 * sizeof(double));
+          for (int i = 0; i < 6; i++) data[i] = i + 0.5;
+          M = cd[w](NM_DENSE, 2, 3, data);
+          break;
+        }
+        case 5: {
+          SparseBlockStructuredMatrix* s = calloc(1, sizeof *s);
+          s->version.number = 5;
+          M = cd[w](NM_SPARSE_BLOCK, 0, 0, s);
+          break;
+        }
+        case 6:
+          memset(&on_stack, 0x5a, sizeof on_stack);
+          nl[w](&on_stack);
+          len[w] = matrix_state(&on_stack, st[w]);
+          continue;
+      }
+      len[w] = matrix_state(M, st[w]);
+      fr[w](M);
+    }
+    if (len[0] != len[1]) {
+      fprintf(stderr, "matrix creation %d: %d values, Siconos %d\n", c, len[0], len[1]);
+      failures++;
+    } else {
+      compare("matrix creation", c, st[0], st[1], len[0]);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
@@ -422,6 +507,7 @@ int main(int argc, char** argv) {
   check_problem_functions();
   check_statistics();
   check_copy_and_rescaling();
+  check_matrix_creation();
   if (failures) {
     fprintf(stderr, "%d values differ\n", failures);
     return 1;
