@@ -31,6 +31,10 @@ typedef NumericsMatrix* (*nm_create_fn)(int, int, int);
 typedef NumericsMatrix* (*nm_create_from_data_fn)(int, int, int, void*);
 typedef void (*nm_null_fn)(NumericsMatrix*);
 typedef NumericsMatrix* (*nm_free_fn)(NumericsMatrix*);
+typedef SparseBlockCoordinateMatrix* (*sbcm_new_fn)(unsigned, unsigned, unsigned, unsigned*, unsigned*, double*);
+typedef SparseBlockStructuredMatrix* (*sbcm_to_sbm_fn)(SparseBlockCoordinateMatrix*);
+typedef void (*sbcm_free_fn)(SparseBlockCoordinateMatrix*);
+typedef void (*sbm_free_fn)(SparseBlockStructuredMatrix*);
 
 static void* libs[2];
 static const char* lib_names[2] = {"fc3d", "Siconos"};
@@ -486,6 +490,67 @@ static void check_matrix_creation(void) {
   }
 }
 
+/* SBCM_new_3x3 and SBCM_to_SBM: the same coordinate and sparse-block structures, pointing at the
+   same caller's values, sharing what Siconos shares. (At least as many blocks as block rows and
+   columns: Siconos sizes blocksize0/1 by the block count and SBCM_to_SBM reads blocknumber0 of
+   them.) */
+static void check_coordinate_matrices(void) {
+  sbcm_new_fn nw[2] = {(sbcm_new_fn)sym(0, "SBCM_new_3x3"), (sbcm_new_fn)sym(1, "SBCM_new_3x3")};
+  sbcm_to_sbm_fn to[2] = {(sbcm_to_sbm_fn)sym(0, "SBCM_to_SBM"), (sbcm_to_sbm_fn)sym(1, "SBCM_to_SBM")};
+  sbcm_free_fn fc[2] = {(sbcm_free_fn)sym(0, "SBCM_free_3x3"), (sbcm_free_fn)sym(1, "SBCM_free_3x3")};
+  sbm_free_fn fs[2] = {(sbm_free_fn)sym(0, "SBM_free_from_SBCM"), (sbm_free_fn)sym(1, "SBM_free_from_SBCM")};
+  static double out[2][600];
+  for (int k = 0; k < 200; k++) {
+    unsigned m = 1 + k % 5, n = 1 + (k / 5) % 5, nb = (m > n ? m : n) + k % 7;
+    unsigned row[12], col[12];
+    double W[9 * 12];
+    for (unsigned b = 0; b < nb; b++) {
+      row[b] = 1 + (unsigned)uniform(0.0, (double)m - 1e-9);
+      col[b] = 1 + (unsigned)uniform(0.0, (double)n - 1e-9);
+    }
+    for (unsigned i = 0; i < 9 * nb; i++) W[i] = uniform(-1.0, 1.0);
+    int len[2];
+    for (int w = 0; w < 2; w++) {
+      int j = 0;
+      SparseBlockCoordinateMatrix* c = nw[w](m, n, nb, row, col, W);
+      SparseBlockStructuredMatrix* s = to[w](c);
+      out[w][j++] = c->nbblocks;
+      out[w][j++] = c->blocknumber0;
+      out[w][j++] = c->blocknumber1;
+      out[w][j++] = c->row != row && c->column != col;
+      for (unsigned b = 0; b < nb; b++) {
+        out[w][j++] = c->row[b];
+        out[w][j++] = c->column[b];
+        out[w][j++] = c->block[b] - W;
+        out[w][j++] = c->blocksize0[b];
+        out[w][j++] = c->blocksize1[b];
+      }
+      out[w][j++] = s->nbblocks;
+      out[w][j++] = s->blocknumber0;
+      out[w][j++] = s->blocknumber1;
+      out[w][j++] = (double)s->filled1;
+      out[w][j++] = (double)s->filled2;
+      out[w][j++] = s->blocksize0 == c->blocksize0 && s->blocksize1 == c->blocksize1;
+      out[w][j++] = s->diagonal_blocks == NULL;
+      for (unsigned i = 0; i <= m; i++) out[w][j++] = (double)s->index1_data[i];
+      for (unsigned b = 0; b < nb; b++) {
+        out[w][j++] = (double)s->index2_data[b];
+        out[w][j++] = s->block[b] - W;
+      }
+      len[w] = j;
+      fs[w](s);
+      fc[w](c);
+      free(c);
+    }
+    if (len[0] != len[1]) {
+      fprintf(stderr, "coordinate matrices %d: %d values, Siconos %d\n", k, len[0], len[1]);
+      failures++;
+    } else {
+      compare("SBCM_new_3x3 + SBCM_to_SBM", k, out[0], out[1], len[0]);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
@@ -508,6 +573,7 @@ int main(int argc, char** argv) {
   check_statistics();
   check_copy_and_rescaling();
   check_matrix_creation();
+  check_coordinate_matrices();
   if (failures) {
     fprintf(stderr, "%d values differ\n", failures);
     return 1;

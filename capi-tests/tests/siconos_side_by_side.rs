@@ -2,7 +2,8 @@
 //! and velocity/Tresca error measures, `fc3d_checkTrivialCase`,
 //! `fc3d_set_internalsolver_tolerance`, `frictionContactProblem_compute_statistics`,
 //! `frictionContact_copy` and `frictionContact_rescaling` on dense and sparse-block problems, the
-//! state `NM_new`, `NM_null`, `NM_create` and `NM_create_from_data` leave) against the installed
+//! state `NM_new`, `NM_null`, `NM_create` and `NM_create_from_data` leave, the structures
+//! `SBCM_new_3x3` and `SBCM_to_SBM` build and share) against the installed
 //! Siconos 4.4 in one process:
 //! c/siconos_side_by_side.c opens both libraries with dlopen and compares every output value and
 //! every output slot left alone, on the same random and boundary inputs. Skipped when Siconos is
