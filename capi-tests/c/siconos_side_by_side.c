@@ -26,6 +26,15 @@ typedef void (*verbose_fn)(int);
 typedef FrictionContactProblem* (*copy_fn)(FrictionContactProblem*);
 typedef void (*rescale_fn)(FrictionContactProblem*, double, double);
 typedef void (*free_problem_fn)(FrictionContactProblem*);
+typedef NumericsMatrix* (*nm_new_fn)(void);
+typedef NumericsMatrix* (*nm_create_fn)(int, int, int);
+typedef NumericsMatrix* (*nm_create_from_data_fn)(int, int, int, void*);
+typedef void (*nm_null_fn)(NumericsMatrix*);
+typedef NumericsMatrix* (*nm_free_fn)(NumericsMatrix*);
+typedef SparseBlockCoordinateMatrix* (*sbcm_new_fn)(unsigned, unsigned, unsigned, unsigned*, unsigned*, double*);
+typedef SparseBlockStructuredMatrix* (*sbcm_to_sbm_fn)(SparseBlockCoordinateMatrix*);
+typedef void (*sbcm_free_fn)(SparseBlockCoordinateMatrix*);
+typedef void (*sbm_free_fn)(SparseBlockStructuredMatrix*);
 
 static void* libs[2];
 static const char* lib_names[2] = {"fc3d", "Siconos"};
@@ -401,6 +410,147 @@ static void check_copy_and_rescaling(void) {
   }
 }
 
+/* What a host can see of a matrix the library made: storage, sizes, versions, which storage
+   pointers are set, whether it is its own destructible matrix. */
+static int matrix_state(NumericsMatrix* M, double* out) {
+  int k = 0;
+  out[k++] = M->storageType;
+  out[k++] = M->size0;
+  out[k++] = M->size1;
+  out[k++] = (double)M->version.number;
+  out[k++] = M->destructible == M;
+  out[k++] = M->matrix0 != NULL;
+  out[k++] = M->matrix1 != NULL;
+  out[k++] = M->matrix2 != NULL;
+  out[k++] = M->internalData != NULL;
+  if (M->matrix1) {
+    out[k++] = (double)M->matrix1->version.number;
+    out[k++] = M->matrix1->nbblocks;
+    out[k++] = M->matrix1->filled1;
+  }
+  if (M->matrix2) {
+    out[k++] = M->matrix2->origin;
+    /* Slot 0 (NSM_UNKNOWN) is left uninitialised by Siconos' NSM_new. */
+    for (int v = 1; v < 5; v++) out[k++] = (double)M->matrix2->versions[v].number;
+    out[k++] = M->matrix2->triplet != NULL;
+    out[k++] = M->matrix2->csc != NULL;
+  }
+  if (M->storageType == NM_DENSE && M->matrix0)
+    for (int i = 0; i < M->size0 * M->size1; i++) out[k++] = M->matrix0[i];
+  return k;
+}
+
+/* NM_new, NM_null, NM_create, NM_create_from_data: the same state (Siconos' NM_null state,
+   versions counted alike, destructible). */
+static void check_matrix_creation(void) {
+  nm_new_fn nw[2] = {(nm_new_fn)sym(0, "NM_new"), (nm_new_fn)sym(1, "NM_new")};
+  nm_create_fn cr[2] = {(nm_create_fn)sym(0, "NM_create"), (nm_create_fn)sym(1, "NM_create")};
+  nm_create_from_data_fn cd[2] = {(nm_create_from_data_fn)sym(0, "NM_create_from_data"),
+                                  (nm_create_from_data_fn)sym(1, "NM_create_from_data")};
+  nm_null_fn nl[2] = {(nm_null_fn)sym(0, "NM_null"), (nm_null_fn)sym(1, "NM_null")};
+  nm_free_fn fr[2] = {(nm_free_fn)sym(0, "NM_free"), (nm_free_fn)sym(1, "NM_free")};
+  static double st[2][200];
+  int len[2];
+  for (int c = 0; c < 7; c++) {
+    for (int w = 0; w < 2; w++) {
+      NumericsMatrix* M = NULL;
+      NumericsMatrix on_stack;
+      switch (c) {
+        case 0: M = nw[w](); break;
+        case 1: M = cr[w](NM_DENSE, 3, 4); break;
+        case 2: M = cr[w](NM_SPARSE_BLOCK, 6, 6); break;
+        case 3: M = cr[w](NM_SPARSE, 6, 6); break;
+        case 4: {
+          double* data = malloc(6 * sizeof(double));
+          for (int i = 0; i < 6; i++) data[i] = i + 0.5;
+          M = cd[w](NM_DENSE, 2, 3, data);
+          break;
+        }
+        case 5: {
+          SparseBlockStructuredMatrix* s = calloc(1, sizeof *s);
+          s->version.number = 5;
+          M = cd[w](NM_SPARSE_BLOCK, 0, 0, s);
+          break;
+        }
+        case 6:
+          memset(&on_stack, 0x5a, sizeof on_stack);
+          nl[w](&on_stack);
+          len[w] = matrix_state(&on_stack, st[w]);
+          continue;
+      }
+      len[w] = matrix_state(M, st[w]);
+      fr[w](M);
+    }
+    if (len[0] != len[1]) {
+      fprintf(stderr, "matrix creation %d: %d values, Siconos %d\n", c, len[0], len[1]);
+      failures++;
+    } else {
+      compare("matrix creation", c, st[0], st[1], len[0]);
+    }
+  }
+}
+
+/* SBCM_new_3x3 and SBCM_to_SBM: the same coordinate and sparse-block structures, pointing at the
+   same caller's values, sharing what Siconos shares. (At least as many blocks as block rows and
+   columns: Siconos sizes blocksize0/1 by the block count and SBCM_to_SBM reads blocknumber0 of
+   them.) */
+static void check_coordinate_matrices(void) {
+  sbcm_new_fn nw[2] = {(sbcm_new_fn)sym(0, "SBCM_new_3x3"), (sbcm_new_fn)sym(1, "SBCM_new_3x3")};
+  sbcm_to_sbm_fn to[2] = {(sbcm_to_sbm_fn)sym(0, "SBCM_to_SBM"), (sbcm_to_sbm_fn)sym(1, "SBCM_to_SBM")};
+  sbcm_free_fn fc[2] = {(sbcm_free_fn)sym(0, "SBCM_free_3x3"), (sbcm_free_fn)sym(1, "SBCM_free_3x3")};
+  sbm_free_fn fs[2] = {(sbm_free_fn)sym(0, "SBM_free_from_SBCM"), (sbm_free_fn)sym(1, "SBM_free_from_SBCM")};
+  static double out[2][600];
+  for (int k = 0; k < 200; k++) {
+    unsigned m = 1 + k % 5, n = 1 + (k / 5) % 5, nb = (m > n ? m : n) + k % 7;
+    unsigned row[12], col[12];
+    double W[9 * 12];
+    for (unsigned b = 0; b < nb; b++) {
+      row[b] = 1 + (unsigned)uniform(0.0, (double)m - 1e-9);
+      col[b] = 1 + (unsigned)uniform(0.0, (double)n - 1e-9);
+    }
+    for (unsigned i = 0; i < 9 * nb; i++) W[i] = uniform(-1.0, 1.0);
+    int len[2];
+    for (int w = 0; w < 2; w++) {
+      int j = 0;
+      SparseBlockCoordinateMatrix* c = nw[w](m, n, nb, row, col, W);
+      SparseBlockStructuredMatrix* s = to[w](c);
+      out[w][j++] = c->nbblocks;
+      out[w][j++] = c->blocknumber0;
+      out[w][j++] = c->blocknumber1;
+      out[w][j++] = c->row != row && c->column != col;
+      for (unsigned b = 0; b < nb; b++) {
+        out[w][j++] = c->row[b];
+        out[w][j++] = c->column[b];
+        out[w][j++] = c->block[b] - W;
+        out[w][j++] = c->blocksize0[b];
+        out[w][j++] = c->blocksize1[b];
+      }
+      out[w][j++] = s->nbblocks;
+      out[w][j++] = s->blocknumber0;
+      out[w][j++] = s->blocknumber1;
+      out[w][j++] = (double)s->filled1;
+      out[w][j++] = (double)s->filled2;
+      out[w][j++] = s->blocksize0 == c->blocksize0 && s->blocksize1 == c->blocksize1;
+      out[w][j++] = s->diagonal_blocks == NULL;
+      for (unsigned i = 0; i <= m; i++) out[w][j++] = (double)s->index1_data[i];
+      for (unsigned b = 0; b < nb; b++) {
+        out[w][j++] = (double)s->index2_data[b];
+        out[w][j++] = s->block[b] - W;
+      }
+      len[w] = j;
+      fs[w](s);
+      fc[w](c);
+      free(c);
+    }
+    if (len[0] != len[1]) {
+      fprintf(stderr, "coordinate matrices %d: %d values, Siconos %d\n", k, len[0], len[1]);
+      failures++;
+    } else {
+      compare("SBCM_new_3x3 + SBCM_to_SBM", k, out[0], out[1], len[0]);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s <libfc3d.so> <libsiconos_numerics.so>\n", argv[0]);
@@ -422,6 +572,8 @@ int main(int argc, char** argv) {
   check_problem_functions();
   check_statistics();
   check_copy_and_rescaling();
+  check_matrix_creation();
+  check_coordinate_matrices();
   if (failures) {
     fprintf(stderr, "%d values differ\n", failures);
     return 1;

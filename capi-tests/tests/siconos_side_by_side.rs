@@ -1,8 +1,10 @@
 //! The small Siconos functions fc3d reimplements (the Alart-Curnier functions, the per-contact
 //! and velocity/Tresca error measures, `fc3d_checkTrivialCase`,
 //! `fc3d_set_internalsolver_tolerance`, `frictionContactProblem_compute_statistics`,
-//! `frictionContact_copy` and `frictionContact_rescaling` on dense and sparse-block problems)
-//! against the installed Siconos 4.4 in one process:
+//! `frictionContact_copy` and `frictionContact_rescaling` on dense and sparse-block problems, the
+//! state `NM_new`, `NM_null`, `NM_create` and `NM_create_from_data` leave, the structures
+//! `SBCM_new_3x3` and `SBCM_to_SBM` build and share) against the installed
+//! Siconos 4.4 in one process:
 //! c/siconos_side_by_side.c opens both libraries with dlopen and compares every output value and
 //! every output slot left alone, on the same random and boundary inputs. Skipped when Siconos is
 //! not installed (the test suite installs it).
@@ -27,8 +29,10 @@ fn small_functions_agree_with_siconos() {
     build
         .args(["build", "-p", "fc3d", "--lib"])
         .current_dir(root());
-    if profile_dir.file_name().unwrap() == "release" {
-        build.arg("--release");
+    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
+    let profile = profile_dir.file_name().unwrap().to_str().unwrap();
+    if profile != "debug" {
+        build.args(["--profile", profile]);
     }
     assert!(build.status().unwrap().success(), "cargo build -p fc3d");
     let lib = profile_dir.join("libfc3d.so");

@@ -1,8 +1,8 @@
 //! The functions of Siconos 4.4's installed friction headers against what fc3d's compat headers
 //! declare and `libfc3d.so` exports (issue 12): names and prototypes come from the C compiler
-//! (`cc -aux-info`) at test time, the exclusions (with their reasons) from
-//! docs/siconos-functions.md. Skipped when the Siconos headers or a C compiler are missing (the
-//! test suite installs them).
+//! (`gcc -aux-info`) at test time, the exclusions (with their reasons) from
+//! docs/siconos-functions.md. Skipped when the Siconos headers or gcc are missing (the test
+//! suite installs them).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -59,7 +59,8 @@ fn declarations(headers: &[String], includes: &[PathBuf]) -> BTreeMap<String, De
         .map(|h| format!("#include \"{h}\"\n"))
         .collect();
     std::fs::write(&src, text).unwrap();
-    let mut cc = Command::new("cc");
+    // `-aux-info` (the prototypes of a translation unit) is GCC's.
+    let mut cc = Command::new("gcc");
     cc.arg("-fsyntax-only").arg("-aux-info").arg(&aux);
     for i in includes {
         cc.arg(format!("-I{}", i.display()));
@@ -67,7 +68,7 @@ fn declarations(headers: &[String], includes: &[PathBuf]) -> BTreeMap<String, De
     let out = cc.arg(&src).output().expect("run cc");
     assert!(
         out.status.success(),
-        "cc failed on {headers:?}:\n{}",
+        "gcc failed on {headers:?}:\n{}",
         String::from_utf8_lossy(&out.stderr)
     );
     let aux_text = std::fs::read_to_string(&aux).unwrap();
@@ -137,8 +138,10 @@ fn exported() -> Option<BTreeSet<String>> {
     let profile_dir = exe.parent()?.parent()?;
     let mut build = Command::new(env!("CARGO"));
     build.args(["build", "-p", "fc3d", "--lib"]);
-    if profile_dir.file_name()? == "release" {
-        build.arg("--release");
+    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
+    let profile = profile_dir.file_name()?.to_str()?;
+    if profile != "debug" {
+        build.args(["--profile", profile]);
     }
     let status = build.current_dir(root()).status().ok()?;
     assert!(status.success(), "cargo build -p fc3d failed");
@@ -235,9 +238,9 @@ fn matches(pattern: &str, name: &str) -> bool {
 #[test]
 fn siconos_friction_functions_are_declared_and_exported() {
     if !Path::new(SICONOS_INCLUDE).join("fc3d_Solvers.h").is_file()
-        || Command::new("cc").arg("--version").output().is_err()
+        || Command::new("gcc").arg("--version").output().is_err()
     {
-        eprintln!("Siconos headers or cc missing: skipped");
+        eprintln!("Siconos headers or gcc missing: skipped");
         return;
     }
     let Some(exports) = exported() else {
