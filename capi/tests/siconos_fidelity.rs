@@ -1,7 +1,7 @@
 //! Issue 12 (fidelity): the ids that follow Siconos 4.4's algorithm by default and keep fc3d's
 //! refinement behind `iparam[FC3D_IPARAM_VARIANT]`, QUARTIC (562) and QUARTIC_NU (563) as
-//! top-level solvers, and the ids rejected because they are unfinished in Siconos itself (501,
-//! 521). The figures compared with the installed Siconos are in the README ("Solver ids").
+//! top-level solvers, 521 (NSN_AC_TEST), and the id rejected because it is unfinished in
+//! Siconos itself (501). The figures compared with the installed Siconos are in the README ("Solver ids").
 
 use std::ffi::{CStr, CString};
 use std::os::raw::{c_char, c_double, c_int};
@@ -154,10 +154,31 @@ fn quartic_as_a_top_level_solver() {
     }
 }
 
-/// 501 and 521 are unfinished experiments in Siconos 4.4: rejected, with the reason.
+/// 521 (NSN_AC_TEST: Alart-Curnier Newton with rho = 1 and the Goldstein search) with Siconos'
+/// defaults solves, at the tolerances of Siconos' NSN_COLLECTION_1 (1e-5 in 10000 iterations),
+/// problems of that collection, and reports the error it measured.
+#[test]
+fn nsn_ac_test_solves_problems_of_siconos_collection() {
+    for file in [
+        "FC3D_Example1_SBM.dat",
+        "FrictionContact3D_1c.dat",
+        "NESpheres_30_1.dat",
+        "Confeti-ex13-Fc3D-SBM.dat",
+    ] {
+        let run = solve(file, 521, None, |o| unsafe {
+            *(*o).dparam = 1e-5;
+            *(*o).iparam = 10000;
+        });
+        assert_eq!(run.info, 0, "{file}: error {}", run.error);
+        assert!(run.error <= 1e-5, "{file}: {}", run.error);
+        assert!(run.reaction.iter().all(|v| v.is_finite()), "{file}");
+    }
+}
+
+/// 501 is an unfinished experiment in Siconos 4.4: rejected, with the reason.
 #[test]
 fn unfinished_siconos_ids_are_rejected_with_the_reason() {
-    for (id, word) in [(501, "unfinished"), (521, "XXX to delete")] {
+    for (id, word) in [(501, "unfinished")] {
         let path = CString::new(format!("{DATA}FC3D_Example1_SBM.dat")).unwrap();
         unsafe {
             let p = frictionContact_new_from_filename(path.as_ptr());

@@ -1,4 +1,7 @@
-//! Nonsmooth Newton (504, 513, 520). Honoured: iparam[9] rho strategy (0 constant dparam[3],
+//! Nonsmooth Newton (504, 513, 520, 521). 521 (NSN_AC_TEST, Siconos' second Alart-Curnier Newton
+//! on its generic `newton_LSA`) fixes what it does not read, as Siconos does: rho = 1 for every
+//! component, the Goldstein line search; it honours iparam[10] (formulation, as 504) and
+//! iparam[14] (must be 0). For the others, honoured: iparam[9] rho strategy (0 constant dparam[3],
 //! 1 spectral norm, 2 split with conditioning, 3 split), iparam[10] formulation (504 only: 0/2
 //! Alart-Curnier, 1/3 Jean-Moreau; Siconos' "generated" variants compute the same function),
 //! iparam[11] line search (-1 none, 0 Goldstein-Price, 1 Armijo), iparam[12] line-search trials,
@@ -23,7 +26,7 @@ const DPARAM_RHO: usize = 3;
 
 pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
     let formulation = match id {
-        504 => match p.iparam[IPARAM_FORMULATION] {
+        504 | 521 => match p.iparam[IPARAM_FORMULATION] {
             0 | 2 => NsnFormulation::AlartCurnier,
             1 | 3 => NsnFormulation::JeanMoreau,
             other => return Err(invalid(format!("NSN formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)"))),
@@ -31,7 +34,7 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         513 => NsnFormulation::FischerBurmeister,
         _ => NsnFormulation::NaturalMap,
     };
-    if id != 504 {
+    if id != 504 && id != 521 {
         p.require(
             IPARAM_FORMULATION,
             0,
@@ -39,6 +42,15 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         )?;
     }
     let mut n = NsnOptions::new(formulation);
+    if id == 521 {
+        // Siconos' fc3d_nonsmooth_Newton_AlartCurnier2 fills its rho array with 1 and sets the
+        // Goldstein criterion whatever iparam[9], [11] and [12] say.
+        n.rho_rule = RhoRule::Constant(1.0);
+        n.line_search = NsnLineSearch::GoldsteinPrice;
+        p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+        n.variant = p.variant()?;
+        return Ok(n);
+    }
     n.rho_rule = match p.iparam[IPARAM_RHO_STRATEGY] {
         0 => RhoRule::Constant(p.dparam[DPARAM_RHO]),
         1 => RhoRule::SpectralNorm,

@@ -70,6 +70,7 @@ pub(crate) fn nsgs(
         error_evaluation: options.error_evaluation,
         evaluation_frequency: options.evaluation_frequency,
         local_tolerance: options.local_tolerance,
+        stop_when_stalled: true,
     };
     run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
 }
@@ -80,6 +81,10 @@ pub(crate) struct SweepSchedule {
     pub error_evaluation: ErrorEvaluation,
     pub evaluation_frequency: usize,
     pub local_tolerance: LocalTolerance,
+    /// Stop when a light-with-full-final test finds the cheap tolerance driven to 0 (the sweep
+    /// left r unchanged while the full error is above the tolerance): Siconos' 3D NSGS does,
+    /// its 2D NSGS sweeps on.
+    pub stop_when_stalled: bool,
 }
 
 /// The Gauss-Seidel main loop over contacts of any dimension: sweep, test on the schedule,
@@ -159,7 +164,7 @@ pub(crate) fn run_sweeps<const D: usize, S: ContactStep<D>>(
         if test.tested {
             last_measured = measured;
         }
-        if test.stalled && !sweeper.any_frozen() {
+        if options.stop_when_stalled && test.stalled && !sweeper.any_frozen() {
             return Ok(SolverOutcome {
                 dumont_criterion: dumont,
                 ..SolverOutcome::stopped(iteration, false).with_final_error(measured)

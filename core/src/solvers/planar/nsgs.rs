@@ -41,6 +41,7 @@ pub(crate) fn nsgs(
         error_evaluation: options.error_evaluation,
         evaluation_frequency: options.evaluation_frequency,
         local_tolerance: LocalTolerance::Given,
+        stop_when_stalled: false,
     };
     run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
 }
