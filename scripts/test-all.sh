@@ -11,6 +11,8 @@
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos
 #     4.4 headers, one unmodified Siconos host program built against both libraries, whose
 #     results must agree, and the side-by-side agreement check of scripts/compare-siconos.sh.
+#  5. Siconos 4.4.0's own friction tests (scripts/siconos-suite.sh), unmodified, built against the
+#     installed compat headers and libfc3d and against the installed Siconos, case by case.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
@@ -26,6 +28,8 @@ command -v valgrind >/dev/null || packages+=(valgrind)
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
 command -v pkg-config >/dev/null || packages+=(pkg-config)
 command -v ctags >/dev/null || packages+=(universal-ctags)
+command -v curl >/dev/null || packages+=(curl)
+command -v xz >/dev/null || packages+=(xz-utils)
 [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
 if [ ${#packages[@]} -gt 0 ]; then
   echo "== installing ${packages[*]}"
@@ -124,4 +128,7 @@ echo "Siconos host program: $agree problems, same info and iterations with both 
 cd "$ROOT"
 echo "== side by side with Siconos (compare-siconos.sh --quick: same info, iterations, cross-scored errors)"
 bash scripts/compare-siconos.sh --quick
+
+echo "== Siconos 4.4.0's own friction tests against the installed libfc3d and the installed Siconos"
+bash scripts/siconos-suite.sh --lib "$PREFIX/lib" --include "$SICONOS_INC" --include "$PREFIX/include"
 echo "== all checks passed"
