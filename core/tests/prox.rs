@@ -115,14 +115,15 @@ fn shift_grows_tenfold_when_the_internal_solve_fails() {
     // Siconos' proximal strategy: the internal Newton fails on BoxesStack1 at the small first
     // shifts, and the shift grows by 10 until it succeeds. Siconos 4.4 (test_prox_1, case 1:
     // tol 1e-8, alpha 1e4): 7 proximal iterations, error 1.2e-9; without the growth fc3d ran
-    // past 120 s.
+    // past 120 s. fc3d takes 7 with its own internal Newton and 6 with Siconos' (the default
+    // since the NSN fidelity work): the internal solves end at slightly different points.
     let p = shared("BoxesStack1-i100000-32.hdf5.dat");
     let c = SolverConfig::new(ProxOptions::default())
         .with_tolerance(1e-8)
         .with_max_iter(1000);
     let (rep, r, _) = run(&p, &c);
     assert_eq!(rep.status, SolveStatus::Converged, "{rep:?}");
-    assert_eq!(rep.iterations, 7);
+    assert!(rep.iterations <= 7, "{rep:?}");
     let mut u = vec![0.0; p.size()];
     assert!(natural_map_error(&p, &r, &mut u) <= 1e-8);
 }
