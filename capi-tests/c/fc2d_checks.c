@@ -318,6 +318,22 @@ int capi_fc2d_check_api(void) {
     free(o);
   }
 
+  /* A 2D problem whose sparse-block W has a 3x3 block: refused. */
+  {
+    FrictionContactProblem* p = one_contact(1);
+    SparseBlockStructuredMatrix* s = p->M->matrix1;
+    s->blocksize0[0] = s->blocksize1[0] = 3;
+    double r[2] = {7, 7}, u[2] = {7, 7};
+    SolverOptions* o = solver_options_create(SICONOS_FRICTION_2D_NSGS);
+    int info = fc2d_driver(p, r, u, o);
+    CHECK(info < 0 && r[0] == 7, "3x3 blocks in a 2D problem: %d", info);
+    CHECK(strstr(fc3d_last_error_message(), "2x2") != NULL, "message: %s", fc3d_last_error_message());
+    s->blocksize0[0] = s->blocksize1[0] = 2;
+    solver_options_delete(o);
+    free(o);
+    frictionContactProblem_free(p);
+  }
+
   int ids[] = {400, 404, 405};
   for (int k = 0; k < 3; k++)
     for (int sbm = 0; sbm < 2; sbm++)
@@ -368,6 +384,29 @@ int capi_fc2d_check_api(void) {
     z[0] = 0;
     CHECK(fc2d_compute_error(p, z, w, 1e-14, 0, &e) == 1 && e > 0.1, "fc2d_compute_error off %g", e);
     CHECK(fc3d_compute_error(p, z, w, 1e-4, NULL, 0, &e) == FC3D_ERR_INVALID_PROBLEM, "fc3d_compute_error 2D");
+    /* Hostile problems: a code, a message, nothing written. */
+    p->q[0] = NAN;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == FC3D_ERR_NON_FINITE && r[0] == 7, "NaN in q: %d", info);
+    p->q[0] = -1;
+    p->mu[0] = -0.5;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == FC3D_ERR_INVALID_PROBLEM && r[0] == 7, "mu < 0: %d", info);
+    p->mu[0] = 0.5;
+    p->numberOfContacts = -1;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == FC3D_ERR_INVALID_SIZE && r[0] == 7, "numberOfContacts -1: %d", info);
+    p->numberOfContacts = 2;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == FC3D_ERR_INVALID_SIZE && r[0] == 7, "M 2x2 for 2 contacts: %d", info);
+    p->numberOfContacts = 1;
+    NumericsMatrix* M = p->M;
+    p->M = NULL;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == FC3D_ERR_NULL_POINTER && r[0] == 7, "M NULL: %d", info);
+    p->M = M;
+    info = fc2d_driver(p, r, u, o2);
+    CHECK(info == 0 && r[0] != 7, "the repaired problem: %d", info);
     solver_options_delete(o2);
     free(o2);
     solver_options_delete(o3);

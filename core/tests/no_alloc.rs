@@ -361,3 +361,57 @@ fn vi_and_admm_iterations_allocate_nothing() {
         }
     }
 }
+
+/// The 2D solvers' iterations allocate nothing either: a whole NSGS (every error evaluation,
+/// with and without a time budget) or CPG solve of FrictionContactProblem00727 (367 contacts,
+/// 2x2 sparse blocks read as CSR) allocates as many times for 1 iteration as for 50.
+#[test]
+fn planar_solve_allocations_do_not_grow_with_iterations() {
+    use fc3d_core::io::dat::{read_dat_file_any, DatProblem};
+    use fc3d_core::{solve_planar, PlanarConfig, PlanarMethod, PlanarNsgsOptions};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/data/siconos/FrictionContactProblem00727.dat");
+    let DatProblem::Planar(p) = read_dat_file_any(&path).unwrap() else {
+        panic!("not 2D")
+    };
+    let dense = p.with_w(Delassus::Dense(p.w().to_dense())).unwrap();
+    let allocations = |p: &fc3d_core::FrictionProblem2d<'_>, mut config: PlanarConfig, k| {
+        config.max_iter = k;
+        config.tolerance = 0.0;
+        let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+        let (n, report) = count_allocations(|| solve_planar(p, &config, &mut r, &mut u).unwrap());
+        assert_eq!(report.iterations, k, "{config:?}");
+        n
+    };
+    for p in [&p, &dense] {
+        let mut methods = vec![PlanarMethod::Cpg];
+        for mode in [
+            ErrorEvaluation::Full,
+            ErrorEvaluation::Light,
+            ErrorEvaluation::LightWithFullFinal,
+        ] {
+            methods.push(PlanarMethod::Nsgs(PlanarNsgsOptions {
+                error_evaluation: mode,
+                ..PlanarNsgsOptions::default()
+            }));
+        }
+        methods.push(PlanarMethod::Nsgs(PlanarNsgsOptions {
+            order: fc3d_core::ContactOrder::ShuffledEachSweep { seed: 1 },
+            relaxation: Some(1.3),
+            freezing: Some(3),
+            ..PlanarNsgsOptions::default()
+        }));
+        for method in methods {
+            for budget in [None, Some(Duration::from_secs(3600))] {
+                let mut config = PlanarConfig::new(method);
+                config.time_budget = budget;
+                let one = allocations(p, config, 1);
+                let many = allocations(p, config, 50);
+                assert_eq!(
+                    one, many,
+                    "{method:?} {budget:?}: {one} for 1 iteration, {many} for 50"
+                );
+            }
+        }
+    }
+}

@@ -182,8 +182,8 @@ fn limits_hold_for_every_2d_solver() {
         w[i + n * i] = 2.0;
     }
     // A coupling between the normals of contacts 0 and 1 (column-major).
-    w[2 + n * 0] = 0.3;
-    w[0 + n * 2] = 0.3;
+    w[2] = 0.3;
+    w[2 * n] = 0.3;
     let mut q = vec![0.0; n];
     q[0] = -1.0;
     q[1] = 0.5;

@@ -326,9 +326,8 @@ fn read_solution(
 /// `w = M z + q̃`.
 fn lcp_velocity(lcp: &PlanarLcp, z: &[f64], w: &mut [f64]) {
     let m = lcp.size;
-    for i in 0..m {
-        let row = &lcp.m[i * m..(i + 1) * m];
-        w[i] = lcp.q[i] + row.iter().zip(z).map(|(a, b)| a * b).sum::<f64>();
+    for ((wi, row), qi) in w.iter_mut().zip(lcp.m.chunks_exact(m)).zip(&lcp.q) {
+        *wi = qi + row.iter().zip(z).map(|(a, b)| a * b).sum::<f64>();
     }
 }
 
