@@ -287,6 +287,101 @@ fn siconos_iteration_counts_match_on_nespheres() {
     assert_relative_eq!(rep.error, 2.293e-9, max_relative = 1e-3);
 }
 
+/// Each id against the installed Siconos 4.4 at 1e-8 (scripts/compare-siconos.sh, Siconos'
+/// defaults): (problem, options, Siconos' iterations).
+#[test]
+fn siconos_iteration_counts_per_id() {
+    let with_trials_from_previous = |s: ViSolver| {
+        let mut o = ViOptions::new(s);
+        if let StepSize::SelfAdaptive(step) = &mut o.step {
+            step.trial_start = TrialStart::PreviousTrial;
+        }
+        o
+    };
+    let fixed_rho_eg = ViOptions {
+        step: StepSize::Fixed(1.0),
+        correction: ExtraGradientCorrection::FromIterate,
+        ..ViOptions::new(ViSolver::ExtraGradient)
+    };
+    let cases = [
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            52,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            99,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::ExtraGradient),
+            50,
+        ),
+        ("NESpheres_10_1.dat", fixed_rho_eg, 287),
+        (
+            "NESpheres_10_1.dat",
+            with_trials_from_previous(ViSolver::ViFixedPointProjection),
+            110,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            with_trials_from_previous(ViSolver::ViExtraGradient),
+            60,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ViFixedPointProjection),
+            523,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            261,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            181,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ExtraGradient),
+            100,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::ViFixedPointProjection),
+            414,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            188,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            188,
+        ),
+        ("Rover1040.dat", ViOptions::new(ViSolver::ExtraGradient), 97),
+        (
+            "FC3D_Example1_SBM.dat",
+            ViOptions::new(ViSolver::HyperplaneProjection),
+            1656,
+        ),
+    ];
+    for (name, o, iterations) in cases {
+        let p = siconos(name);
+        let (rep, r, u, _) = run(&p, &config(o, 1e-8, 20000));
+        let what = format!("{name} {}", o.solver.short_name());
+        check_report(&what, &p, 1e-8, &rep, &r, &u);
+        assert!(rep.converged(), "{what}: {rep:?}");
+        assert_eq!(rep.iterations, iterations, "{what}");
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Failures, options.
 
