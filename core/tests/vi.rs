@@ -287,6 +287,32 @@ fn siconos_iteration_counts_match_on_nespheres() {
     assert_relative_eq!(rep.error, 2.293e-9, max_relative = 1e-3);
 }
 
+#[test]
+fn vi_solvers_hand_back_their_adapted_rho() {
+    // Siconos' generic VI solvers (506/507) return the rho they ended with (the C layer writes
+    // it to dparam[3]); restarted from the solution with that rho, one iteration confirms it.
+    let p = siconos("NESpheres_10_1.dat");
+    for s in ViSolver::ALL {
+        let (rep, r, _, _) = run(&p, &options(s, 1e-8, 20000));
+        let lineage_vi = matches!(
+            s,
+            ViSolver::ViFixedPointProjection | ViSolver::ViExtraGradient
+        );
+        assert_eq!(rep.final_rho.is_some(), lineage_vi, "{}", s.short_name());
+        if let Some(rho) = rep.final_rho {
+            assert!(rho > 0.0 && rho.is_finite(), "{}: {rho}", s.short_name());
+            let mut o = ViOptions::new(s);
+            if let StepSize::SelfAdaptive(step) = &mut o.step {
+                step.initial_rho = rho;
+            }
+            let mut r2 = r.clone();
+            let mut u2 = vec![0.0; p.size()];
+            let rep2 = solve(&p, &config(o, 1e-8, 20000), &mut r2, &mut u2).unwrap();
+            assert!(rep2.converged(), "{}: {rep2:?}", s.short_name());
+        }
+    }
+}
+
 /// Each id against the installed Siconos 4.4 at 1e-8 (scripts/compare-siconos.sh, Siconos'
 /// defaults): (problem, options, Siconos' iterations).
 #[test]
