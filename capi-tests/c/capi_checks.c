@@ -943,6 +943,32 @@ int capi_check_vi_admm_single_contacts(void) {
     vi_update_in_line_search = 0;
     if (failed) return 1;
   }
+  /* Siconos' VI solvers (506/507) hand their adapted rho back in dparam[3] as -rho; the others
+     leave dparam[3] as it was. */
+  int hands_back[] = {SICONOS_FRICTION_3D_VI_FPP, SICONOS_FRICTION_3D_VI_EG, SICONOS_FRICTION_3D_FPP,
+                      SICONOS_FRICTION_3D_EG};
+  for (size_t k = 0; k < sizeof hands_back / sizeof hands_back[0]; k++) {
+    int id = hands_back[k];
+    double Wd[9] = {1.25, 0, 0, 0, 1, 0, 0, 0, 1}, q[3] = {-2, 3, 4}, mu = 0.5;
+    NumericsMatrix M = {0};
+    M.storageType = NM_DENSE;
+    M.size0 = M.size1 = 3;
+    M.matrix0 = Wd;
+    FrictionContactProblem p = {3, 1, &M, q, &mu};
+    SolverOptions* o = solver_options_create(id);
+    CHECK(o != NULL, "solver_options_create(%d)", id);
+    o->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+    double before = o->dparam[3], r[3] = {0, 0, 0}, u[3] = {0, 0, 0};
+    int info = fc3d_driver(&p, r, u, o);
+    double after = o->dparam[3];
+    solver_options_delete(o);
+    free(o);
+    CHECK(info == 0, "solver %d: info %d", id, info);
+    if (id == SICONOS_FRICTION_3D_VI_FPP || id == SICONOS_FRICTION_3D_VI_EG)
+      CHECK(after < 0 && isfinite(after), "solver %d: dparam[3] = %g after the solve, expected -rho", id, after);
+    else
+      CHECK(after == before, "solver %d: dparam[3] changed from %g to %g", id, before, after);
+  }
   return 0;
 }
 

@@ -359,7 +359,9 @@ void fc3d_AlartCurnierJeanMoreauFunctionGenerated(double *R,
 // (`FC3D_TIME_BUDGET_EXHAUSTED`) when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out
 // (they hold the best iterate measured), a negative `FC3D_ERR_*` code when the
 // input is rejected (nothing is written). On return >= 0, `iparam[1]` holds the iterations
-// and `dparam[1]` the error measured on the returned `(reaction, velocity)`.
+// and `dparam[1]` the error measured on the returned `(reaction, velocity)`; for VI_FPP (506)
+// and VI_EG (507) with a self-adaptive rho, `dparam[3]` holds `-rho` for the rho the run ended
+// with, as Siconos' VI solvers leave it (a host reusing the options starts from it).
 // The options tree is checked first: a cycle of internal solvers, or a chain deeper than
 // `FC3D_OPTIONS_MAX_DEPTH`, is refused with `FC3D_ERR_INVALID_OPTION`. `options->callback`
 // must not free or modify the options (nor the problem or the arrays) during the solve: a

@@ -142,6 +142,10 @@ fn finish(
         iterations: outcome.iterations,
         error,
         dumont_criterion: outcome.dumont_criterion,
+        // A rho of the rescaled problem is not one of the host's.
+        final_rho: outcome
+            .final_rho
+            .filter(|_| config.rescaling == Rescaling::None),
     }
 }
 

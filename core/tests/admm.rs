@@ -213,6 +213,43 @@ fn rover_dense_singular_w() {
     );
 }
 
+/// Against the installed Siconos 4.4 (scripts/compare-siconos.sh, tol 1e-5, Siconos' test_admm
+/// collections' settings): where Siconos' residual test and fc3d's error test stop at the same
+/// iteration, the counts are equal (same iterates).
+#[test]
+fn siconos_iteration_counts() {
+    let p = siconos("Capsules-i100-1090.dat");
+    let base = AdmmOptions::default();
+    for (label, o, iterations) in [
+        ("default", base, 63),
+        (
+            "scaled-residual-balancing",
+            AdmmOptions {
+                rho_strategy: AdmmRhoStrategy::ScaledResidualBalancing,
+                ..base
+            },
+            218,
+        ),
+        (
+            "rescaled-residual-balancing",
+            AdmmOptions {
+                rho_strategy: AdmmRhoStrategy::ResidualBalancing,
+                scalar_rescaling: true,
+                ..base
+            },
+            160,
+        ),
+    ] {
+        let c = SolverConfig::new(o)
+            .with_tolerance(1e-5)
+            .with_max_iter(10000);
+        let (rep, r, u, _) = run(&p, &c);
+        check_report(label, &p, 1e-5, &rep, &r, &u);
+        assert!(rep.converged(), "{label}: {rep:?}");
+        assert_eq!(rep.iterations, iterations, "{label}");
+    }
+}
+
 #[test]
 fn stalling_problem_fails_honestly() {
     // OneObject-i1028-138: 2000 iterations are not enough for any variant; the result is finite

@@ -287,6 +287,127 @@ fn siconos_iteration_counts_match_on_nespheres() {
     assert_relative_eq!(rep.error, 2.293e-9, max_relative = 1e-3);
 }
 
+#[test]
+fn vi_solvers_hand_back_their_adapted_rho() {
+    // Siconos' generic VI solvers (506/507) return the rho they ended with (the C layer writes
+    // it to dparam[3]); restarted from the solution with that rho, one iteration confirms it.
+    let p = siconos("NESpheres_10_1.dat");
+    for s in ViSolver::ALL {
+        let (rep, r, _, _) = run(&p, &options(s, 1e-8, 20000));
+        let lineage_vi = matches!(
+            s,
+            ViSolver::ViFixedPointProjection | ViSolver::ViExtraGradient
+        );
+        assert_eq!(rep.final_rho.is_some(), lineage_vi, "{}", s.short_name());
+        if let Some(rho) = rep.final_rho {
+            assert!(rho > 0.0 && rho.is_finite(), "{}: {rho}", s.short_name());
+            let mut o = ViOptions::new(s);
+            if let StepSize::SelfAdaptive(step) = &mut o.step {
+                step.initial_rho = rho;
+            }
+            let mut r2 = r.clone();
+            let mut u2 = vec![0.0; p.size()];
+            let rep2 = solve(&p, &config(o, 1e-8, 20000), &mut r2, &mut u2).unwrap();
+            assert!(rep2.converged(), "{}: {rep2:?}", s.short_name());
+        }
+    }
+}
+
+/// Each id against the installed Siconos 4.4 at 1e-8 (scripts/compare-siconos.sh, Siconos'
+/// defaults): (problem, options, Siconos' iterations).
+#[test]
+fn siconos_iteration_counts_per_id() {
+    let with_trials_from_previous = |s: ViSolver| {
+        let mut o = ViOptions::new(s);
+        if let StepSize::SelfAdaptive(step) = &mut o.step {
+            step.trial_start = TrialStart::PreviousTrial;
+        }
+        o
+    };
+    let fixed_rho_eg = ViOptions {
+        step: StepSize::Fixed(1.0),
+        correction: ExtraGradientCorrection::FromIterate,
+        ..ViOptions::new(ViSolver::ExtraGradient)
+    };
+    let cases = [
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            52,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            99,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            ViOptions::new(ViSolver::ExtraGradient),
+            50,
+        ),
+        ("NESpheres_10_1.dat", fixed_rho_eg, 287),
+        (
+            "NESpheres_10_1.dat",
+            with_trials_from_previous(ViSolver::ViFixedPointProjection),
+            110,
+        ),
+        (
+            "NESpheres_10_1.dat",
+            with_trials_from_previous(ViSolver::ViExtraGradient),
+            60,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ViFixedPointProjection),
+            523,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            261,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            181,
+        ),
+        (
+            "Confeti-ex03-Fc3D-SBM.dat",
+            ViOptions::new(ViSolver::ExtraGradient),
+            100,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::ViFixedPointProjection),
+            414,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::ViExtraGradient),
+            188,
+        ),
+        (
+            "Rover1040.dat",
+            ViOptions::new(ViSolver::FixedPointProjection),
+            188,
+        ),
+        ("Rover1040.dat", ViOptions::new(ViSolver::ExtraGradient), 97),
+        (
+            "FC3D_Example1_SBM.dat",
+            ViOptions::new(ViSolver::HyperplaneProjection),
+            1656,
+        ),
+    ];
+    for (name, o, iterations) in cases {
+        let p = siconos(name);
+        let (rep, r, u, _) = run(&p, &config(o, 1e-8, 20000));
+        let what = format!("{name} {}", o.solver.short_name());
+        check_report(&what, &p, 1e-8, &rep, &r, &u);
+        assert!(rep.converged(), "{what}: {rep:?}");
+        assert_eq!(rep.iterations, iterations, "{what}");
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Failures, options.
 

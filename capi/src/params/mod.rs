@@ -364,6 +364,11 @@ pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, report: &fc3d_core::So
     if let Some(d) = report.dumont_criterion {
         *o.dparam.add(DPARAM_DUMONT_CRITERION) = d;
     }
+    // Siconos' VI solvers (506/507) leave their adapted rho in dparam[3] as -rho, the encoding
+    // of "self-adaptive from rho", for the host's next call.
+    if let Some(rho) = report.final_rho {
+        *o.dparam.add(vi::DPARAM_RHO) = -rho;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

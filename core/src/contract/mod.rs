@@ -52,6 +52,9 @@ pub(crate) struct SolverOutcome {
     pub relaxation_converged: bool,
     /// The run stopped because its iterates grew without bound.
     pub diverged: bool,
+    /// The step size a self-adaptive run ends with, for the families whose Siconos solver hands
+    /// it back to the host (see [`SolveReport::final_rho`](crate::SolveReport)).
+    pub final_rho: Option<f64>,
 }
 
 impl SolverOutcome {
@@ -64,6 +67,7 @@ impl SolverOutcome {
             dumont_criterion: None,
             relaxation_converged: false,
             diverged: false,
+            final_rho: None,
         }
     }
 
@@ -73,6 +77,11 @@ impl SolverOutcome {
             diverged: true,
             ..SolverOutcome::stopped(iterations, false)
         }
+    }
+
+    /// The same outcome with the step size the run ends with.
+    pub fn with_final_rho(self, final_rho: Option<f64>) -> Self {
+        SolverOutcome { final_rho, ..self }
     }
 
     /// The same outcome with the final error the family measured on the returned `(r, u)`.

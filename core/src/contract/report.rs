@@ -60,6 +60,11 @@ pub struct SolveReport {
     /// [`ErrorEvaluation::DumontCriterion`](crate::ErrorEvaluation::DumontCriterion); reported beside
     /// `error`, never instead of it.
     pub dumont_criterion: Option<f64>,
+    /// The self-adaptive rho the run ended with, for VI_FPP (506) and VI_EG (507): Siconos'
+    /// generic VI solvers hand it back in `dparam[3]` (as `-rho`, "self-adaptive from rho"), so
+    /// that a host reusing its options starts the next solve from it; `fc3d_driver` does the
+    /// same. `None` for the other solvers, and when the solve ran rescaled.
+    pub final_rho: Option<f64>,
 }
 
 impl SolveReport {

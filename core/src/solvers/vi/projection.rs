@@ -157,7 +157,7 @@ pub(super) fn run(
         };
         if !bounded(new_r) || !bounded(new_f) {
             // Diverged (rho far too large for W): keep the last bounded iterate and stop.
-            return Ok(SolverOutcome::diverged(iteration));
+            return Ok(SolverOutcome::diverged(iteration).with_final_rho(handed_back(options, rho)));
         }
         // The cheap error: the increment (134), or for the VI extragradient Siconos' quantity
         // (the last trial's a1 over ||r_{k+1}||).
@@ -191,8 +191,16 @@ pub(super) fn run(
             error: test.error,
         });
         if let Some(outcome) = run.end_of_iteration(iteration, test.converged) {
-            return Ok(outcome);
+            return Ok(outcome.with_final_rho(handed_back(options, rho)));
         }
     }
-    Ok(run.exhausted())
+    Ok(run.exhausted().with_final_rho(handed_back(options, rho)))
+}
+
+/// The rho Siconos' generic VI solvers (506/507) hand back to the host when it is self-adaptive.
+fn handed_back(options: &ViOptions, rho: f64) -> Option<f64> {
+    match (options.solver.lineage(), options.step) {
+        (Lineage::Vi, StepSize::SelfAdaptive(_)) => Some(rho),
+        _ => None,
+    }
 }
