@@ -259,5 +259,6 @@ pub fn solve_planar_with_observer(
         iterations: outcome.iterations,
         error,
         dumont_criterion: None,
+        final_rho: None,
     })
 }

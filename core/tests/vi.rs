@@ -13,8 +13,8 @@ use std::path::PathBuf;
 use approx::assert_relative_eq;
 use fc3d_core::{
     solve, solve_with_observer, Delassus, DenseMatrix, ExtraGradientCorrection, FrictionProblem,
-    HyperplaneSearch, SelfAdaptiveStep, SolveReport, SolverConfig, StepRatio, StepSize, TrialStart,
-    ViOptions, ViSolver,
+    SelfAdaptiveStep, SolveReport, SolverConfig, StepRatio, StepSize, TrialStart, ViOptions,
+    ViSolver,
 };
 
 // ---------------------------------------------------------------------------------------------
