@@ -672,3 +672,64 @@ impl LocalSolver for AlartCurnierNewton {
         }
     }
 }
+
+#[cfg(test)]
+mod siconos_arithmetic_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn close(a: f64, b: f64, scale: f64) -> bool {
+        (a - b).abs() <= 1e-12 * scale.max(1.0)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        /// Siconos' arithmetic computes the same function and Jacobian as fc3d's, in every
+        /// branch (take-off, stick, slide, zero radius), up to rounding.
+        #[test]
+        fn siconos_alart_curnier_is_the_same_function(
+            w in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            q in prop::array::uniform3(-5.0f64..5.0),
+            r in prop::array::uniform3(-5.0f64..5.0),
+            mu in 0.0f64..2.0,
+            rho_n in 0.1f64..2.0,
+            rho_t in 0.1f64..2.0,
+        ) {
+            let p = LocalProblem { w: &w, q, mu };
+            let (f1, j1) = alart_curnier_function(&p, rho_n, rho_t, &r);
+            let (f2, j2) = alart_curnier_siconos::<true>(&p, rho_n, rho_t, &r);
+            let (f3, _) = alart_curnier_siconos::<false>(&p, rho_n, rho_t, &r);
+            prop_assert_eq!(f2, f3);
+            for i in 0..3 {
+                prop_assert!(close(f1[i], f2[i], 10.0), "F {:?} {:?}", f1, f2);
+                for j in 0..3 {
+                    prop_assert!(close(j1[i][j], j2[i][j], 100.0), "J {:?} {:?}", j1, j2);
+                }
+            }
+        }
+
+        /// Siconos' elimination solves what fc3d's does on well-conditioned systems.
+        #[test]
+        fn siconos_elimination_solves_the_system(
+            m in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            b in prop::array::uniform3(-3.0f64..3.0),
+        ) {
+            let mut m = m;
+            for (i, row) in m.iter_mut().enumerate() {
+                row[i] += 10.0;
+            }
+            let x = solve3_partial_pivoting(&m, &b).unwrap();
+            let y = solve3(&m, &b).unwrap();
+            for i in 0..3 {
+                prop_assert!(close(x[i], y[i], 1.0), "{:?} {:?}", x, y);
+            }
+        }
+    }
+
+    #[test]
+    fn siconos_elimination_refuses_a_zero_pivot() {
+        let m = [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+        assert_eq!(solve3_partial_pivoting(&m, &[1.0, 1.0, 1.0]), None);
+    }
+}
