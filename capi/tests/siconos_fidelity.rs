@@ -159,32 +159,40 @@ fn quartic_as_a_top_level_solver() {
     }
 }
 
-/// 501 and 521 are unfinished experiments in Siconos 4.4: rejected, with the reason.
+/// 501 is an unfinished experiment in Siconos 4.4: rejected, with the reason.
 #[test]
-fn unfinished_siconos_ids_are_rejected_with_the_reason() {
-    for (id, word) in [(501, "unfinished"), (521, "XXX to delete")] {
-        let path = CString::new(format!("{DATA}FC3D_Example1_SBM.dat")).unwrap();
-        unsafe {
-            let p = frictionContact_new_from_filename(path.as_ptr());
-            // solver_options_create may not know the id: the driver must reject it either way.
-            let mut o = solver_options_create(id);
-            let created = !o.is_null();
-            if !created {
-                o = solver_options_create(500);
-                (*o).solverId = id;
-            }
-            let n = 3 * (*p).numberOfContacts as usize;
-            let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
-            let info = fc3d_driver(p, r.as_mut_ptr(), u.as_mut_ptr(), o);
-            assert_eq!(info, fc3d::FC3D_ERR_UNSUPPORTED_SOLVER, "{id}");
-            let msg = CStr::from_ptr(fc3d_last_error_message()).to_string_lossy();
-            assert!(msg.contains(word), "{id}: {msg}");
-            if !created {
-                (*o).solverId = 500;
-            }
-            solver_options_delete(o);
-            free(o.cast());
-            frictionContactProblem_free(p);
-        }
+fn nsgsv_is_rejected_with_the_reason() {
+    let path = CString::new(format!("{DATA}FC3D_Example1_SBM.dat")).unwrap();
+    unsafe {
+        let p = frictionContact_new_from_filename(path.as_ptr());
+        let o = solver_options_create(501);
+        assert!(!o.is_null());
+        let n = 3 * (*p).numberOfContacts as usize;
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let info = fc3d_driver(p, r.as_mut_ptr(), u.as_mut_ptr(), o);
+        assert_eq!(info, fc3d::FC3D_ERR_UNSUPPORTED_SOLVER);
+        let msg = CStr::from_ptr(fc3d_last_error_message()).to_string_lossy();
+        assert!(msg.contains("unfinished"), "{msg}");
+        solver_options_delete(o);
+        free(o.cast());
+        frictionContactProblem_free(p);
+    }
+}
+
+/// 521 (NSN_AC_TEST): the Alart-Curnier Newton with rho = 1, as Siconos' suite runs it
+/// (tolerance 1e-5, 10000 iterations: NSN_COLLECTION_1 cases 25-49).
+#[test]
+fn nsn_ac_test_solves_with_rho_one() {
+    for file in [
+        "FC3D_Example1_SBM.dat",
+        "NESpheres_10_1.dat",
+        "Rover4396.dat",
+    ] {
+        let run = solve(file, 521, None, |o| unsafe {
+            *(*o).dparam = 1e-5;
+            set(o, 0, 10000);
+        });
+        assert_eq!(run.info, 0, "{file}: {}", run.error);
+        assert!(run.error <= 1e-5);
     }
 }

@@ -142,11 +142,6 @@ fn unfinished_in_siconos(id: c_int) -> Option<&'static str> {
              NULL local problem to 558 (Siconos crashes), handles dense matrices only, and \
              overwrites W with its pseudo-inverse",
         ),
-        521 => Some(
-            "Siconos 4.4's NSN_AC_TEST is an experiment its driver marks \"XXX to delete\" \
-             (a second Alart-Curnier Newton on the generic newton_LSA, rho = 1); it fails every \
-             case of Siconos' own test suite that uses it; use 504 (NSN_AC)",
-        ),
         _ => None,
     }
 }
@@ -250,6 +245,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         500 => Method::Nsgs(nsgs::read(&p, internal)?),
         505 | 506 | 507 | 511 | 512 => Method::Vi(vi::read(id, &p)?),
         504 | 513 | 520 => Method::Nsn(nsn::read(id, &p)?),
+        521 => Method::Nsn(nsn::read_ac_test(&p)?),
         502 => Method::Prox(prox::read(&p, internal)?),
         503 => Method::Tresca(fixed_point::read_tfp(&p, internal)?),
         522 => Method::Pfp(fixed_point::read_pfp(&p, internal)?),

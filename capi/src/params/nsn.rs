@@ -6,6 +6,11 @@
 //! rho (iparam[9] = 4), hybrid strategies (iparam[14] != 0). iparam[3], [5], [8], [17], [18] are
 //! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour. iparam[19]
 //! (`FC3D_IPARAM_VARIANT`): Siconos' iteration (0, default) or fc3d's (1).
+//!
+//! 521 (NSN_AC_TEST): Siconos 4.4 runs its generic Newton line-search solver on the same
+//! Alart-Curnier function with rho = 1 on every contact; fc3d runs 504's Newton with rho = 1.
+//! Honoured: iparam[0], dparam[0], iparam[10] (formulation), iparam[19]; Siconos' line-search
+//! settings of that generic solver (iparam[3..6], dparam[2..4]) are not used.
 
 use std::os::raw::c_int;
 
@@ -62,6 +67,19 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         }
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+    n.variant = p.variant()?;
+    Ok(n)
+}
+
+/// NSN_AC_TEST (521): the Alart-Curnier Newton of 504 with rho = 1 on every contact.
+pub(super) fn read_ac_test(p: &Params<'_>) -> CResult<NsnOptions> {
+    let formulation = match p.iparam[IPARAM_FORMULATION] {
+        0 | 2 => NsnFormulation::AlartCurnier,
+        1 | 3 => NsnFormulation::JeanMoreau,
+        other => return Err(invalid(format!("NSN formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)"))),
+    };
+    let mut n = NsnOptions::new(formulation);
+    n.rho_rule = RhoRule::Constant(1.0);
     n.variant = p.variant()?;
     Ok(n)
 }

@@ -191,6 +191,13 @@ const SLOTS: &[SiconosSlots] = &[
         dparam: &[(0, 1e-4), (2, 10.0)],
         internal: &[565],
     },
+    // NSN_AC_TEST (rejected by fc3d_driver): Siconos' newton_lsa_set_default values.
+    SiconosSlots {
+        id: 521,
+        iparam: &[(0, 1000)],
+        dparam: &[(0, 1e-10), (2, 1e-16)],
+        internal: &[],
+    },
     SiconosSlots {
         id: 508,
         iparam: &[(0, 20000)],
