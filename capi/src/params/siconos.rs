@@ -191,7 +191,7 @@ const SLOTS: &[SiconosSlots] = &[
         dparam: &[(0, 1e-4), (2, 10.0)],
         internal: &[565],
     },
-    // NSN_AC_TEST (rejected by fc3d_driver): Siconos' newton_lsa_set_default values.
+    // NSN_AC_TEST: Siconos' newton_lsa_set_default values (fc3d reads iparam[0], dparam[0]).
     SiconosSlots {
         id: 521,
         iparam: &[(0, 1000)],
