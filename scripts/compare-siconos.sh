@@ -11,7 +11,7 @@
 # Options (lists are comma- or space-separated; $DATA is $FC3D_SICONOS_DATA, default ../shared/data/siconos):
 #   --problems LIST    names in $DATA (with or without .dat) or paths to .dat files
 #                      (default: every 3D local problem of $DATA; --quick: 6 small ones)
-#   --solvers LIST     500 or 500/<local id> (default: 500/565,500/550,500/551,500/552,500/553,500/557;
+#   --solvers LIST     a solver id (504, 562, ...) or 500/<local id> (default: 500/565,500/550,500/551,500/552,500/553,500/557;
 #                      --quick: 500/565,500/552)
 #   --tols LIST        tolerances (default 1e-8)
 #   --reps N           timed repetitions, median reported (default 3; --quick: 1)
