@@ -323,7 +323,8 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
     let method = match id {
         500 => Method::Nsgs(nsgs::read(&p, internal)?),
         505 | 506 | 507 | 508 | 511 | 512 => Method::Vi(vi::read(id, &p)?),
-        504 | 513 | 520 | 521 => Method::Nsn(nsn::read(id, &p)?),
+        504 | 513 | 520 => Method::Nsn(nsn::read(id, &p)?),
+        521 => Method::Nsn(nsn::read_ac_test(&p)?),
         502 => Method::Prox(prox::read(&p, internal)?),
         503 => Method::Tresca(fixed_point::read_tfp(&p, internal)?),
         522 => Method::Pfp(fixed_point::read_pfp(&p, o)?),

@@ -1,7 +1,4 @@
-//! Nonsmooth Newton (504, 513, 520, 521). 521 (NSN_AC_TEST, Siconos' second Alart-Curnier Newton
-//! on its generic `newton_LSA`) fixes what it does not read, as Siconos does: rho = 1 for every
-//! component, the Goldstein line search; it honours iparam[10] (formulation, as 504) and
-//! iparam[14] (must be 0). For the others, honoured: iparam[9] rho strategy (0 constant dparam[3],
+//! Nonsmooth Newton (504, 513, 520). Honoured: iparam[9] rho strategy (0 constant dparam[3],
 //! 1 spectral norm, 2 split with conditioning, 3 split), iparam[10] formulation (504 only: 0/2
 //! Alart-Curnier, 1/3 Jean-Moreau; Siconos' "generated" variants compute the same function),
 //! iparam[11] line search (-1 none, 0 Goldstein-Price, 1 Armijo), iparam[12] line-search trials,
@@ -9,6 +6,11 @@
 //! rho (iparam[9] = 4), hybrid strategies (iparam[14] != 0). iparam[3], [5], [8], [17], [18] are
 //! Siconos' internal bookkeeping (work-space sizes, MPI) and carry no behaviour. iparam[19]
 //! (`FC3D_IPARAM_VARIANT`): Siconos' iteration (0, default) or fc3d's (1).
+//!
+//! 521 (NSN_AC_TEST): Siconos 4.4 runs its generic Newton line-search solver on the same
+//! Alart-Curnier function with rho = 1 on every contact; fc3d runs 504's Newton with rho = 1.
+//! Honoured: iparam[0], dparam[0], iparam[10] (formulation), iparam[19]; Siconos' line-search
+//! settings of that generic solver (iparam[3..6], dparam[2..4]) are not used.
 
 use std::os::raw::c_int;
 
@@ -26,7 +28,7 @@ const DPARAM_RHO: usize = 3;
 
 pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
     let formulation = match id {
-        504 | 521 => match p.iparam[IPARAM_FORMULATION] {
+        504 => match p.iparam[IPARAM_FORMULATION] {
             0 | 2 => NsnFormulation::AlartCurnier,
             1 | 3 => NsnFormulation::JeanMoreau,
             other => return Err(invalid(format!("NSN formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)"))),
@@ -34,7 +36,7 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         513 => NsnFormulation::FischerBurmeister,
         _ => NsnFormulation::NaturalMap,
     };
-    if id != 504 && id != 521 {
+    if id != 504 {
         p.require(
             IPARAM_FORMULATION,
             0,
@@ -42,15 +44,6 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         )?;
     }
     let mut n = NsnOptions::new(formulation);
-    if id == 521 {
-        // Siconos' fc3d_nonsmooth_Newton_AlartCurnier2 fills its rho array with 1 and sets the
-        // Goldstein criterion whatever iparam[9], [11] and [12] say.
-        n.rho_rule = RhoRule::Constant(1.0);
-        n.line_search = NsnLineSearch::GoldsteinPrice;
-        p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
-        n.variant = p.variant()?;
-        return Ok(n);
-    }
     n.rho_rule = match p.iparam[IPARAM_RHO_STRATEGY] {
         0 => RhoRule::Constant(p.dparam[DPARAM_RHO]),
         1 => RhoRule::SpectralNorm,
@@ -74,6 +67,19 @@ pub(super) fn read(id: c_int, p: &Params<'_>) -> CResult<NsnOptions> {
         }
     }
     p.require(IPARAM_HYBRID_STRATEGY, 0, "NSN hybrid strategy")?;
+    n.variant = p.variant()?;
+    Ok(n)
+}
+
+/// NSN_AC_TEST (521): the Alart-Curnier Newton of 504 with rho = 1 on every contact.
+pub(super) fn read_ac_test(p: &Params<'_>) -> CResult<NsnOptions> {
+    let formulation = match p.iparam[IPARAM_FORMULATION] {
+        0 | 2 => NsnFormulation::AlartCurnier,
+        1 | 3 => NsnFormulation::JeanMoreau,
+        other => return Err(invalid(format!("NSN formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)"))),
+    };
+    let mut n = NsnOptions::new(formulation);
+    n.rho_rule = RhoRule::Constant(1.0);
     n.variant = p.variant()?;
     Ok(n)
 }

@@ -184,6 +184,82 @@ fn solve3_partial_pivoting(m: &Mat3, b: &Vec3) -> Option<Vec3> {
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
+/// The Alart-Curnier function and (when `JAC`) its Jacobian `A W + B`, each value formed with
+/// the operations, in the order, of Siconos 4.4's standard Alart-Curnier function, so that the
+/// Siconos variant's iterates are Siconos' to the last bit (its local Newton, when it does not
+/// converge, amplifies a difference of one ulp into visibly different sweeps). The same function
+/// as [`alart_curnier_function`] otherwise.
+fn alart_curnier_siconos<const JAC: bool>(
+    p: &LocalProblem<'_>,
+    rho_n: f64,
+    rho_t: f64,
+    r: &Vec3,
+) -> (Vec3, Mat3) {
+    let v = p.velocity(r);
+    let mu = p.mu;
+    let mut f = [0.0; 3];
+    // a: derivative in u (Siconos' A), b: in r (Siconos' B).
+    let mut a: Mat3 = [[0.0; 3]; 3];
+    let mut b: Mat3 = [[0.0; 3]; 3];
+    let rvn = r[0] - rho_n * v[0];
+    let rvt = r[1] - rho_t * v[1];
+    let rvs = r[2] - rho_t * v[2];
+    let rv = (rvt * rvt + rvs * rvs).sqrt();
+    let radius = if rvn > 0.0 {
+        f[0] = rho_n * v[0];
+        a[0][0] = rho_n;
+        mu * rvn
+    } else {
+        f[0] = r[0];
+        b[0][0] = 1.0;
+        0.0
+    };
+    if rv <= radius {
+        f[1] = rho_t * v[1];
+        f[2] = rho_t * v[2];
+        a[1][1] = rho_t;
+        a[2][2] = rho_t;
+    } else if radius > 0.0 {
+        let rv1 = 1.0 / rv;
+        f[1] = r[1] - radius * rvt * rv1;
+        f[2] = r[2] - radius * rvs * rv1;
+        if JAC {
+            let rv3 = rv1 * rv1 * rv1;
+            let g_tt = rv1 - rvt * rvt * rv3;
+            let g_ts = -rvt * rvs * rv3;
+            let g_ss = rv1 - rvs * rvs * rv3;
+            a[1][0] = mu * rho_n * rvt * rv1;
+            a[2][0] = mu * rho_n * rvs * rv1;
+            a[1][1] = g_tt * rho_t * radius;
+            a[1][2] = g_ts * rho_t * radius;
+            a[2][1] = g_ts * rho_t * radius;
+            a[2][2] = g_ss * rho_t * radius;
+            b[1][0] = -mu * rvt * rv1;
+            b[1][1] = 1.0 - g_tt * radius;
+            b[1][2] = -g_ts * radius;
+            b[2][0] = -mu * rvs * rv1;
+            b[2][1] = -g_ts * radius;
+            b[2][2] = 1.0 - g_ss * radius;
+        }
+    } else {
+        f[1] = r[1];
+        f[2] = r[2];
+        b[1][1] = 1.0;
+        b[2][2] = 1.0;
+    }
+    if !JAC {
+        return (f, [[0.0; 3]; 3]);
+    }
+    let aw = mat3_mul(&a, p.w);
+    let mut jac = aw;
+    for i in 0..3 {
+        for j in 0..3 {
+            jac[i][j] += b[i][j];
+        }
+    }
+    (f, jac)
+}
+
 /// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
 pub struct AlartCurnierNewton {
     options: LocalSolverOptions,
@@ -225,6 +301,15 @@ impl AlartCurnierNewton {
             ac_eval::<false, true>(p, rho_n, rho_t, r).0
         } else {
             alart_curnier_residual(p, rho_n, rho_t, r)
+        }
+    }
+
+    /// F of the formulation, with Siconos' arithmetic for Alart-Curnier.
+    fn residual_siconos(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+        if self.jean_moreau {
+            ac_eval::<false, true>(p, rho_n, rho_t, r).0
+        } else {
+            alart_curnier_siconos::<false>(p, rho_n, rho_t, r).0
         }
     }
 
@@ -294,7 +379,7 @@ impl AlartCurnierNewton {
             let (f, jac) = if self.jean_moreau {
                 jean_moreau_function(p, rho_n, rho_t, r)
             } else {
-                alart_curnier_function(p, rho_n, rho_t, r)
+                alart_curnier_siconos::<true>(p, rho_n, rho_t, r)
             };
             // A singular Jacobian ends the iterations where they are.
             let Some(d) = solve3_partial_pivoting(&jac, &[-f[0], -f[1], -f[2]]) else {
@@ -318,7 +403,7 @@ impl AlartCurnierNewton {
                 return (false, it + 1);
             }
             *r = next;
-            let f = self.residual(p, rho_n, rho_t, r);
+            let f = self.residual_siconos(p, rho_n, rho_t, r);
             if 0.5 * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * inv_q < tol {
                 return (true, it + 1);
             }
@@ -351,7 +436,7 @@ impl AlartCurnierNewton {
                 r[1] + alpha * d[1],
                 r[2] + alpha * d[2],
             ];
-            let ft = self.residual(p, rho.0, rho.1, &rt);
+            let ft = self.residual_siconos(p, rho.0, rho.1, &rt);
             let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
             let slope = (psi - psi0) / alpha;
             let long_enough = slope >= GP_M2 * slope0;
@@ -585,5 +670,66 @@ impl LocalSolver for AlartCurnierNewton {
             converged,
             iterations,
         }
+    }
+}
+
+#[cfg(test)]
+mod siconos_arithmetic_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn close(a: f64, b: f64, scale: f64) -> bool {
+        (a - b).abs() <= 1e-12 * scale.max(1.0)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        /// Siconos' arithmetic computes the same function and Jacobian as fc3d's, in every
+        /// branch (take-off, stick, slide, zero radius), up to rounding.
+        #[test]
+        fn siconos_alart_curnier_is_the_same_function(
+            w in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            q in prop::array::uniform3(-5.0f64..5.0),
+            r in prop::array::uniform3(-5.0f64..5.0),
+            mu in 0.0f64..2.0,
+            rho_n in 0.1f64..2.0,
+            rho_t in 0.1f64..2.0,
+        ) {
+            let p = LocalProblem { w: &w, q, mu };
+            let (f1, j1) = alart_curnier_function(&p, rho_n, rho_t, &r);
+            let (f2, j2) = alart_curnier_siconos::<true>(&p, rho_n, rho_t, &r);
+            let (f3, _) = alart_curnier_siconos::<false>(&p, rho_n, rho_t, &r);
+            prop_assert_eq!(f2, f3);
+            for i in 0..3 {
+                prop_assert!(close(f1[i], f2[i], 10.0), "F {:?} {:?}", f1, f2);
+                for j in 0..3 {
+                    prop_assert!(close(j1[i][j], j2[i][j], 100.0), "J {:?} {:?}", j1, j2);
+                }
+            }
+        }
+
+        /// Siconos' elimination solves what fc3d's does on well-conditioned systems.
+        #[test]
+        fn siconos_elimination_solves_the_system(
+            m in prop::array::uniform3(prop::array::uniform3(-3.0f64..3.0)),
+            b in prop::array::uniform3(-3.0f64..3.0),
+        ) {
+            let mut m = m;
+            for (i, row) in m.iter_mut().enumerate() {
+                row[i] += 10.0;
+            }
+            let x = solve3_partial_pivoting(&m, &b).unwrap();
+            let y = solve3(&m, &b).unwrap();
+            for i in 0..3 {
+                prop_assert!(close(x[i], y[i], 1.0), "{:?} {:?}", x, y);
+            }
+        }
+    }
+
+    #[test]
+    fn siconos_elimination_refuses_a_zero_pivot() {
+        let m = [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+        assert_eq!(solve3_partial_pivoting(&m, &[1.0, 1.0, 1.0]), None);
     }
 }
