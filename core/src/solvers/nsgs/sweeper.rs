@@ -91,7 +91,7 @@ impl Sweeper {
         let rho = (0..rows.n_contacts())
             .map(|c| local_solver.rho(rows.diagonal(c)))
             .collect();
-        let memory = vec![1.0; rows.n_contacts()];
+        let memory = crate::error::try_vec(rows.n_contacts(), 1.0, "local solver states")?;
         Ok(Sweeper {
             rows,
             local_options: *local,
