@@ -114,7 +114,7 @@ fn nsgs_551_follows_siconos_on_rock_pile() {
     );
     assert_eq!((siconos.info, siconos.iterations), (0, 970));
     assert!(
-        (siconos.error - 4.8983196583789884e-4).abs() <= 1e-15,
+        (siconos.error - 4.898_319_658_378_988e-4).abs() <= 1e-15,
         "{}",
         siconos.error
     );

@@ -138,7 +138,7 @@ impl ErrorSchedule {
                         // Assume full/light stays roughly proportional and ask the cheap error
                         // for what the full one still lacks.
                         self.light_tolerance = light * tol / full;
-                        stalled = !(self.light_tolerance > 0.0);
+                        stalled = self.light_tolerance <= 0.0 || self.light_tolerance.is_nan();
                     }
                     (full, true, full <= tol)
                 } else {

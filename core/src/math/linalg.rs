@@ -73,11 +73,9 @@ pub type Block<const D: usize> = [[f64; D]; D];
 pub fn block_vec_add<const D: usize>(m: &Block<D>, x: &[f64; D], y: &[f64; D]) -> [f64; D] {
     let mut out = *y;
     for (o, row) in out.iter_mut().zip(m) {
-        let mut s = row[0] * x[0];
-        for j in 1..D {
-            s += row[j] * x[j];
+        for j in 0..D {
+            *o += row[j] * x[j];
         }
-        *o += s;
     }
     out
 }

@@ -75,18 +75,18 @@ pub struct LocalStep {
 }
 
 impl LocalStep {
-    fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Self {
+    fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
         let solver = AnyLocalSolver::new(options);
         let rho = (0..rows.n_contacts())
             .map(|c| solver.rho(rows.diagonal(c)))
             .collect();
-        LocalStep {
+        Ok(LocalStep {
             options: *options,
             solver,
             rho,
-            memory: vec![1.0; rows.n_contacts()],
+            memory: crate::error::try_vec(rows.n_contacts(), 1.0, "local solver states")?,
             deadline: None,
-        }
+        })
     }
 }
 
@@ -204,7 +204,7 @@ impl Sweeper {
         local: &LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
-        let step = LocalStep::new(&rows, local);
+        let step = LocalStep::new(&rows, local)?;
         Ok(GaussSeidel::from_parts(
             rows,
             step,
@@ -228,7 +228,7 @@ impl Sweeper {
     ) -> Result<Self, Fc3dError> {
         options.validate()?;
         let rows = problem.w().block_rows()?;
-        let step = LocalStep::new(&rows, &options.local);
+        let step = LocalStep::new(&rows, &options.local)?;
         Ok(GaussSeidel::from_parts(
             rows,
             step,
