@@ -58,10 +58,11 @@ int main(int argc, char** argv) {
         "unknown solver id");
   fc3d_settings_free(s);
 
-  /* Internal solvers: PROX with NSGS inside, TFP and PFP with the projected gradient; NSGS
-     refuses a non-local solver and keeps its own. */
-  int parents[3] = {502, 503, 522}, internals[3] = {500, 567, 567};
-  for (int k = 0; k < 3; k++) {
+  /* Internal solvers: PROX with NSGS inside, TFP and PFP with the projected gradient (567 as
+     PFP's single internal solver, or 1200, Siconos' ConvexQP projected gradient, in PFP's
+     tangent slot); NSGS refuses a non-local solver and keeps its own. */
+  int parents[4] = {502, 503, 522, 522}, internals[4] = {500, 567, 567, 1200};
+  for (int k = 0; k < 4; k++) {
     Fc3dSettings* t = fc3d_settings_new(parents[k]);
     CHECK(t != NULL && fc3d_settings_set_internal_solver(t, internals[k]) == 0, "%d/%d", parents[k], internals[k]);
     fc3d_settings_set_tolerance(t, 1e-10);
