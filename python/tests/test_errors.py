@@ -77,7 +77,7 @@ def test_unknown_solver():
     e = raises(fc3d.ERR_UNSUPPORTED_SOLVER, "unknown solver 'NOPE'", solver="NOPE")
     assert "NSGS (500)" in e.message  # the message lists the known names
     raises(fc3d.ERR_UNSUPPORTED_SOLVER, "solver id 599", solver=599)
-    raises(fc3d.ERR_UNSUPPORTED_SOLVER, "not implemented", solver=501)  # Siconos' NSGSV
+    raises(fc3d.ERR_UNSUPPORTED_SOLVER, "unfinished", solver=501)  # Siconos' NSGSV, rejected with the reason
 
 
 def test_bad_options():
