@@ -9,6 +9,17 @@ use crate::math::linalg::norm;
 use crate::measure::natural_map_error;
 use crate::problem::{FrictionProblem, FrictionProblem2d};
 
+/// The host's reaction and velocity arrays: `n` entries each, a finite initial reaction.
+fn check_iterate(n: usize, r: &[f64], u: &[f64]) -> Result<(), Fc3dError> {
+    if r.len() != n {
+        return Err(Fc3dError::dims("reaction", n, r.len()));
+    }
+    if u.len() != n {
+        return Err(Fc3dError::dims("velocity", n, u.len()));
+    }
+    check_finite("initial reaction", r)
+}
+
 /// Solves `problem` from the initial guess in `r`; on success `r` and `u = W r + q` hold the
 /// result and the report holds the error measured on them.
 ///
@@ -31,14 +42,7 @@ pub fn solve_with_observer(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolveReport, Fc3dError> {
-    let n = problem.size();
-    if r.len() != n {
-        return Err(Fc3dError::dims("reaction", n, r.len()));
-    }
-    if u.len() != n {
-        return Err(Fc3dError::dims("velocity", n, u.len()));
-    }
-    check_finite("initial reaction", r)?;
+    check_iterate(problem.size(), r, u)?;
     config.validate()?;
     let outcome = match config.rescaling {
         Rescaling::None => run(problem, config, r, u, observer)?,
@@ -221,14 +225,7 @@ pub fn solve_planar_with_observer(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolveReport, Fc3dError> {
-    let n = problem.size();
-    if r.len() != n {
-        return Err(Fc3dError::dims("reaction", n, r.len()));
-    }
-    if u.len() != n {
-        return Err(Fc3dError::dims("velocity", n, u.len()));
-    }
-    check_finite("initial reaction", r)?;
+    check_iterate(problem.size(), r, u)?;
     config.validate()?;
     // Exactly, not up to rounding as in 3D: 2D problems with q of order 1e-18 exist, where a
     // q_N of -1e-19 matters relative to ||q||.
