@@ -276,22 +276,21 @@ unsafe fn set_internal_solver(settings: *mut Fc3dSettings, id: c_int) -> CResult
         o.internalSolvers = slots;
         o.numberOfInternalSolvers = 1;
     }
-    if o.solverId == 522 && o.numberOfInternalSolvers == 2 {
-        return set_pfp_internal_solver(o, fresh, id);
-    }
-    let slot = o.internalSolvers;
+    // PFP created with Siconos' two internal solvers: 202 PGS is the normal part's (slot 0),
+    // 1200/1201 the tangent part's (slot 1); any other solver becomes its single one.
+    let index = match (o.solverId, o.numberOfInternalSolvers, id) {
+        (522, 2, 1200 | 1201) => 1,
+        (522, 2, 202) => 0,
+        (522, 2, _) => return set_pfp_single_internal_solver(o, fresh, id),
+        _ => 0,
+    };
+    let slot = o.internalSolvers.add(index);
     let previous = *slot;
     *slot = fresh;
     if let Err(e) = config_from_c(o) {
         *slot = previous;
         release_options(fresh);
-        return Err(CError::new(
-            FC3D_ERR_INVALID_OPTION,
-            format!(
-                "internal solver {id} cannot be used by solver {}: {}",
-                o.solverId, e.message
-            ),
-        ));
+        return Err(internal_solver_refused(o, id, e));
     }
     if !previous.is_null() {
         release_options(previous);
@@ -299,38 +298,25 @@ unsafe fn set_internal_solver(settings: *mut Fc3dSettings, id: c_int) -> CResult
     Ok(0)
 }
 
-/// PFP created with Siconos' two internal solvers (202 PGS for the normal part, a ConvexQP solver
-/// for the tangent part): 202 replaces the normal solver, 1200/1201 the tangent one, and any other
-/// solver (the Tresca solvers of fc3d 0.2's layout: 500, 567, ...) becomes PFP's single internal
-/// solver. On failure the options are left as they were.
-unsafe fn set_pfp_internal_solver(
+/// `FC3D_ERR_INVALID_OPTION` for an internal solver `id` that `o`'s solver cannot use.
+fn internal_solver_refused(o: &SolverOptions, id: c_int, e: CError) -> CError {
+    CError::new(
+        FC3D_ERR_INVALID_OPTION,
+        format!(
+            "internal solver {id} cannot be used by solver {}: {}",
+            o.solverId, e.message
+        ),
+    )
+}
+
+/// PFP with Siconos' two internal solvers given another one (the Tresca solvers of fc3d 0.2's
+/// layout: 500, 567, ...): it becomes PFP's single internal solver. On failure the options are
+/// left as they were.
+unsafe fn set_pfp_single_internal_solver(
     o: &mut SolverOptions,
     fresh: *mut SolverOptions,
     id: c_int,
 ) -> CResult<c_int> {
-    let refused = |o: &SolverOptions, e: CError| {
-        CError::new(
-            FC3D_ERR_INVALID_OPTION,
-            format!(
-                "internal solver {id} cannot be used by solver {}: {}",
-                o.solverId, e.message
-            ),
-        )
-    };
-    if matches!(id, 202 | 1200 | 1201) {
-        let slot = o.internalSolvers.add(if id == 202 { 0 } else { 1 });
-        let previous = *slot;
-        *slot = fresh;
-        if let Err(e) = config_from_c(o) {
-            *slot = previous;
-            release_options(fresh);
-            return Err(refused(o, e));
-        }
-        if !previous.is_null() {
-            release_options(previous);
-        }
-        return Ok(0);
-    }
     let single = c_calloc::<*mut SolverOptions>(1).inspect_err(|_| release_options(fresh))?;
     *single = fresh;
     let (pair, count) = (o.internalSolvers, o.numberOfInternalSolvers);
@@ -341,7 +327,7 @@ unsafe fn set_pfp_internal_solver(
         o.numberOfInternalSolvers = count;
         c_free(single);
         release_options(fresh);
-        return Err(refused(o, e));
+        return Err(internal_solver_refused(o, id, e));
     }
     for k in 0..count {
         let previous = *pair.add(k);
