@@ -28,18 +28,22 @@ pub mod scenes;
 pub mod solve;
 pub mod solvers;
 
-pub use config::{Method, PlanarConfig, Rescaling, SolverConfig};
+pub use config::{Method, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
 pub use error::Fc3dError;
+pub use local::rolling::RollingProjectionIteration;
 pub use local::{
     AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule,
 };
 pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
-pub use problem::{FrictionProblem, FrictionProblem2d};
-pub use solve::{solve, solve_planar, solve_planar_with_observer, solve_with_observer};
+pub use problem::{FrictionProblem, FrictionProblem2d, RollingProblem, RollingProblem2d};
+pub use solve::{
+    solve, solve_planar, solve_planar_with_observer, solve_rolling, solve_rolling_with_observer,
+    solve_with_observer,
+};
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
@@ -47,6 +51,7 @@ pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;
 pub use solvers::planar::{PlanarMethod, PlanarNsgsOptions};
 pub use solvers::prox::{ProxInternal, ProxOptions};
+pub use solvers::rolling::{RollingLocalSolver, RollingMethod, RollingNsgsOptions};
 pub use solvers::soclcp::SoclcpOptions;
 pub use solvers::tresca::{TrescaInnerSolver, TrescaOptions};
 pub use solvers::vi::{

@@ -10,8 +10,9 @@ use crate::math::cone::{
     modified_velocity, modified_velocity_d, project_on_cone, project_on_cone_d,
 };
 use crate::math::linalg::{contact_of, norm, Vec3};
+use crate::math::rolling::{part_norms, project_on_rolling_cone, rolling_residual_sq};
 use crate::matrix::BlockRows;
-use crate::problem::FrictionProblem;
+use crate::problem::{FrictionProblem, RollingProblem};
 
 /// Squared natural-map residual of one contact, `|| r - P_K(r - ũ) ||^2`.
 #[inline]
@@ -134,6 +135,153 @@ pub fn natural_map_error_of<const D: usize>(
     u: &[f64],
 ) -> f64 {
     relative_natural_map_error_d::<D>(r, u, problem.mu(), norm(problem.q()))
+}
+
+/// The relative natural-map error of a rolling pair `(r, u)` taken as given, as Siconos'
+/// `rolling_fc3d_compute_error` measures it: `sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2)` with the
+/// rolling cone and De Saxcé velocity ([`crate::math::rolling`]), divided by `max(norm, ||r||,
+/// ||u||)` when that exceeds the machine epsilon (`norm` is `||q||` for the solvers).
+pub fn relative_rolling_error<const D: usize>(
+    r: &[f64],
+    u: &[f64],
+    mu: &[f64],
+    mu_r: &[f64],
+    norm: f64,
+) -> f64 {
+    let mut s = 0.0;
+    for (c, (&m, &mr)) in mu.iter().zip(mu_r).enumerate() {
+        s += rolling_residual_sq::<D>(&contact_of(r, c), &contact_of(u, c), m, mr);
+    }
+    let scale = norm
+        .max(crate::math::linalg::norm(r))
+        .max(crate::math::linalg::norm(u));
+    if scale.abs() > f64::EPSILON {
+        s.sqrt() / scale
+    } else {
+        s.sqrt()
+    }
+}
+
+/// The relative natural-map error of `r` for a rolling problem: computes `u = W r + q` into `u`
+/// and returns [`relative_rolling_error`] with `norm = ||q||`.
+pub fn rolling_error<const D: usize>(
+    problem: &RollingProblem<'_, D>,
+    r: &[f64],
+    u: &mut [f64],
+) -> f64 {
+    problem.velocity(r, u);
+    relative_rolling_error::<D>(r, u, problem.mu(), problem.mu_r(), norm(problem.q()))
+}
+
+/// Dumont's criterion (37) for the rolling law: as [`dumont_criterion_d`] with the rolling cone
+/// and the bi-potential `|u·r + (mu ||u_T|| + mu_r ||u_R||) r_N|`, which vanishes on every branch
+/// of the rolling law for an `r` in its cone.
+pub fn rolling_dumont_criterion<const D: usize>(
+    r: &[f64],
+    u: &[f64],
+    u_solved: &[f64],
+    mu: &[f64],
+    mu_r: &[f64],
+) -> f64 {
+    let nc = mu.len();
+    if nc == 0 {
+        return 0.0;
+    }
+    let mut sum = 0.0;
+    for (c, (&m, &mr)) in mu.iter().zip(mu_r).enumerate() {
+        let rc: [f64; D] = contact_of(r, c);
+        let uc: [f64; D] = contact_of(u, c);
+        let us: [f64; D] = contact_of(u_solved, c);
+        let motion = crate::math::linalg::distance_sq_d(&us, &uc).sqrt();
+        let p = project_on_rolling_cone(&rc, m, mr);
+        let proj = crate::math::linalg::distance_sq_d(&rc, &p).sqrt();
+        let (nt, nr) = part_norms(&uc);
+        let mut ur = 0.0;
+        for k in 0..D {
+            ur += uc[k] * rc[k];
+        }
+        let bipotential = (ur + (m * nt + mr * nr) * rc[0]).abs();
+        sum += motion + proj + bipotential + (-uc[0]).max(0.0);
+    }
+    sum / nc as f64
+}
+
+/// A problem the Gauss-Seidel main loop can sweep and measure: a friction problem (Coulomb cone)
+/// or a rolling one (rolling cone), of contact dimension `D`.
+pub trait SweptProblem<const D: usize> {
+    fn q(&self) -> &[f64];
+    /// The friction coefficients the sweep hands its one-contact step.
+    fn mu(&self) -> &[f64];
+    fn n_contacts(&self) -> usize;
+    /// The problem's relative natural-map error of `r`, `u = W r + q` computed on W's storage.
+    fn error(&self, r: &[f64], u: &mut [f64]) -> f64;
+    /// The same with `u` computed through the block rows of W.
+    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64;
+    /// Dumont's criterion with the problem's cone (`u` receives `W r + q`).
+    fn dumont_by_rows(
+        &self,
+        rows: &BlockRows<D>,
+        r: &[f64],
+        u: &mut [f64],
+        u_solved: &[f64],
+    ) -> f64;
+}
+
+impl<const D: usize> SweptProblem<D> for FrictionProblem<'_, D> {
+    fn q(&self) -> &[f64] {
+        FrictionProblem::q(self)
+    }
+    fn mu(&self) -> &[f64] {
+        FrictionProblem::mu(self)
+    }
+    fn n_contacts(&self) -> usize {
+        FrictionProblem::n_contacts(self)
+    }
+    fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
+        natural_map_error(self, r, u)
+    }
+    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64 {
+        natural_map_error_by_rows(self, rows, r, u)
+    }
+    fn dumont_by_rows(
+        &self,
+        rows: &BlockRows<D>,
+        r: &[f64],
+        u: &mut [f64],
+        u_solved: &[f64],
+    ) -> f64 {
+        rows.velocity(self.q(), r, u);
+        dumont_criterion_d::<D>(r, u, u_solved, self.mu())
+    }
+}
+
+impl<const D: usize> SweptProblem<D> for RollingProblem<'_, D> {
+    fn q(&self) -> &[f64] {
+        RollingProblem::q(self)
+    }
+    fn mu(&self) -> &[f64] {
+        RollingProblem::mu(self)
+    }
+    fn n_contacts(&self) -> usize {
+        RollingProblem::n_contacts(self)
+    }
+    fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
+        rolling_error(self, r, u)
+    }
+    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64 {
+        rows.velocity(self.q(), r, u);
+        relative_rolling_error::<D>(r, u, self.mu(), self.mu_r(), norm(self.q()))
+    }
+    fn dumont_by_rows(
+        &self,
+        rows: &BlockRows<D>,
+        r: &[f64],
+        u: &mut [f64],
+        u_solved: &[f64],
+    ) -> f64 {
+        rows.velocity(self.q(), r, u);
+        rolling_dumont_criterion::<D>(r, u, u_solved, self.mu(), self.mu_r())
+    }
 }
 
 /// Cheap error (134) from the accumulated squared increment of a sweep.

@@ -151,3 +151,94 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
         }
     }
 }
+
+/// A rolling-friction problem (Siconos' `RollingFrictionContactProblem`): FC(W, q, mu) with a
+/// rolling resistance coefficient `mu_r` per contact and contacts of dimension `D`: 5 (normal,
+/// two tangential, two rolling components; Siconos' `rolling_fc3d`, the default) or 3 (normal,
+/// tangential, rolling; `rolling_fc2d`). Each contact's cone is
+/// `K = { ||r_T|| <= mu r_N, ||r_R|| <= mu_r r_N }` (see [`crate::math::rolling`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RollingProblem<'a, const D: usize = 5> {
+    base: FrictionProblem<'a, D>,
+    mu_r: Cow<'a, [f64]>,
+}
+
+/// A 2D rolling problem (Siconos' `rolling_fc2d`): three components per contact.
+pub type RollingProblem2d<'a> = RollingProblem<'a, 3>;
+
+impl<'a, const D: usize> RollingProblem<'a, D> {
+    /// Validates and assembles a rolling problem: `W` is `D nc x D nc` (dense or general sparse:
+    /// the sparse-block storage holds 3x3 blocks only), `q` of size `D nc`, `mu` and `mu_r` of
+    /// size `nc`, every value finite, both coefficients `>= 0`.
+    pub fn new(
+        w: Delassus<'a>,
+        q: impl Into<Cow<'a, [f64]>>,
+        mu: impl Into<Cow<'a, [f64]>>,
+        mu_r: impl Into<Cow<'a, [f64]>>,
+    ) -> Result<Self, Fc3dError> {
+        if D != 5 && D != 3 {
+            return Err(Fc3dError::Unsupported(format!(
+                "rolling contacts of dimension {D} (5 or 3 only)"
+            )));
+        }
+        if matches!(w, Delassus::SparseBlock(_)) {
+            return Err(Fc3dError::Unsupported(format!(
+                "a rolling problem of dimension {D} cannot hold W in 3x3 sparse-block storage \
+                 (use a dense or CSR W)"
+            )));
+        }
+        let base = FrictionProblem::validated(w, q.into(), mu.into())?;
+        let mu_r = mu_r.into();
+        if mu_r.len() != base.n_contacts() {
+            return Err(Fc3dError::dims("mu_r", base.n_contacts(), mu_r.len()));
+        }
+        check_finite("mu_r", &mu_r)?;
+        if let Some(c) = mu_r.iter().position(|&m| m < 0.0) {
+            return Err(Fc3dError::NegativeFriction {
+                contact: c,
+                value: mu_r[c],
+            });
+        }
+        Ok(RollingProblem { base, mu_r })
+    }
+
+    /// The same W, q and mu as a friction problem of dimension `D` (what the generic sweep and
+    /// storages work on; its cone is not the rolling one).
+    pub fn base(&self) -> &FrictionProblem<'a, D> {
+        &self.base
+    }
+    pub const fn dimension(&self) -> usize {
+        D
+    }
+    pub fn n_contacts(&self) -> usize {
+        self.base.n_contacts()
+    }
+    /// `D * n_contacts`.
+    pub fn size(&self) -> usize {
+        self.base.size()
+    }
+    pub fn w(&self) -> &Delassus<'a> {
+        self.base.w()
+    }
+    pub fn q(&self) -> &[f64] {
+        self.base.q()
+    }
+    pub fn mu(&self) -> &[f64] {
+        self.base.mu()
+    }
+    pub fn mu_r(&self) -> &[f64] {
+        &self.mu_r
+    }
+    /// `u = W r + q`.
+    pub fn velocity(&self, r: &[f64], u: &mut [f64]) {
+        self.base.velocity(r, u);
+    }
+
+    /// An owned copy that no longer borrows any host array.
+    pub fn into_owned(self) -> RollingProblem<'static, D> {
+        RollingProblem {
+            base: self.base.into_owned(),
+            mu_r: Cow::Owned(self.mu_r.into_owned()),
+        }
+    }
+}

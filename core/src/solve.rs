@@ -2,12 +2,12 @@
 //! trivial-case shortcut, the dispatch, and the one post-processing path that measures the error
 //! of the returned `(r, u)` and sets the status from it.
 
-use crate::config::{scalar_factors, PlanarConfig, Rescaling, SolverConfig};
+use crate::config::{scalar_factors, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::norm;
-use crate::measure::natural_map_error;
-use crate::problem::{FrictionProblem, FrictionProblem2d};
+use crate::measure::{natural_map_error, rolling_error};
+use crate::problem::{FrictionProblem, FrictionProblem2d, RollingProblem};
 
 /// The host's reaction and velocity arrays: `n` entries each, a finite initial reaction.
 fn check_iterate(n: usize, r: &[f64], u: &[f64]) -> Result<(), Fc3dError> {
@@ -256,6 +256,61 @@ pub fn solve_planar_with_observer(
         iterations: outcome.iterations,
         error,
         dumont_criterion: None,
+        final_rho: None,
+    })
+}
+
+/// Solves the rolling `problem` (contacts of dimension 5, or 3 for Siconos' `rolling_fc2d`) from
+/// the initial guess in `r`. When no contact is pushed into penetration (every `q_N >=
+/// -epsilon`, Siconos' trivial case) the answer is `r = 0`, `u = q` after no iteration. On
+/// success `r` and `u = W r + q` hold the result and the report the natural-map error with the
+/// rolling cone measured on them (Siconos' `rolling_fc3d_compute_error`); on `Err`, `r` and `u`
+/// are left untouched.
+pub fn solve_rolling<const D: usize>(
+    problem: &RollingProblem<'_, D>,
+    config: &RollingConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+) -> Result<SolveReport, Fc3dError> {
+    solve_rolling_with_observer(problem, config, r, u, &mut |_| {})
+}
+
+/// [`solve_rolling`] with an observer called after every sweep.
+pub fn solve_rolling_with_observer<const D: usize>(
+    problem: &RollingProblem<'_, D>,
+    config: &RollingConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolveReport, Fc3dError> {
+    check_iterate(problem.size(), r, u)?;
+    config.validate()?;
+    let outcome = if problem.q().chunks_exact(D).all(|qc| qc[0] >= -f64::EPSILON) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        SolverOutcome::stopped(0, false)
+    } else {
+        crate::solvers::rolling::run(&config.method, problem, &config.limits(), r, u, observer)?
+    };
+    let mut error = match outcome.final_error {
+        Some(e) => e,
+        None => rolling_error(problem, r, u),
+    };
+    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        r.iter_mut().for_each(|v| *v = 0.0);
+        error = rolling_error(problem, r, u);
+    }
+    let status = if error <= config.tolerance {
+        SolveStatus::Converged
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    Ok(SolveReport {
+        status,
+        iterations: outcome.iterations,
+        error,
+        dumont_criterion: outcome.dumont_criterion,
         final_rho: None,
     })
 }

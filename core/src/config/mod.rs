@@ -5,10 +5,12 @@
 mod method;
 mod planar;
 mod rescaling;
+mod rolling;
 
 pub use method::Method;
 pub use planar::PlanarConfig;
 pub use rescaling::{scalar_factors, Rescaling};
+pub use rolling::RollingConfig;
 
 use std::time::Duration;
 

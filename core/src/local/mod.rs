@@ -10,6 +10,7 @@ mod projection;
 mod quartic;
 mod registry;
 mod regularized;
+pub mod rolling;
 mod settings;
 mod vi_upk;
 

@@ -1,7 +1,8 @@
 //! Fixed-size kernels every layer above uses: 3-vectors and 3x3 matrices written by hand, the
-//! projections on the Coulomb cone, its dual, disks and cylinders, and the constants of the
-//! self-adaptive step rule.
+//! projections on the Coulomb cone, its dual, disks and cylinders, the rolling-friction cone
+//! (`rolling`), and the constants of the self-adaptive step rule.
 
 pub mod cone;
 pub mod linalg;
+pub mod rolling;
 pub mod step;

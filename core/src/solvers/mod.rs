@@ -11,6 +11,7 @@ pub mod nsn;
 pub mod pfp;
 pub mod planar;
 pub mod prox;
+pub mod rolling;
 pub mod soclcp;
 pub mod tresca;
 pub mod vi;

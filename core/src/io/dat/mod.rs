@@ -69,7 +69,8 @@ pub use parse::{
     read_dat, read_dat_any, read_dat_file, read_dat_file_any, read_matrix, read_matrix_file,
     read_sbm, DatProblem,
 };
-pub use write::{write_dat, write_dat_file, write_matrix, write_sbm};
+pub use parse::{parse_rolling_dat, read_rolling_dat, read_rolling_dat_file, RollingDatProblem};
+pub use write::{write_dat, write_dat_file, write_matrix, write_rolling_dat, write_sbm};
 
 #[cfg(doc)]
 use crate::error::Fc3dError;

@@ -9,7 +9,7 @@ use super::tokens::{try_push, Reader};
 use super::STORAGE_DENSE;
 use crate::error::Fc3dError;
 use crate::matrix::{BlockSparseMatrix, Delassus};
-use crate::problem::{FrictionProblem, FrictionProblem2d, DIMENSION};
+use crate::problem::{FrictionProblem, FrictionProblem2d, RollingProblem, DIMENSION};
 
 /// A problem as read from a `.dat` file, of the dimension the file declares.
 #[derive(Debug, Clone, PartialEq)]
@@ -106,6 +106,20 @@ fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
 fn problem_body<const D: usize>(
     r: &mut Reader<'_>,
 ) -> Result<FrictionProblem<'static, D>, Fc3dError> {
+    let (w, q, mu, storage_index) = problem_parts::<D>(r, 0)?;
+    // Everything `FrictionProblem::new` checks has been checked token by token above; this only
+    // catches what slipped through, pointing at the matrix it concerns.
+    FrictionProblem::<D>::from_parts(w, q, mu)
+        .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))
+}
+
+/// W, q and mu after the dimension token, for contacts of dimension `D`, and the index of W's
+/// storage token; `more_per_contact` values per contact are still to come after mu (the rolling
+/// coefficients), so a size the input cannot hold fails before anything is allocated.
+fn problem_parts<const D: usize>(
+    r: &mut Reader<'_>,
+    more_per_contact: usize,
+) -> Result<(Delassus<'static>, Vec<f64>, Vec<f64>, usize), Fc3dError> {
     let (nc_index, nc) = r.usize("the number of contacts")?;
     let n = nc
         .checked_mul(D)
@@ -129,7 +143,10 @@ fn problem_body<const D: usize>(
     }
     // q and mu follow the matrix: a size the rest of the input cannot hold fails here, before any
     // storage sized by it is allocated.
-    r.ensure_remaining(n.saturating_add(nc), "W, q and mu")?;
+    r.ensure_remaining(
+        n.saturating_add(nc.saturating_mul(1 + more_per_contact)),
+        "W, q and mu",
+    )?;
     // The solvers need the diagonal block of every contact: a sparse-block W must store them all.
     let body = parse_matrix_body(r, storage_index, storage, n, n, true, D)?;
 
@@ -146,9 +163,69 @@ fn problem_body<const D: usize>(
     // A sparse W is compressed now that q, one value per row, has been read: its row pointers
     // are bounded by the input even when its length is unknown.
     let w = body.finish(r)?;
-    // Everything `FrictionProblem::new` checks has been checked token by token above; this only
-    // catches what slipped through, pointing at the matrix it concerns.
-    FrictionProblem::<D>::from_parts(w, q, mu)
+    Ok((w, q, mu, storage_index))
+}
+
+/// A rolling-friction problem as read from a `.dat` file (Siconos'
+/// `rollingFrictionContact_newFromFile`: dimension, contacts, W, q, mu, then mu_r), of the
+/// dimension the file declares.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RollingDatProblem {
+    /// Dimension 5 (`rolling_fc3d`).
+    Spatial(RollingProblem<'static, 5>),
+    /// Dimension 3 (`rolling_fc2d`).
+    Planar(RollingProblem<'static, 3>),
+}
+
+/// Reads a rolling `.dat` problem from a stream, in chunks, up to the last rolling coefficient
+/// (as [`read_dat`]); returns the problem and the number of bytes it takes.
+pub fn read_rolling_dat<R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    file_label: &str,
+) -> Result<(RollingDatProblem, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, file_label, "W");
+    let (dim_index, dim) = r.usize("the problem dimension")?;
+    let p = match dim {
+        5 => rolling_body::<5>(&mut r).map(RollingDatProblem::Spatial)?,
+        3 => rolling_body::<3>(&mut r).map(RollingDatProblem::Planar)?,
+        _ => {
+            return Err(r.error_at(
+                dim_index,
+                "the dimension of a rolling problem must be 5 (3D) or 3 (2D)",
+            ))
+        }
+    };
+    Ok((p, r.consumed_bytes()))
+}
+
+/// [`read_rolling_dat`] on a file.
+pub fn read_rolling_dat_file(path: &Path) -> Result<RollingDatProblem, Fc3dError> {
+    let label = path.display().to_string();
+    let (file, len) = open(path, &label)?;
+    read_rolling_dat(file, len, &label).map(|(p, _)| p)
+}
+
+/// [`read_rolling_dat`] on text in memory.
+pub fn parse_rolling_dat(text: &str, file_label: &str) -> Result<RollingDatProblem, Fc3dError> {
+    read_rolling_dat(text.as_bytes(), Some(text.len() as u64), file_label).map(|(p, _)| p)
+}
+
+fn rolling_body<const D: usize>(
+    r: &mut Reader<'_>,
+) -> Result<RollingProblem<'static, D>, Fc3dError> {
+    let (w, q, mu, storage_index) = problem_parts::<D>(r, 1)?;
+    let nc = mu.len();
+    r.ensure_remaining(nc, "the rolling coefficients mu_r")?;
+    let mut mu_r = r.vec_for(nc, 1, "the rolling coefficients mu_r")?;
+    for _ in 0..nc {
+        let (index, m) = r.real("a rolling coefficient")?;
+        if m < 0.0 {
+            return Err(r.error_at(index, "rolling coefficients must be >= 0"));
+        }
+        try_push(&mut mu_r, m, "the rolling coefficients mu_r")?;
+    }
+    RollingProblem::<D>::new(w, q, mu, mu_r)
         .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))
 }
 

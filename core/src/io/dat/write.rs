@@ -9,7 +9,7 @@ use super::{parse_dat, parse_matrix};
 use super::{ORIGIN_TRIPLET, STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
 use crate::error::Fc3dError;
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
-use crate::problem::{FrictionProblem, DIMENSION};
+use crate::problem::{FrictionProblem, RollingProblem, DIMENSION};
 
 /// Writes `problem` in the `.dat` format, W in the storage it has (a [`CsrMatrix`] as a CSparse
 /// triplet dump, which Siconos reads as `NM_SPARSE` with origin `NSM_TRIPLET`). Values are printed
@@ -24,6 +24,16 @@ pub fn write_dat<W: Write, const D: usize>(
     write_matrix(problem.w(), out)?;
     write_reals_line(out, problem.q())?;
     write_reals_line(out, problem.mu())
+}
+
+/// Writes a rolling `problem` in the `.dat` format of Siconos' `rollingFrictionContact_printInFile`
+/// (dimension, contacts, W, q, mu, mu_r), values in their shortest exactly round-tripping form.
+pub fn write_rolling_dat<W: Write, const D: usize>(
+    problem: &RollingProblem<'_, D>,
+    out: &mut W,
+) -> io::Result<()> {
+    write_dat(problem.base(), out)?;
+    write_reals_line(out, problem.mu_r())
 }
 
 /// Writes `w` as Siconos' `NM_write_in_file` does (`storageType size0 size1` and the body), in the

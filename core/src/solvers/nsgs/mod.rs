@@ -18,7 +18,7 @@ use crate::contract::{
     SolverOutcome,
 };
 use crate::error::Fc3dError;
-use crate::measure::natural_map_error;
+use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
 impl Family for NsgsOptions {
@@ -90,8 +90,8 @@ pub(crate) struct SweepSchedule {
 /// The Gauss-Seidel main loop over contacts of any dimension: sweep, test on the schedule,
 /// adapt the local tolerance, keep the best iterate under a time budget. The prepared `sweeper`
 /// has been checked, so nothing fails once `r` is touched.
-pub(crate) fn run_sweeps<const D: usize, S: ContactStep<D>>(
-    problem: &FrictionProblem<'_, D>,
+pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
+    problem: &P,
     sweeper: &mut GaussSeidel<D, S>,
     options: &SweepSchedule,
     limits: &Limits,
@@ -119,7 +119,7 @@ pub(crate) fn run_sweeps<const D: usize, S: ContactStep<D>>(
     for iteration in 1..=run.max_iter {
         let increment_sq = sweeper.sweep(q, mu, r);
         let test = schedule.test(iteration, increment_sq, r, |measure| match measure {
-            Measure::NaturalMap => natural_map_error(problem, r, u),
+            Measure::NaturalMap => problem.error(r, u),
             Measure::DumontCriterion => {
                 let e = sweeper.dumont_criterion(problem, r, u);
                 dumont = Some(e);

@@ -9,7 +9,7 @@ use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
 use crate::math::linalg::{block_vec_add, contact_of, distance_sq_d, Block};
 use crate::matrix::BlockRows;
-use crate::measure::natural_map_error_by_rows;
+use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
 use super::settings::{ContactOrder, NsgsOptions};
@@ -61,6 +61,17 @@ pub trait ContactStep<const D: usize> {
 
     /// The instant after which an iterative step stops iterating.
     fn set_deadline(&mut self, _deadline: Option<Instant>) {}
+
+    /// Whether contact `c`'s cone is the half-line `R+ e_N` (the sweep then solves the scalar
+    /// problem of the normal row itself): with the Coulomb cone, when `mu = 0`.
+    fn normal_only(&self, _c: usize, mu: f64) -> bool {
+        mu == 0.0
+    }
+
+    /// The point of contact `c`'s cone nearest to `r` (an over-relaxed reaction can leave it).
+    fn project(&self, _c: usize, r: &[f64; D], mu: f64) -> [f64; D] {
+        crate::math::cone::project_on_cone_d(r, mu)
+    }
 }
 
 /// The 3D step: the configured local solver with each contact's penalty parameters (they depend
@@ -278,7 +289,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
         let w = self.rows.diagonal(c);
         let old: [f64; D] = contact_of(r, c);
         let wnn = w[0][0];
-        let frictionless = mu[c] == 0.0 && wnn > 0.0 && wnn.is_finite();
+        let frictionless = self.step.normal_only(c, mu[c]) && wnn > 0.0 && wnn.is_finite();
         let need_local_q = !frictionless || !self.plan.u_solved.is_empty();
         let local_q = need_local_q.then(|| self.rows.local_q(c, q, r));
         // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
@@ -311,7 +322,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             }
             if omega > 1.0 {
                 // Over-relaxation can leave the cone; the iterate must stay admissible.
-                rc = crate::math::cone::project_on_cone_d(&rc, mu[c]);
+                rc = self.step.project(c, &rc, mu[c]);
             }
         }
         let d_sq = distance_sq_d(&rc, &old);
@@ -351,23 +362,22 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
     /// blocks (cheaper than the host's storage when W is dense but sparsely coupled).
-    pub fn natural_map_error(
+    pub fn natural_map_error<P: SweptProblem<D>>(
         &self,
-        problem: &FrictionProblem<'_, D>,
+        problem: &P,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
-        natural_map_error_by_rows(problem, &self.rows, r, u)
+        problem.error_by_rows(&self.rows, r, u)
     }
 
     /// Dumont's criterion (37) after the last sweep (`u` receives `W r + q`).
-    pub(crate) fn dumont_criterion(
+    pub(crate) fn dumont_criterion<P: SweptProblem<D>>(
         &self,
-        problem: &FrictionProblem<'_, D>,
+        problem: &P,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
-        self.rows.velocity(problem.q(), r, u);
-        crate::measure::dumont_criterion_d::<D>(r, u, &self.plan.u_solved, problem.mu())
+        problem.dumont_by_rows(&self.rows, r, u, &self.plan.u_solved)
     }
 }
