@@ -110,14 +110,16 @@ fi
 
 # --- the collections of numerics_tests.cmake, and the single-program friction tests ---
 # A collection line reads "DRIVER fc_test_collection.c.in FORMULATION fc3d COLLECTION <NAME>",
-# followed by "EXTRA_SOURCES <data_collection> <solvers>)".
+# followed by "EXTRA_SOURCES <data_collection> <solvers>)"; the rolling collection's reads
+# "DRIVER rfc3d_test_collection.c.in FORMULATION rolling_fc3d COLLECTION <NAME>".
 COLLECTIONS=$OUT/collections.txt
 awk '
   /new_tests_collection\(/ { in_call = 1; text = "" }
   in_call { text = text " " $0 }
   in_call && /\)/ {
     in_call = 0
-    if (text ~ /fc_test_collection\.c\.in/ && text ~ /FORMULATION (fc3d|fc2d)/ && text !~ /FCLIB/) {
+    if ((text ~ /[^r]fc_test_collection\.c\.in/ && text ~ /FORMULATION (fc3d|fc2d)/ ||
+         text ~ /rfc3d_test_collection\.c\.in/ && text ~ /FORMULATION rolling_fc3d/) && text !~ /FCLIB/) {
       gsub(/[()]/, " ", text)
       n = split(text, w, /[ \t]+/)
       form = ""; name = ""; srcs = ""
@@ -172,6 +174,10 @@ while read -r label name sources; do
   [ -z "$ONLY" ] || [[ $label =~ $ONLY ]] || continue
   srcs=()
   for s in $sources; do srcs+=("$TESTDIR/$s"); done
+  # The rolling collections run their cases through rollingFrictionContact_test_function.
+  if [[ $label == rolling_* ]]; then
+    srcs+=(-DCASE_RUNNER_ROLLING=1 "$NUM/src/FrictionContact/test-utils/rollingFrictionContact_test_function.c")
+  fi
   for which in siconos fc3d; do
     if [ $which = siconos ]; then flags=("${SIC_FLAGS[@]}"); link=(-lsiconos_numerics)
     else flags=("${FC3D_FLAGS[@]}"); link=(-L"$LIB" -Wl,-rpath,"$LIB" -lfc3d); fi

@@ -43,7 +43,35 @@ pub struct Fc2dResult {
     pub dimension: c_int,
 }
 
+/// What a C-side rolling solve returned (`c/rolling_checks.c`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct RollingResult {
+    pub info: c_int,
+    pub iterations: c_int,
+    /// dparam[1] as reported by the rolling driver.
+    pub reported_error: c_double,
+    /// rolling_fc3d_compute_error (or the 2D one) with norm = ||q||.
+    pub api_error: c_double,
+    /// The error recomputed in plain C (own projection by bisection) from W read entry by entry.
+    pub independent_error: c_double,
+    pub dimension: c_int,
+}
+
 extern "C" {
+    /// Solves a rolling file with NSGS (3000 or 4000) and the local solver `local_id` (0: the
+    /// default) through the rolling driver, from r = 0.
+    pub fn capi_rolling_solve_file(
+        path: *const c_char,
+        local_id: c_int,
+        tolerance: c_double,
+        max_iter: c_int,
+        r_out: *mut c_double,
+        n: c_int,
+        out: *mut RollingResult,
+    ) -> c_int;
+    /// The rolling API checks; `scratch` is a writable directory.
+    pub fn capi_rolling_check_api(scratch: *const c_char) -> c_int;
     /// Solves a 2D file with `solver_id` through `fc2d_driver`.
     pub fn capi_fc2d_solve_file(
         path: *const c_char,

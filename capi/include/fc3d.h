@@ -289,6 +289,17 @@ typedef struct Fc3dResult {
   double seconds;
 } Fc3dResult;
 
+// Siconos' rolling-friction problem: FC(W, q, mu) with a rolling coefficient `mu_r` per
+// contact, `dimension` 5 (`rolling_fc3d`) or 3 (`rolling_fc2d`).
+typedef struct RollingFrictionContactProblem {
+  int dimension;
+  int numberOfContacts;
+  struct NumericsMatrix *M;
+  double *q;
+  double *mu;
+  double *mu_r;
+} RollingFrictionContactProblem;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -975,6 +986,140 @@ int frictionContact_printInFilename(struct FrictionContactProblem *problem, char
 
 // Prints a summary of the problem (sizes, storage, mu, q) to stdout.
 void frictionContact_display(struct FrictionContactProblem *problem);
+
+// An empty rolling problem (dimension 0, no data). Release with
+// `rollingFrictionContactProblem_free`.
+struct RollingFrictionContactProblem *rollingFrictionContactProblem_new(void);
+
+// A rolling problem that takes `M`, `q`, `mu` and `mu_r` as they are (no copy): they then
+// belong to the problem and are released by `rollingFrictionContactProblem_free`.
+struct RollingFrictionContactProblem *rollingFrictionContactProblem_new_with_data(int dim,
+                                                                                  int nc,
+                                                                                  struct NumericsMatrix *M,
+                                                                                  double *q,
+                                                                                  double *mu,
+                                                                                  double *mu_r);
+
+// Releases `M` (storage and struct), `q`, `mu`, `mu_r` and the problem struct. NULL is a
+// no-op (Siconos asserts it is not NULL).
+void rollingFrictionContactProblem_free(struct RollingFrictionContactProblem *problem);
+
+// Reads a rolling problem from a Siconos .dat file (dimension, contacts, W, q, mu, mu_r). NULL
+// on failure (see `fc3d_last_error_message`; Siconos exits the process).
+struct RollingFrictionContactProblem *rollingFrictionContact_new_from_filename(const char *filename);
+
+// Reads a rolling problem in the .dat format from an open stream, up to its last rolling
+// coefficient (a stream that can seek is left at the next token, or put back where it was on
+// failure). NULL on failure.
+struct RollingFrictionContactProblem *rollingFrictionContact_newFromFile(FILE *file);
+
+// Writes `problem` to an open stream in the rolling .dat format (round-trip exact numbers).
+// Returns 0 on success.
+int rollingFrictionContact_printInFile(struct RollingFrictionContactProblem *problem, FILE *file);
+
+// Writes `problem` to the file `filename` (created or truncated). Returns 0 on success.
+int rollingFrictionContact_printInFilename(struct RollingFrictionContactProblem *problem,
+                                           char *filename);
+
+// Prints a summary of the problem (sizes, storage, mu, mu_r, q) to stdout.
+void rollingFrictionContact_display(struct RollingFrictionContactProblem *problem);
+
+// Counts the contacts by status at tolerance `tol` (taking off: `u_N > tol`; closed: `r_N >
+// tol`, sticking when `||r_T|| < mu r_N`, sliding otherwise; ambiguous when the complementary
+// quantity exceeds `tol` as well) and prints the counts when `do_print` is non-zero. Siconos
+// 4.4 reads contact c at `3 c` whatever the dimension (the components of other contacts for a
+// 5D problem); fc3d reads it at `dimension * c`.
+void rollingFrictionContactProblem_compute_statistics(struct RollingFrictionContactProblem *problem,
+                                                      double *reaction,
+                                                      double *velocity,
+                                                      double tol,
+                                                      int do_print);
+
+// Solves the rolling problem (`problem->dimension` = 5) with the solver `options->solverId`:
+// 3000 NSGS, its local solver `internalSolvers[0]` 3001 (one projected step) or 3002 (the
+// projection iteration, default); 3003 (ADMM) and any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`.
+// When no contact is pushed into penetration (every `q_N >= -DBL_EPSILON`) the answer is
+// `reaction = 0`, `velocity = q` after 0 iterations, as Siconos. Returns 0 when the error of the
+// returned pair is at most `dparam[0]`, 1 when NSGS stopped above it, 2 when the time budget
+// `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative `FC3D_ERR_*` code when the input is
+// rejected (nothing written). On return >= 0, `iparam[1]` holds the sweeps and `dparam[1]` the
+// error (`rolling_fc3d_compute_error` with `norm = ||q||`) measured on the returned pair.
+int rolling_fc3d_driver(struct RollingFrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        struct SolverOptions *options);
+
+// `rolling_fc3d_driver` for 2D rolling problems (`problem->dimension` = 3: normal, tangential,
+// rolling): 4000 NSGS with the local solver 3001 / 4001 (one projected step of length 1, as
+// Siconos' 2D step) or 3002 / 4002 (the projection iteration, default).
+int rolling_fc2d_driver(struct RollingFrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        struct SolverOptions *options);
+
+// Siconos' rolling NSGS entry (options of id 3000), result in `*info`.
+void rolling_fc3d_nsgs(struct RollingFrictionContactProblem *problem,
+                       double *reaction,
+                       double *velocity,
+                       int *info,
+                       struct SolverOptions *options);
+
+// Siconos' 2D rolling NSGS entry (options of id 4000), result in `*info`.
+void rolling_fc2d_nsgs(struct RollingFrictionContactProblem *problem,
+                       double *reaction,
+                       double *velocity,
+                       int *info,
+                       struct SolverOptions *options);
+
+// Siconos' trivial-case test of `rolling_fc3d_driver` (see the driver).
+int rolling_fc3d_checkTrivialCase(struct RollingFrictionContactProblem *problem,
+                                  double *velocity,
+                                  double *reaction,
+                                  struct SolverOptions *_options);
+
+// Siconos' trivial-case test of `rolling_fc2d_driver`.
+int rolling_fc2d_checkTrivialCase(struct RollingFrictionContactProblem *problem,
+                                  double *velocity,
+                                  double *reaction,
+                                  struct SolverOptions *_options);
+
+// Siconos' rolling error: recomputes `w = M z + q` (written to `w`), then
+// `error = sqrt(sum_c ||z_c - P_K(z_c - ũ_c)||^2)` with the rolling cone and
+// `ũ = (w_N + mu ||w_T|| + mu_r ||w_R||, w_T, w_R)`, divided by `max(norm, ||z||, ||w||)` when
+// that is above the machine epsilon. Returns 0 if `error <= tolerance`, 1 otherwise, a negative
+// code on invalid input (nothing written). `options` is not read.
+int rolling_fc3d_compute_error(struct RollingFrictionContactProblem *problem,
+                               double *z,
+                               double *w,
+                               double tolerance,
+                               struct SolverOptions *_options,
+                               double norm,
+                               double *error);
+
+// `rolling_fc2d_compute_error`: the same with the 2D rolling cone.
+int rolling_fc2d_compute_error(struct RollingFrictionContactProblem *problem,
+                               double *z,
+                               double *w,
+                               double tolerance,
+                               struct SolverOptions *_options,
+                               double norm,
+                               double *error);
+
+// Siconos' `rolling_fc3d_unitary_compute_and_add_error` (5 values in `r`, `u`, `worktmp`).
+void rolling_fc3d_unitary_compute_and_add_error(double *r,
+                                                double *u,
+                                                double mu,
+                                                double mur,
+                                                double *error,
+                                                double *worktmp);
+
+// Siconos' `rolling_fc2d_unitary_compute_and_add_error` (3 values in `r`, `u`, `worktmp`).
+void rolling_fc2d_unitary_compute_and_add_error(double *r,
+                                                double *u,
+                                                double mu,
+                                                double mur,
+                                                double *error,
+                                                double *worktmp);
 
 // Siconos' NSGS on velocities (`SICONOS_FRICTION_3D_NSGSV`, 501).
 // As `fc3d_driver` for options of id 501 (another id is refused with

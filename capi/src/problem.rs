@@ -69,10 +69,26 @@ unsafe fn problem_from_c_d<'a, const D: usize>(
             format!("dimension {} where {D} is needed{hint}", p.dimension),
         ));
     }
-    let nc = usize::try_from(p.numberOfContacts).map_err(|_| {
+    let (w, q, mu) = parts_from_c::<D>(p.numberOfContacts, p.M, p.q, p.mu)?;
+    Ok(FrictionProblem::<D>::from_parts(
+        w,
+        Cow::Borrowed(q),
+        Cow::Borrowed(mu),
+    )?)
+}
+
+/// W, q and mu of a C problem with `nc` contacts of dimension `D`, checked (sizes, pointers);
+/// dense W, q and mu are borrowed.
+pub(crate) unsafe fn parts_from_c<'a, const D: usize>(
+    number_of_contacts: c_int,
+    m: *mut NumericsMatrix,
+    q: *mut c_double,
+    mu: *mut c_double,
+) -> CResult<(Delassus<'a>, &'a [f64], &'a [f64])> {
+    let nc = usize::try_from(number_of_contacts).map_err(|_| {
         CError::new(
             FC3D_ERR_INVALID_SIZE,
-            format!("numberOfContacts = {} is negative", p.numberOfContacts),
+            format!("numberOfContacts = {number_of_contacts} is negative"),
         )
     })?;
     // M's sizes are C ints: D * numberOfContacts must be one (checked, never truncated).
@@ -90,15 +106,15 @@ unsafe fn problem_from_c_d<'a, const D: usize>(
             )
         })?;
     // q and mu first: they are cheap to check, and a W conversion may allocate.
-    let q = c_slice(p.q as *const c_double, n, "problem->q")?;
-    let mu = c_slice(p.mu as *const c_double, nc, "problem->mu")?;
-    let w = if p.M.is_null() {
+    let q = c_slice(q as *const c_double, n, "problem->q")?;
+    let mu = c_slice(mu as *const c_double, nc, "problem->mu")?;
+    let w = if m.is_null() {
         if nc > 0 {
             return Err(CError::null("problem->M"));
         }
         Delassus::Dense(DenseMatrix::new(0, 0, Vec::new())?)
     } else {
-        let m = &*p.M;
+        let m = &*m;
         let is_n = |size: c_int| usize::try_from(size) == Ok(n);
         if !is_n(m.size0) || !is_n(m.size1) {
             return Err(CError::new(
@@ -111,11 +127,7 @@ unsafe fn problem_from_c_d<'a, const D: usize>(
         }
         delassus_from_c_blocks(m, D)?
     };
-    Ok(FrictionProblem::<D>::from_parts(
-        w,
-        Cow::Borrowed(q),
-        Cow::Borrowed(mu),
-    )?)
+    Ok((w, q, mu))
 }
 
 /// A C-allocated problem holding a copy of a problem read from a file.

@@ -129,6 +129,19 @@ pub struct FrictionContactProblem {
     pub mu: *mut c_double,
 }
 
+/// Siconos' rolling-friction problem: FC(W, q, mu) with a rolling coefficient `mu_r` per
+/// contact, `dimension` 5 (`rolling_fc3d`) or 3 (`rolling_fc2d`).
+#[repr(C)]
+#[derive(Debug)]
+pub struct RollingFrictionContactProblem {
+    pub dimension: c_int,
+    pub numberOfContacts: c_int,
+    pub M: *mut NumericsMatrix,
+    pub q: *mut c_double,
+    pub mu: *mut c_double,
+    pub mu_r: *mut c_double,
+}
+
 /// Per-iteration callback: `collectStatsIteration(env, size, reaction, velocity, error, NULL)`.
 #[repr(C)]
 #[derive(Debug)]

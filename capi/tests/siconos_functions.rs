@@ -18,6 +18,10 @@ const FRICTION_HEADERS: &[&str] = &[
     "NonSmoothDrivers.h",
     "SolverOptions.h",
     "SparseBlockMatrix.h",
+    "RollingFrictionContactProblem.h",
+    "rolling_fc_Solvers.h",
+    "rolling_fc3d_compute_error.h",
+    "rolling_fc2d_compute_error.h",
 ];
 
 /// The matrix layer: of these headers only the functions Siconos' 3D friction tests call are

@@ -167,9 +167,9 @@ pub struct RollingProblem<'a, const D: usize = 5> {
 pub type RollingProblem2d<'a> = RollingProblem<'a, 3>;
 
 impl<'a, const D: usize> RollingProblem<'a, D> {
-    /// Validates and assembles a rolling problem: `W` is `D nc x D nc` (dense or general sparse:
-    /// the sparse-block storage holds 3x3 blocks only), `q` of size `D nc`, `mu` and `mu_r` of
-    /// size `nc`, every value finite, both coefficients `>= 0`.
+    /// Validates and assembles a rolling problem: `W` is `D nc x D nc` (dense or general sparse;
+    /// sparse-block in 2D only, where its 3x3 blocks are the contacts' blocks), `q` of size
+    /// `D nc`, `mu` and `mu_r` of size `nc`, every value finite, both coefficients `>= 0`.
     pub fn new(
         w: Delassus<'a>,
         q: impl Into<Cow<'a, [f64]>>,
@@ -179,12 +179,6 @@ impl<'a, const D: usize> RollingProblem<'a, D> {
         if D != 5 && D != 3 {
             return Err(Fc3dError::Unsupported(format!(
                 "rolling contacts of dimension {D} (5 or 3 only)"
-            )));
-        }
-        if matches!(w, Delassus::SparseBlock(_)) {
-            return Err(Fc3dError::Unsupported(format!(
-                "a rolling problem of dimension {D} cannot hold W in 3x3 sparse-block storage \
-                 (use a dense or CSR W)"
             )));
         }
         let base = FrictionProblem::validated(w, q.into(), mu.into())?;

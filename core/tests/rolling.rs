@@ -111,7 +111,7 @@ fn planar_rolling_problem_from_text() {
     }
     // The projected step alone (3001 / 4001) reaches it too on this block.
     let mut config = RollingConfig::new(RollingMethod::Nsgs(RollingNsgsOptions {
-        local: RollingLocalSolver::Projection,
+        local: RollingLocalSolver::Projection { unit_step: true },
         ..Default::default()
     }));
     config.tolerance = 1e-12;

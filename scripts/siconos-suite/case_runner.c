@@ -2,7 +2,9 @@
    Linked with a collection's unmodified data_collection_*.c and test_*.c, Siconos' test
    utilities and either libsiconos_numerics or libfc3d.
      case_runner --list   one line per case: index, solver id, solver name, data file
-     case_runner INDEX    runs that case with frictionContact_test_function; exit 0 when it passes */
+     case_runner INDEX    runs that case with frictionContact_test_function (with
+                          rollingFrictionContact_test_function when built with
+                          -DCASE_RUNNER_ROLLING, the rolling collections); exit 0 when it passes */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +32,11 @@ int main(int argc, char **argv)
       fprintf(stderr, "case_runner: no case %s (0..%d)\n", argv[1], n_tests - 1);
       status = 2;
     } else {
+#ifdef CASE_RUNNER_ROLLING
+      int info = rollingFrictionContact_test_function(&collection[index]);
+#else
       int info = frictionContact_test_function(&collection[index]);
+#endif
       printf("CASE %ld info %d residual %g iterations %d\n", index, info,
              collection[index].options->dparam[SICONOS_DPARAM_RESIDU],
              collection[index].options->iparam[SICONOS_IPARAM_ITER_DONE]);

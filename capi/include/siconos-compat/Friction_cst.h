@@ -77,7 +77,7 @@ enum FRICTION_SOLVER
   SICONOS_GLOBAL_FRICTION_3D_ADMM = 613,
   SICONOS_GLOBAL_FRICTION_3D_ADMM_WR = 614,
   SICONOS_GLOBAL_FRICTION_3D_IPM = 615,
-  /* Rolling friction (not provided by fc3d; fc3d_driver rejects these ids). */
+  /* Rolling friction: rolling_fc3d_driver (3000-3002) and rolling_fc2d_driver (4000-4002); 3003 is refused. */
   SICONOS_ROLLING_FRICTION_3D_NSGS = 3000,
   SICONOS_ROLLING_FRICTION_3D_ONECONTACT_ProjectionOnCone = 3001,
   SICONOS_ROLLING_FRICTION_3D_ONECONTACT_ProjectionOnConeWithLocalIteration = 3002,

@@ -12,6 +12,7 @@ mod nsgs;
 mod nsn;
 pub(crate) mod planar;
 mod prox;
+pub(crate) mod rolling;
 mod siconos;
 mod siconos_table;
 mod tolerance;
@@ -146,9 +147,9 @@ pub(crate) fn unsupported_solver(id: c_int) -> CError {
         600..=615 | 5000 => {
             "is a solver of the global formulation (gfc3d_driver), which fc3d does not provide"
         }
-        3000..=3003 | 4000..=4002 => {
-            "is a rolling-friction solver (rolling_fc3d_driver), which fc3d does not provide"
-        }
+        3000..=3002 => "is a rolling-friction solver: call rolling_fc3d_driver",
+        4000..=4002 => "is a 2D rolling-friction solver: call rolling_fc2d_driver",
+        3003 => "(rolling ADMM) is not implemented in fc3d: rolling_fc3d_driver runs 3000 (NSGS with the local solvers 3001 and 3002)",
         400..=405 => "is a 2D solver: it runs through fc2d_driver, not fc3d_driver",
         1000..=1299 => {
             "is a VI, SOCLCP or ConvexQP solver: fc3d knows its options (the internal solvers of the friction solvers) but does not run it as a solver of its own"
@@ -312,6 +313,34 @@ pub(crate) unsafe fn planar_config_from_c(o: &SolverOptions) -> CResult<fc3d_cor
     }
     let p = Params::of(o, &format!("{what} options"))?;
     planar::read(id, &p)
+}
+
+/// The rolling configuration (`rolling_fc3d_driver` for `dimension` 5, `rolling_fc2d_driver`
+/// for 3) the options describe; any other id is refused with `FC3D_ERR_UNSUPPORTED_SOLVER`. The
+/// tree is checked as in [`config_from_c`].
+pub(crate) unsafe fn rolling_config_from_c(
+    o: &SolverOptions,
+    dimension: usize,
+) -> CResult<fc3d_core::RollingConfig> {
+    check_tree(o)?;
+    let id = o.solverId;
+    if !rolling::is_rolling(id, dimension) {
+        let (driver, ids) = if dimension == 5 {
+            ("rolling_fc3d_driver", "3000 (RFC3D_NSGS)")
+        } else {
+            ("rolling_fc2d_driver", "4000 (RFC2D_NSGS)")
+        };
+        return Err(CError::new(
+            FC3D_ERR_UNSUPPORTED_SOLVER,
+            format!(
+                "solver id {id} ({}) is not run by {driver}: fc3d's {driver} solves {ids}",
+                solver_name(id).to_string_lossy()
+            ),
+        ));
+    }
+    let what = solver_name(id).to_string_lossy();
+    let p = Params::of(o, &format!("{what} options"))?;
+    rolling::read(id, dimension, &p, first_internal(o))
 }
 
 /// `config_from_c` of a node of a checked tree.

@@ -42,12 +42,19 @@ impl<const D: usize> RollingLocalProblem<'_, D> {
     }
 }
 
-/// One projected step from `r` (Siconos 3001): `r <- P_K(r - a ũ)`, `a = min_i 1 / W_ii`.
+/// One projected step from `r` (Siconos 3001): `r <- P_K(r - a ũ)` with `a = min_i 1 / W_ii`
+/// (Siconos' 3D step), or `a = 1` when `unit_step` is set (Siconos' 2D step).
 #[inline]
-pub fn rolling_projection_step<const D: usize>(p: &RollingLocalProblem<'_, D>, r: &mut [f64; D]) {
-    let mut a = f64::INFINITY;
-    for i in 0..D {
-        a = a.min(1.0 / p.w[i][i]);
+pub fn rolling_projection_step<const D: usize>(
+    p: &RollingLocalProblem<'_, D>,
+    unit_step: bool,
+    r: &mut [f64; D],
+) {
+    let mut a = if unit_step { 1.0 } else { f64::INFINITY };
+    if !unit_step {
+        for i in 0..D {
+            a = a.min(1.0 / p.w[i][i]);
+        }
     }
     let (_, ut) = p.modified_velocity(r);
     let mut x = *r;
@@ -242,7 +249,7 @@ mod tests {
             // The projected step alone converges too (a fixed point of r = P_K(r - ũ), a = 1).
             let mut r = [0.3, 0.0, 0.0, 0.0, 0.0];
             for _ in 0..100 {
-                rolling_projection_step(&p, &mut r);
+                rolling_projection_step(&p, false, &mut r);
             }
             assert!(residual(&p, &r) < 1e-12, "{q:?}: {r:?}");
         }

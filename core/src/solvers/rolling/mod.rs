@@ -24,8 +24,9 @@ use crate::solvers::nsgs::{
 /// The one-contact solver of the rolling NSGS.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum RollingLocalSolver {
-    /// One projected step per visit (Siconos 3001 / 4001).
-    Projection,
+    /// One projected step per visit (Siconos 3001 / 4001), of length `min_i 1 / W_ii`, or 1
+    /// when `unit_step` is set (the step of Siconos' 2D rolling NSGS).
+    Projection { unit_step: bool },
     /// Self-adaptive projection steps until the local tolerance (Siconos 3002 / 4002, default).
     ProjectionWithLocalIteration(RollingProjectionIteration),
 }
@@ -169,8 +170,8 @@ impl<const D: usize> ContactStep<D> for RollingStep<'_> {
         };
         let old = *r;
         let local_error = match &self.local {
-            RollingLocalSolver::Projection => {
-                rolling_projection_step(&p, r);
+            RollingLocalSolver::Projection { unit_step } => {
+                rolling_projection_step(&p, *unit_step, r);
                 0.0
             }
             RollingLocalSolver::ProjectionWithLocalIteration(it) => {
