@@ -105,17 +105,21 @@ static double independent_error(RollingFrictionContactProblem* p, const double* 
 }
 
 /* Solves a rolling file with NSGS (3000 / 4000 by the file's dimension) and local solver
- * `local_id`, from r = 0; the reaction goes to `r_out` (n values). */
+ * `local_id` (0: the default), or with ADMM when `local_id` is 3003, from r = 0; the reaction
+ * goes to `r_out` (n values). */
 int capi_rolling_solve_file(const char* path, int local_id, double tolerance, int max_iter,
                             double* r_out, int n, RollingResult* out) {
   RollingFrictionContactProblem* p = rollingFrictionContact_new_from_filename(path);
   CHECK(p, "cannot read %s", path);
   int d = p->dimension, size = d * p->numberOfContacts;
   CHECK(size == n, "%s: %d unknowns, %d expected", path, size, n);
-  SolverOptions* o = solver_options_create(d == 5 ? SICONOS_ROLLING_FRICTION_3D_NSGS
-                                                  : SICONOS_ROLLING_FRICTION_2D_NSGS);
+  SolverOptions* o = solver_options_create(
+      local_id == SICONOS_ROLLING_FRICTION_3D_ADMM ? SICONOS_ROLLING_FRICTION_3D_ADMM
+      : d == 5                                     ? SICONOS_ROLLING_FRICTION_3D_NSGS
+                                                   : SICONOS_ROLLING_FRICTION_2D_NSGS);
   CHECK(o, "solver_options_create");
-  if (local_id) solver_options_update_internal(o, 0, local_id);
+  if (local_id && local_id != SICONOS_ROLLING_FRICTION_3D_ADMM)
+    solver_options_update_internal(o, 0, local_id);
   o->dparam[SICONOS_DPARAM_TOL] = tolerance;
   o->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
   double* r = calloc((size_t)size, sizeof(double));
@@ -236,12 +240,22 @@ int capi_rolling_check_api(const char* scratch) {
   CHECK(rollingFrictionContact_new_from_filename("/nonexistent/rolling.dat") == NULL,
         "missing file gives NULL");
 
-  /* Rejections leave the outputs untouched. */
+  /* ADMM on the same contact. */
   SolverOptions* o = solver_options_create(SICONOS_ROLLING_FRICTION_3D_ADMM);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-10;
+  double ra[5] = {0}, ua[5] = {0};
+  CHECK(rolling_fc3d_driver(p, ra, ua, o) == 0, "ADMM");
+  for (int i = 0; i < 5; i++)
+    CHECK(fabs(ra[i] - expected[i]) < 1e-8, "ADMM r[%d] = %g", i, ra[i]);
+  /* Rejections leave the outputs untouched. */
   double rr[5] = {3, 3, 3, 3, 3}, ru[5] = {3, 3, 3, 3, 3};
-  CHECK(rolling_fc3d_driver(p, rr, ru, o) == FC3D_ERR_UNSUPPORTED_SOLVER && rr[0] == 3 &&
-            ru[0] == 3,
-        "3003 refused, nothing written");
+  o->iparam[SICONOS_FRICTION_3D_IPARAM_RESCALING] = 1;
+  CHECK(rolling_fc3d_driver(p, rr, ru, o) < 0 && rr[0] == 3 && ru[0] == 3,
+        "rescaled rolling ADMM refused, nothing written");
+  solver_options_delete(o);
+  o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  CHECK(rolling_fc3d_driver(p, rr, ru, o) == FC3D_ERR_UNSUPPORTED_SOLVER && rr[0] == 3,
+        "500 refused by rolling_fc3d_driver");
   solver_options_delete(o);
   o = solver_options_create(SICONOS_ROLLING_FRICTION_3D_NSGS);
   CHECK(rolling_fc2d_driver(p, rr, ru, o) == FC3D_ERR_INVALID_PROBLEM && rr[0] == 3,

@@ -60,7 +60,7 @@ pub struct RollingResult {
 
 extern "C" {
     /// Solves a rolling file with NSGS (3000 or 4000) and the local solver `local_id` (0: the
-    /// default) through the rolling driver, from r = 0.
+    /// default), or with ADMM when `local_id` is 3003, through the rolling driver, from r = 0.
     pub fn capi_rolling_solve_file(
         path: *const c_char,
         local_id: c_int,

@@ -1,6 +1,7 @@
 //! Rolling friction through the C API (`c/rolling_checks.c`): the API checks, and Siconos 4.4's
 //! rolling problems (the data files of its source package, extracted by
-//! scripts/siconos-suite.sh into target/siconos-src) solved by `rolling_fc3d_driver` at 1e-8,
+//! scripts/siconos-suite.sh into target/siconos-src) solved by `rolling_fc3d_driver` at 1e-8
+//! with NSGS (3000) and ADMM (3003),
 //! the C result equal to the Rust API's and its error recomputed independently in C.
 
 use std::ffi::CString;
@@ -8,7 +9,7 @@ use std::path::PathBuf;
 
 use fc3d_capi_tests::*;
 use fc3d_core::io::dat::{read_rolling_dat_file, RollingDatProblem};
-use fc3d_core::{solve_rolling, RollingConfig, RollingMethod, RollingNsgsOptions};
+use fc3d_core::{solve_rolling, AdmmOptions, RollingConfig, RollingMethod, RollingNsgsOptions};
 
 #[test]
 fn rolling_api_checks() {
@@ -36,7 +37,7 @@ fn siconos_rolling_files_through_the_driver() {
         return;
     }
     let tolerance = 1e-8;
-    for file in FILES {
+    for (file, id) in FILES.iter().flat_map(|f| [(f, 0), (f, 3003)]) {
         let path = dir.join(file);
         let RollingDatProblem::Spatial(p) = read_rolling_dat_file(&path).unwrap() else {
             panic!("{file}: 5D expected")
@@ -48,7 +49,7 @@ fn siconos_rolling_files_through_the_driver() {
         let code = unsafe {
             capi_rolling_solve_file(
                 cpath.as_ptr(),
-                0,
+                id,
                 tolerance,
                 100_000,
                 r_c.as_mut_ptr(),
@@ -64,15 +65,21 @@ fn siconos_rolling_files_through_the_driver() {
             (out.independent_error - out.api_error).abs() <= 1e-12,
             "{file}: {out:?}"
         );
-        let mut config = RollingConfig::new(RollingMethod::Nsgs(RollingNsgsOptions::default()));
+        let method = if id == 3003 {
+            RollingMethod::Admm(AdmmOptions::default())
+        } else {
+            RollingMethod::Nsgs(RollingNsgsOptions::default())
+        };
+        let mut config = RollingConfig::new(method);
         config.tolerance = tolerance;
         config.max_iter = 100_000;
         let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
         let report = solve_rolling(&p, &config, &mut r, &mut u).unwrap();
         assert_eq!(r, r_c, "{file}: C and Rust reactions");
         assert_eq!(report.iterations as i32, out.iterations, "{file}");
+        let name = if id == 3003 { "ADMM" } else { "NSGS" };
         println!(
-            "{file}: {} sweeps, error {:e}",
+            "{file} ({name}): {} iterations, error {:e}",
             out.iterations, out.reported_error
         );
     }

@@ -1037,7 +1037,8 @@ void rollingFrictionContactProblem_compute_statistics(struct RollingFrictionCont
 
 // Solves the rolling problem (`problem->dimension` = 5) with the solver `options->solverId`:
 // 3000 NSGS, its local solver `internalSolvers[0]` 3001 (one projected step) or 3002 (the
-// projection iteration, default); 3003 (ADMM) and any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`.
+// projection iteration, default); 3003 ADMM (the options of the 3D ADMM 523, rescaling
+// refused as Siconos' rolling ADMM has none); any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`.
 // When no contact is pushed into penetration (every `q_N >= -DBL_EPSILON`) the answer is
 // `reaction = 0`, `velocity = q` after 0 iterations, as Siconos. Returns 0 when the error of the
 // returned pair is at most `dparam[0]`, 1 when NSGS stopped above it, 2 when the time budget
@@ -1059,6 +1060,14 @@ int rolling_fc2d_driver(struct RollingFrictionContactProblem *problem,
 
 // Siconos' rolling NSGS entry (options of id 3000), result in `*info`.
 void rolling_fc3d_nsgs(struct RollingFrictionContactProblem *problem,
+                       double *reaction,
+                       double *velocity,
+                       int *info,
+                       struct SolverOptions *options);
+
+// Siconos' rolling ADMM entry (options of id 3003): `rolling_fc3d_driver`, result in `*info`
+// (whatever `*info` held before, as Siconos').
+void rolling_fc3d_admm(struct RollingFrictionContactProblem *problem,
                        double *reaction,
                        double *velocity,
                        int *info,

@@ -392,7 +392,7 @@ unsafe fn rolling_driver_impl<const D: usize>(
     })?;
     if verbose() > 0 {
         eprintln!(
-            "fc3d: rolling NSGS on {} contacts of dimension {D}: {:?} after {} iterations, \
+            "fc3d: rolling solver on {} contacts of dimension {D}: {:?} after {} iterations, \
              error {:e} (tolerance {:e})",
             p.n_contacts(),
             report.status,
@@ -406,7 +406,8 @@ unsafe fn rolling_driver_impl<const D: usize>(
 
 /// Solves the rolling problem (`problem->dimension` = 5) with the solver `options->solverId`:
 /// 3000 NSGS, its local solver `internalSolvers[0]` 3001 (one projected step) or 3002 (the
-/// projection iteration, default); 3003 (ADMM) and any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`.
+/// projection iteration, default); 3003 ADMM (the options of the 3D ADMM 523, rescaling
+/// refused as Siconos' rolling ADMM has none); any other id: `FC3D_ERR_UNSUPPORTED_SOLVER`.
 /// When no contact is pushed into penetration (every `q_N >= -DBL_EPSILON`) the answer is
 /// `reaction = 0`, `velocity = q` after 0 iterations, as Siconos. Returns 0 when the error of the
 /// returned pair is at most `dparam[0]`, 1 when NSGS stopped above it, 2 when the time budget
@@ -492,6 +493,41 @@ pub unsafe extern "C" fn rolling_fc3d_nsgs(
         info,
         options,
     );
+}
+
+/// Siconos' rolling ADMM entry (options of id 3003): `rolling_fc3d_driver`, result in `*info`
+/// (whatever `*info` held before, as Siconos').
+#[cfg(feature = "siconos-abi")]
+#[no_mangle]
+pub unsafe extern "C" fn rolling_fc3d_admm(
+    problem: *mut RollingFrictionContactProblem,
+    reaction: *mut c_double,
+    velocity: *mut c_double,
+    info: *mut c_int,
+    options: *mut SolverOptions,
+) {
+    let code = ffi_guard(
+        "rolling_fc3d_admm",
+        |c| c,
+        || {
+            if info.is_null() {
+                return Err(CError::null("info"));
+            }
+            if !options.is_null() && (*options).solverId != 3003 {
+                return Err(CError::new(
+                    super::FC3D_ERR_INVALID_OPTION,
+                    format!(
+                        "rolling_fc3d_admm called with options for solver {} (it needs 3003)",
+                        (*options).solverId
+                    ),
+                ));
+            }
+            rolling_driver_impl::<5>(problem, reaction, velocity, options)
+        },
+    );
+    if !info.is_null() {
+        *info = code;
+    }
 }
 
 /// Siconos' 2D rolling NSGS entry (options of id 4000), result in `*info`.

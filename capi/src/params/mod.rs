@@ -147,9 +147,8 @@ pub(crate) fn unsupported_solver(id: c_int) -> CError {
         600..=615 | 5000 => {
             "is a solver of the global formulation (gfc3d_driver), which fc3d does not provide"
         }
-        3000..=3002 => "is a rolling-friction solver: call rolling_fc3d_driver",
+        3000..=3003 => "is a rolling-friction solver: call rolling_fc3d_driver",
         4000..=4002 => "is a 2D rolling-friction solver: call rolling_fc2d_driver",
-        3003 => "(rolling ADMM) is not implemented in fc3d: rolling_fc3d_driver runs 3000 (NSGS with the local solvers 3001 and 3002)",
         400..=405 => "is a 2D solver: it runs through fc2d_driver, not fc3d_driver",
         1000..=1299 => {
             "is a VI, SOCLCP or ConvexQP solver: fc3d knows its options (the internal solvers of the friction solvers) but does not run it as a solver of its own"
@@ -326,7 +325,10 @@ pub(crate) unsafe fn rolling_config_from_c(
     let id = o.solverId;
     if !rolling::is_rolling(id, dimension) {
         let (driver, ids) = if dimension == 5 {
-            ("rolling_fc3d_driver", "3000 (RFC3D_NSGS)")
+            (
+                "rolling_fc3d_driver",
+                "3000 (RFC3D_NSGS) and 3003 (RFC3D ADMM)",
+            )
         } else {
             ("rolling_fc2d_driver", "4000 (RFC2D_NSGS)")
         };

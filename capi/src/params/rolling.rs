@@ -5,7 +5,9 @@
 //! of local solutions; internal solver 0 is the local solver: 3001 / 4001 one projected step,
 //! 3002 / 4002 the projection iteration (its iparam[0] steps, dparam[0] tolerance, iparam[10]
 //! the closed-form stick branch). Siconos' 2D NSGS takes the 3D local ids 3001 / 3002 (its
-//! `solver_options_create(4000)` gives 3002); fc3d accepts those and 4001 / 4002 alike.
+//! `solver_options_create(4000)` gives 3002); fc3d accepts those and 4001 / 4002 alike. 3003
+//! ADMM reads the slots of the 3D ADMM (523, `params/admm.rs`); Siconos' rolling ADMM has no
+//! rescaling, so iparam[3] must be 0.
 
 use std::os::raw::c_int;
 
@@ -23,7 +25,7 @@ const IPARAM_USE_TRIVIAL_SOLUTION: usize = 10;
 /// Whether `id` is a top-level rolling solver of the dimension (5: 3D, 3: 2D).
 pub(crate) fn is_rolling(id: c_int, dimension: usize) -> bool {
     match dimension {
-        5 => matches!(id, 3000),
+        5 => matches!(id, 3000 | 3003),
         _ => matches!(id, 4000),
     }
 }
@@ -36,6 +38,14 @@ pub(crate) unsafe fn read(
     p: &Params<'_>,
     internal: Option<&SolverOptions>,
 ) -> CResult<RollingConfig> {
+    if id == 3003 {
+        let mut config = RollingConfig::new(RollingMethod::Admm(super::admm::read(p)?));
+        config.max_iter = p.count(IPARAM_MAX_ITER, "max iterations")?;
+        config.tolerance = p.dparam[DPARAM_TOL];
+        config.time_budget = p.time_budget()?;
+        config.validate().map_err(annotate)?;
+        return Ok(config);
+    }
     let sweep = nsgs::read(p, None)?;
     let filter_local_solution = match p.iparam[IPARAM_FILTER_LOCAL_SOLUTION] {
         0 => false,

@@ -1,4 +1,6 @@
-//! ADMM on the local formulation (Siconos' `fc3d_admm`, id 523).
+//! ADMM on the local formulation (Siconos' `fc3d_admm`, id 523, and `rolling_fc3d_admm`, id
+//! 3003: the same iteration with the rolling cone and its De Saxcé term, through
+//! [`AdmmProblem`]).
 //!
 //! With De Saxcé's term `s(u)_c = (mu_c ||u_{T,c}||, 0, 0)` frozen at the last velocity, r solves
 //! FC(W, q, mu) iff `0 ∈ W r + q + s + N_K(r)`. ADMM splits `r = z`, `z ∈ K` (scaled dual `ξ`);
@@ -37,9 +39,11 @@ use std::time::Instant;
 use crate::contract::{deadline_passed, Family, IterationEvent, Limits, Observer, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::math::cone::{modified_velocity, project_on_cone};
-use crate::math::linalg::{bounded, distance_sq, norm};
-use crate::measure::natural_map_error_of;
-use crate::problem::FrictionProblem;
+use crate::math::linalg::{bounded, contact_of, distance_sq, norm};
+use crate::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
+use crate::matrix::Delassus;
+use crate::measure::{natural_map_error_of, relative_rolling_error};
+use crate::problem::{FrictionProblem, RollingProblem};
 
 impl Family for AdmmOptions {
     fn name(&self) -> &'static str {
@@ -87,10 +91,10 @@ struct ShiftedSystem {
 }
 
 impl ShiftedSystem {
-    fn new(problem: &FrictionProblem<'_>) -> Result<Self, Fc3dError> {
-        let n = problem.size();
+    fn new(w: &Delassus<'_>) -> Result<Self, Fc3dError> {
+        let n = w.nrows();
         let mut triplets = Vec::new();
-        problem.w().for_each_entry(|i, j, v| {
+        w.for_each_entry(|i, j, v| {
             if v != 0.0 {
                 triplets.push(Triplet::new(i, j, v));
             }
@@ -193,9 +197,9 @@ fn power_iteration(
 }
 
 /// `||W||_inf`, the largest absolute row sum, when positive and finite.
-fn norm_inf(problem: &FrictionProblem<'_>) -> Option<f64> {
-    let mut row_sums = vec![0.0; problem.size()];
-    problem.w().for_each_entry(|i, _, v| row_sums[i] += v.abs());
+fn norm_inf(w: &Delassus<'_>) -> Option<f64> {
+    let mut row_sums = vec![0.0; w.nrows()];
+    w.for_each_entry(|i, _, v| row_sums[i] += v.abs());
     let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
     (norm_inf > 0.0 && norm_inf.is_finite()).then_some(norm_inf)
 }
@@ -204,7 +208,7 @@ fn norm_inf(problem: &FrictionProblem<'_>) -> Option<f64> {
 const EIGENVALUE_RATIO_FLOOR: f64 = 1e-2;
 
 fn initial_rho(
-    problem: &FrictionProblem<'_>,
+    w: &Delassus<'_>,
     options: &AdmmOptions,
     system: &mut ShiftedSystem,
     work: (&mut [f64], &mut [f64]),
@@ -213,9 +217,8 @@ fn initial_rho(
     let (x, y) = work;
     match options.initial_rho {
         AdmmInitialRho::Given => options.rho,
-        AdmmInitialRho::NormInf => norm_inf(problem).unwrap_or(options.rho),
+        AdmmInitialRho::NormInf => norm_inf(w).unwrap_or(options.rho),
         AdmmInitialRho::Eigenvalues => {
-            let w = problem.w();
             let lambda_max = power_iteration(x, y, deadline, |a, b| {
                 b.iter_mut().for_each(|v| *v = 0.0);
                 w.mul_add(a, b);
@@ -242,20 +245,87 @@ fn initial_rho(
     }
 }
 
-/// `s_c = (mu_c ||u_{T,c}||, 0, 0)`.
-fn de_saxce_term(mu: &[f64], u: &[f64], s: &mut [f64]) {
-    for (c, &m) in mu.iter().enumerate() {
-        let k = 3 * c;
-        let ut = modified_velocity(&[u[k], u[k + 1], u[k + 2]], m);
-        s[k] = ut[0] - u[k];
-        s[k + 1] = 0.0;
-        s[k + 2] = 0.0;
+/// What ADMM needs of a problem beyond W and q: the De Saxcé term of its law and the projection
+/// on its cones, and the error its results are judged by. The Coulomb problem (3D) and the
+/// rolling problems (5D, 3D) share the iteration through it.
+pub(crate) trait AdmmProblem {
+    fn w(&self) -> &Delassus<'_>;
+    fn q(&self) -> &[f64];
+    /// `u = W r + q`.
+    fn velocity(&self, r: &[f64], u: &mut [f64]);
+    /// `s = ũ(u) - u`: the De Saxcé term, non-zero in the normal components only.
+    fn de_saxce_term(&self, u: &[f64], s: &mut [f64]);
+    /// `z_c = P_{K_c}(v_c)` for every contact.
+    fn project(&self, v: &[f64], z: &mut [f64]);
+    /// The relative natural-map error of `(r, u)`, `u = W r + q` given.
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64;
+}
+
+impl AdmmProblem for FrictionProblem<'_> {
+    fn w(&self) -> &Delassus<'_> {
+        FrictionProblem::w(self)
+    }
+    fn q(&self) -> &[f64] {
+        FrictionProblem::q(self)
+    }
+    fn velocity(&self, r: &[f64], u: &mut [f64]) {
+        FrictionProblem::velocity(self, r, u)
+    }
+    /// `s_c = (mu_c ||u_{T,c}||, 0, 0)`.
+    fn de_saxce_term(&self, u: &[f64], s: &mut [f64]) {
+        for (c, &m) in self.mu().iter().enumerate() {
+            let k = 3 * c;
+            let ut = modified_velocity(&[u[k], u[k + 1], u[k + 2]], m);
+            s[k] = ut[0] - u[k];
+            s[k + 1] = 0.0;
+            s[k + 2] = 0.0;
+        }
+    }
+    fn project(&self, v: &[f64], z: &mut [f64]) {
+        for (c, &m) in self.mu().iter().enumerate() {
+            let k = 3 * c;
+            z[k..k + 3].copy_from_slice(&project_on_cone(&[v[k], v[k + 1], v[k + 2]], m));
+        }
+    }
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64 {
+        natural_map_error_of(self, r, u)
+    }
+}
+
+impl<const D: usize> AdmmProblem for RollingProblem<'_, D> {
+    fn w(&self) -> &Delassus<'_> {
+        RollingProblem::w(self)
+    }
+    fn q(&self) -> &[f64] {
+        RollingProblem::q(self)
+    }
+    fn velocity(&self, r: &[f64], u: &mut [f64]) {
+        RollingProblem::velocity(self, r, u)
+    }
+    /// `s_c = (mu_c ||u_{T,c}|| + mu_r,c ||u_{R,c}||, 0, ..., 0)`.
+    fn de_saxce_term(&self, u: &[f64], s: &mut [f64]) {
+        for (c, (&m, &mr)) in self.mu().iter().zip(self.mu_r()).enumerate() {
+            let uc: [f64; D] = contact_of(u, c);
+            let ut = rolling_modified_velocity(&uc, m, mr);
+            let sc = &mut s[D * c..D * c + D];
+            sc.iter_mut().for_each(|v| *v = 0.0);
+            sc[0] = ut[0] - uc[0];
+        }
+    }
+    fn project(&self, v: &[f64], z: &mut [f64]) {
+        for (c, (&m, &mr)) in self.mu().iter().zip(self.mu_r()).enumerate() {
+            let vc: [f64; D] = contact_of(v, c);
+            z[D * c..D * c + D].copy_from_slice(&project_on_rolling_cone(&vc, m, mr));
+        }
+    }
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64 {
+        relative_rolling_error::<D>(r, u, self.mu(), self.mu_r(), norm(self.q()))
     }
 }
 
 /// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`.
-fn admm(
-    problem: &FrictionProblem<'_>,
+pub(crate) fn admm<P: AdmmProblem>(
+    problem: &P,
     options: &AdmmOptions,
     limits: &Limits,
     r: &mut [f64],
@@ -263,10 +333,10 @@ fn admm(
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
-    let n = problem.size();
-    let (q, mu) = (problem.q(), problem.mu());
+    let n = problem.w().nrows();
+    let q = problem.q();
     let run = limits.start();
-    let mut system = ShiftedSystem::new(problem)?;
+    let mut system = ShiftedSystem::new(problem.w())?;
 
     // Work vectors, allocated once.
     let mut x = vec![0.0; n];
@@ -280,7 +350,7 @@ fn admm(
     let mut scratch = vec![0.0; n];
 
     let mut rho = initial_rho(
-        problem,
+        problem.w(),
         options,
         &mut system,
         (&mut x, &mut scratch),
@@ -293,7 +363,7 @@ fn admm(
     // rho chosen for W: the same iterates as rho a on (W, q), with the dual residual in the
     // rescaled units (rho ||z - ẑ||, divided by a).
     let scale = if options.scalar_rescaling {
-        norm_inf(problem).unwrap_or(1.0)
+        norm_inf(problem.w()).unwrap_or(1.0)
     } else {
         1.0
     };
@@ -318,7 +388,7 @@ fn admm(
 
     for iteration in 1..=run.max_iter {
         // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s(W x_prev + q).
-        de_saxce_term(mu, u, &mut s);
+        problem.de_saxce_term(u, &mut s);
         for i in 0..n {
             x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - s[i];
         }
@@ -329,21 +399,16 @@ fn admm(
             return Ok(SolverOutcome::diverged(iteration));
         }
         // z- and dual updates.
-        for (c, &m) in mu.iter().enumerate() {
-            let k = 3 * c;
-            let v = [
-                x[k] + xi_hat[k],
-                x[k + 1] + xi_hat[k + 1],
-                x[k + 2] + xi_hat[k + 2],
-            ];
-            z[k..k + 3].copy_from_slice(&project_on_cone(&v, m));
+        for i in 0..n {
+            scratch[i] = x[i] + xi_hat[i];
         }
+        problem.project(&scratch, &mut z);
         for i in 0..n {
             xi[i] = xi_hat[i] + x[i] - z[i];
         }
         r.copy_from_slice(&x);
         problem.velocity(r, u);
-        let error = natural_map_error_of(problem, r, u);
+        let error = problem.error_of(r, u);
         observer(&IterationEvent {
             iteration,
             reaction: r,

@@ -4,7 +4,8 @@
 //! ([`crate::math::rolling`]). NSGS (Siconos 3000 / 4000) is the Gauss-Seidel sweep and main
 //! loop shared with 3D and 2D friction ([`GaussSeidel`], `run_sweeps`) with a one-contact step of
 //! the rolling law ([`RollingStep`]): the projected step (3001 / 4001) or the self-adaptive
-//! projection iteration (3002 / 4002) of [`crate::local::rolling`].
+//! projection iteration (3002 / 4002) of [`crate::local::rolling`]. ADMM (Siconos 3003) is the
+//! 3D friction ADMM ([`crate::solvers::admm`]) with the rolling cone.
 
 use std::time::Instant;
 
@@ -17,6 +18,7 @@ use crate::math::linalg::Block;
 use crate::math::rolling::project_on_rolling_cone;
 use crate::matrix::BlockRows;
 use crate::problem::RollingProblem;
+use crate::solvers::admm::AdmmOptions;
 use crate::solvers::nsgs::{
     run_sweeps, ContactOrder, ContactStep, GaussSeidel, LocalTolerance, SweepOptions, SweepSchedule,
 };
@@ -120,19 +122,32 @@ impl RollingNsgsOptions {
 pub enum RollingMethod {
     /// Nonsmooth Gauss-Seidel (Siconos 3000 in 3D, 4000 in 2D).
     Nsgs(RollingNsgsOptions),
+    /// ADMM on the local formulation (Siconos 3003), the 3D friction ADMM with the rolling cone.
+    /// Siconos' rolling ADMM has no rescaling: `scalar_rescaling` must be false.
+    Admm(AdmmOptions),
 }
 
 impl RollingMethod {
-    /// Siconos' default `(tolerance, iteration limit)`: 1e-4 and 1000 sweeps for NSGS.
+    /// Siconos' default `(tolerance, iteration limit)`: 1e-4 and 1000 sweeps for NSGS, 1e-6
+    /// and 20000 iterations for ADMM.
     pub fn default_limits(&self) -> (f64, usize) {
         match self {
             RollingMethod::Nsgs(_) => (1e-4, 1000),
+            RollingMethod::Admm(_) => (1e-6, 20000),
         }
     }
 
     pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
         match self {
             RollingMethod::Nsgs(o) => o.validate(),
+            RollingMethod::Admm(o) => {
+                if o.scalar_rescaling {
+                    return Err(Fc3dError::Unsupported(
+                        "rescaling in the rolling ADMM (Siconos 4.4 has none either)".into(),
+                    ));
+                }
+                o.validate()
+            }
         }
     }
 }
@@ -216,6 +231,7 @@ pub(crate) fn run<const D: usize>(
 ) -> Result<SolverOutcome, Fc3dError> {
     match method {
         RollingMethod::Nsgs(o) => nsgs(problem, o, limits, r, u, observer),
+        RollingMethod::Admm(o) => crate::solvers::admm::admm(problem, o, limits, r, u, observer),
     }
 }
 
