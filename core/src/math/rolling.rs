@@ -29,6 +29,9 @@ pub const fn part_len(d: usize) -> usize {
 #[inline]
 pub fn part_norms<const D: usize>(x: &[f64; D]) -> (f64, f64) {
     let m = part_len(D);
+    if m == 1 {
+        return (x[1].abs(), x[2].abs());
+    }
     let mut t = 0.0;
     let mut r = 0.0;
     for k in 1..=m {
