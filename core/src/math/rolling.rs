@@ -15,9 +15,9 @@
 //! component `t` and projects each part on its disk; what is left is the convex piecewise
 //! quadratic `f(t) = (t - x_N)^2 + (||x_T|| - mu t)_+^2 + (||x_R|| - mu_r t)_+^2`. Its minimiser
 //! solves a linear equation once the set of active parts (the parts with `||x_i|| > mu_i t`) is
-//! known, and the minimiser of a convex function is the candidate with the least value: the
-//! projection evaluates `f` at the three candidates (both parts, tangential only, rolling only)
-//! and keeps the best, which needs no consistency test that rounding could defeat.
+//! known: the projection takes the candidate (both parts, tangential only, rolling only) whose
+//! active set it confirms, and when rounding confirms none (a point on a breakpoint) the
+//! candidate of least `f`, which is the minimiser of the convex `f` among them.
 
 /// Number of tangential (and of rolling) components of a contact of dimension `D`.
 #[inline]
@@ -66,26 +66,38 @@ pub fn project_on_rolling_cone<const D: usize>(x: &[f64; D], mu: f64, mu_r: f64)
     if mu * nt + mu_r * nr <= -x0 {
         return [0.0; D];
     }
-    let f = |t: f64| {
-        let a = (nt - mu * t).max(0.0);
-        let b = (nr - mu_r * t).max(0.0);
-        (t - x0) * (t - x0) + a * a + b * b
-    };
     let candidates = [
         (x0 + mu * nt + mu_r * nr) / (1.0 + mu * mu + mu_r * mu_r),
         (x0 + mu * nt) / (1.0 + mu * mu),
         (x0 + mu_r * nr) / (1.0 + mu_r * mu_r),
     ];
-    let mut t = 0.0;
-    let mut best = f(0.0);
-    for c in candidates {
-        let c = c.max(0.0);
-        let v = f(c);
-        if v < best {
-            best = v;
-            t = c;
+    // The candidate whose active set it confirms is the minimiser; when rounding leaves none
+    // confirmed (a point on a breakpoint), the least value of f decides.
+    let [both, tangential, rolling] = candidates;
+    let t = if nt > mu * both && nr > mu_r * both {
+        both
+    } else if nt > mu * tangential && nr <= mu_r * tangential {
+        tangential
+    } else if nt <= mu * rolling && nr > mu_r * rolling {
+        rolling
+    } else {
+        let f = |t: f64| {
+            let a = (nt - mu * t).max(0.0);
+            let b = (nr - mu_r * t).max(0.0);
+            (t - x0) * (t - x0) + a * a + b * b
+        };
+        let mut t = 0.0;
+        let mut best = f(0.0);
+        for c in candidates {
+            let c = c.max(0.0);
+            let v = f(c);
+            if v < best {
+                best = v;
+                t = c;
+            }
         }
-    }
+        t
+    };
     let m = part_len(D);
     let mut p = *x;
     p[0] = t;
