@@ -415,3 +415,74 @@ fn planar_solve_allocations_do_not_grow_with_iterations() {
         }
     }
 }
+
+/// The rolling solvers' iterations allocate nothing: a whole rolling NSGS (both local solvers,
+/// every error evaluation, relaxation, shuffling and freezing, with and without a time budget)
+/// or ADMM solve of Siconos' rfc3d_sphere_from_grfc3d (from the source package that
+/// scripts/siconos-suite.sh extracts; skipped without it) allocates as many times for 1
+/// iteration as for 50.
+#[test]
+fn rolling_solve_allocations_do_not_grow_with_iterations() {
+    use fc3d_core::io::dat::{read_rolling_dat_file, RollingDatProblem};
+    use fc3d_core::{
+        solve_rolling, AdmmOptions, RollingConfig, RollingLocalSolver, RollingMethod,
+        RollingNsgsOptions,
+    };
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(
+        "../target/siconos-src/siconos-4.4.0/numerics/src/FrictionContact/test/data/\
+         rfc3d_sphere_from_grfc3d.dat",
+    );
+    if !path.is_file() {
+        eprintln!("Siconos' sources not extracted: skipped");
+        return;
+    }
+    let RollingDatProblem::Spatial(p) = read_rolling_dat_file(&path).unwrap() else {
+        panic!("not 5D")
+    };
+    let allocations = |mut config: RollingConfig, k| {
+        config.max_iter = k;
+        config.tolerance = 0.0;
+        let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+        let (n, report) = count_allocations(|| solve_rolling(&p, &config, &mut r, &mut u).unwrap());
+        assert_eq!(report.iterations, k, "{config:?}");
+        n
+    };
+    let mut methods = vec![RollingMethod::Admm(AdmmOptions::default())];
+    for local in [
+        RollingLocalSolver::default(),
+        RollingLocalSolver::Projection { unit_step: false },
+    ] {
+        for mode in [
+            ErrorEvaluation::Full,
+            ErrorEvaluation::Light,
+            ErrorEvaluation::LightWithFullFinal,
+            ErrorEvaluation::DumontCriterion,
+        ] {
+            methods.push(RollingMethod::Nsgs(RollingNsgsOptions {
+                error_evaluation: mode,
+                local,
+                ..RollingNsgsOptions::default()
+            }));
+        }
+        methods.push(RollingMethod::Nsgs(RollingNsgsOptions {
+            order: fc3d_core::ContactOrder::ShuffledEachSweep { seed: 1 },
+            relaxation: Some(1.3),
+            freezing: Some(3),
+            filter_local_solution: true,
+            local,
+            ..RollingNsgsOptions::default()
+        }));
+    }
+    for method in methods {
+        for budget in [None, Some(Duration::from_secs(3600))] {
+            let mut config = RollingConfig::new(method);
+            config.time_budget = budget;
+            let one = allocations(config, 1);
+            let many = allocations(config, 50);
+            assert_eq!(
+                one, many,
+                "{method:?} {budget:?}: {one} for 1 iteration, {many} for 50"
+            );
+        }
+    }
+}
