@@ -278,6 +278,38 @@ mod tests {
         assert!(rho > 0.0);
     }
 
+    proptest::proptest! {
+        /// On random well-conditioned blocks (`W = A Aᵀ + I`, not diagonal) the projection
+        /// iteration reaches the exact rolling law, whatever branch the contact is on.
+        #[test]
+        fn projection_iteration_solves_random_contacts(
+            a in proptest::array::uniform5(proptest::array::uniform5(-0.5f64..0.5)),
+            q in proptest::array::uniform5(-2.0f64..2.0),
+            mu in 0.0f64..1.0,
+            mu_r in 0.0f64..0.5,
+            stick in proptest::bool::ANY,
+        ) {
+            let mut w = identity::<5>();
+            for i in 0..5 {
+                for j in 0..5 {
+                    for k in 0..5 {
+                        w[i][j] += a[i][k] * a[j][k];
+                    }
+                }
+            }
+            let p = RollingLocalProblem { w: &w, q, mu, mu_r };
+            let it = RollingProjectionIteration {
+                tolerance: 1e-14,
+                max_iter: 100_000,
+                use_trivial_solution: stick,
+            };
+            let (mut r, mut rho) = ([0.0; 5], 1.0);
+            it.solve(&p, &mut rho, &mut r, None);
+            let scale = q.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+            proptest::prop_assert!(residual(&p, &r) <= 1e-9 * scale, "{:?} {}", r, residual(&p, &r));
+        }
+    }
+
     #[test]
     fn block_solve() {
         let w: Block<3> = [[0.0, 1.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 4.0]];
