@@ -11,7 +11,8 @@
 /* Solver ids (ABI values). solver_options_create returns Siconos 4.4's defaults for every one.
    fc3d_driver solves the 3D ids listed in README.md and returns FC3D_ERR_UNSUPPORTED_SOLVER,
    with a message naming the solver, for the others (GAMS/PATH ids need a commercial solver;
-   global and rolling ids are other problems). */
+   global ids are another problem; the 2D and rolling ids run through fc2d_driver and
+   rolling_fc3d_driver / rolling_fc2d_driver). */
 enum FRICTION_SOLVER
 {
   /* 2D solvers (fc2d_driver). */
@@ -411,8 +412,8 @@ enum SICONOS_FRICTION_3D_IPM_GET_PROBLEM_INFO_ENUM
 };
 
 /* The names solver_options_id_to_name returns (Siconos' strings), one variable per solver. Those
-   of the global and rolling solvers are declared and defined as in Siconos although fc3d does not
-   solve these problems. */
+   of the global solvers are declared and defined as in Siconos although fc3d does not solve
+   these problems. */
 #if defined(__cplusplus)
 extern "C" {
 #endif
