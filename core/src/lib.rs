@@ -17,6 +17,7 @@
 
 pub mod config;
 pub mod contract;
+pub mod diagnostics;
 pub mod error;
 pub mod io;
 pub mod local;
@@ -27,11 +28,13 @@ pub mod problem;
 pub mod scenes;
 pub mod solve;
 pub mod solvers;
+pub mod workspace;
 
 pub use config::{Method, PlanarConfig, Rescaling, SolverConfig};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
+pub use diagnostics::{diagnose, ContactDiagnostic, ContactStatus, DiagnosticOptions, Diagnostics};
 pub use error::Fc3dError;
 pub use local::{
     AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule,
@@ -53,6 +56,7 @@ pub use solvers::vi::{
     ExtraGradientCorrection, HyperplaneSearch, SelfAdaptiveStep, StepRatio, StepSize, TrialStart,
     ViIteration, ViOptions, ViSolver,
 };
+pub use workspace::{WarmStart, Workspace, WorkspaceStats};
 
 /// The README's Rust examples are compiled and run as doctests.
 #[cfg(doctest)]
