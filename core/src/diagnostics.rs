@@ -5,19 +5,22 @@
 //!
 //! # Status rules
 //!
-//! With `tau` the status tolerance ([`DiagnosticOptions::tolerance`]), the reaction scale
-//! `R = max_c ||r_c||` and the velocity scale `U = max_c max(||u_c||, ||q_c||)`, a contact with
-//! `eps_r = tau R` and `eps_u = tau U` is
+//! With `tau` the status tolerance ([`DiagnosticOptions::tolerance`]), the velocity scale of the
+//! problem `U = max_c ||q_c||` and, for each contact, the stiffness `a_c = max_i |(W_cc)_ii|`
+//! (the largest over all contacts when `W_cc` has a zero diagonal) that turns a reaction into a
+//! velocity, contact `c` is *without force* when `a_c ||r_c|| <= tau max(U, ||u_c||)` (its
+//! reaction moves it by a negligible velocity; a scale per contact, so that a reaction
+//! growing without bound elsewhere does not hide this one), and with `eps_u = tau U` it is
 //!
-//! * [`ContactStatus::TakeOff`] when `||r_c|| <= eps_r` and `u_N > eps_u` (no force, separating);
-//! * [`ContactStatus::Apex`] when `||r_c|| <= eps_r` and `u_N <= eps_u`: no force and no
+//! * [`ContactStatus::TakeOff`] when without force and `u_N > eps_u` (separating);
+//! * [`ContactStatus::Apex`] when without force and `u_N <= eps_u`: no force and no
 //!   separation, the reaction at the apex of the cone (a grazing contact, possibly sliding
 //!   tangentially: then the De Saxcé velocity is on the boundary of the dual cone). A `u_N`
 //!   below `-eps_u` here is a violated contact (penetrating without reaction): its error
 //!   contribution says so;
-//! * [`ContactStatus::Stick`] when `||r_c|| > eps_r` and `||u_T|| <= eps_u` (this includes a
+//! * [`ContactStatus::Stick`] when with force and `||u_T|| <= eps_u` (this includes a
 //!   reaction on the cone's boundary with no slip yet);
-//! * [`ContactStatus::Slide`] when `||r_c|| > eps_r` and `||u_T|| > eps_u`.
+//! * [`ContactStatus::Slide`] when with force and `||u_T|| > eps_u`.
 //!
 //! The rules classify any iterate, converged or not; at a solution they are Coulomb's cases.
 //!
@@ -61,7 +64,8 @@ impl ContactStatus {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DiagnosticOptions {
     /// Relative tolerance `tau` of the status rules (finite, >= 0). Default 1e-6: a contact whose
-    /// reaction is below a millionth of the largest counts as without force. For an iterate
+    /// reaction changes its velocity by less than a millionth of the problem's velocity scale
+    /// counts as without force. For an iterate
     /// solved to a tolerance above that, pass a larger one (about 10 times the error reached).
     pub tolerance: f64,
 }
@@ -152,22 +156,38 @@ pub fn diagnose(
         })?;
     let (q, mu) = (problem.q(), problem.mu());
     let scale = relative_scale(norm(q), r, &u);
-    let mut r_max = 0.0_f64;
-    let mut u_max = 0.0_f64;
-    for c in 0..problem.n_contacts() {
-        let k = 3 * c..3 * c + 3;
-        r_max = r_max.max(norm(&r[k.clone()]));
-        u_max = u_max.max(norm(&u[k.clone()])).max(norm(&q[k]));
+    let n_contacts = problem.n_contacts();
+    let stiffness = |c: usize| {
+        problem
+            .w()
+            .diagonal_block(c)
+            .map_or(0.0, |b| b[0][0].abs().max(b[1][1].abs()).max(b[2][2].abs()))
+    };
+    let mut u_scale = 0.0_f64;
+    let mut a_max = 0.0_f64;
+    for c in 0..n_contacts {
+        u_scale = u_scale.max(norm(&q[3 * c..3 * c + 3]));
+        a_max = a_max.max(stiffness(c));
     }
-    let (eps_r, eps_u) = (t * r_max, t * u_max);
+    let a_default = if a_max > 0.0 && a_max.is_finite() {
+        a_max
+    } else {
+        1.0
+    };
+    let eps_u = t * u_scale;
     let mut sum_sq = 0.0;
-    for c in 0..problem.n_contacts() {
+    for c in 0..n_contacts {
         let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
         let uc = [u[3 * c], u[3 * c + 1], u[3 * c + 2]];
         let e = contact_residual_sq(&rc, &uc, mu[c]).sqrt() / scale;
         sum_sq += e * e;
         let slip = (uc[1] * uc[1] + uc[2] * uc[2]).sqrt();
-        let status = if norm(&rc) <= eps_r {
+        let a = match stiffness(c) {
+            a if a > 0.0 && a.is_finite() => a,
+            _ => a_default,
+        };
+        let without_force = a * norm(&rc) <= t * u_scale.max(norm(&uc));
+        let status = if without_force {
             if uc[0] > eps_u {
                 ContactStatus::TakeOff
             } else {
