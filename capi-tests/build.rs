@@ -9,6 +9,7 @@ fn main() {
         "c/matrix_hostile.c",
         "c/solver_entries.c",
         "c/fc2d_checks.c",
+        "c/workspace_checks.c",
     ];
     let mut build = cc::Build::new();
     build

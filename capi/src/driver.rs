@@ -172,7 +172,7 @@ pub(crate) unsafe fn planar_driver_impl(
 /// `dparam[1]`) only on success. A callback must not free or change the options (nor the
 /// problem) during the solve: the options are checked after each call, the callback is not
 /// called again once they changed, and the solve is then refused (nothing written).
-unsafe fn solve_into_host<const D: usize>(
+pub(crate) unsafe fn solve_into_host<const D: usize>(
     p: &FrictionProblem<'_, D>,
     reaction: *mut c_double,
     velocity: *mut c_double,
