@@ -2,7 +2,7 @@
 //! host's driver call from r = 0, everything prepared anew) and through a [`Workspace`] (warm
 //! start by contact id, prepared W structure reused), at the same tolerance.
 //!
-//! `cargo run --release -p fc3d-core --example warm_start [-- REPEATS]`
+//! `cargo run --release -p fc3d-core --example warm_start [-- REPEATS [pile|box]]`
 //!
 //! Prints, per sequence and solver, the median over REPEATS (default 5) of the total solve time,
 //! the total iterations, the largest error reached, and the ratio cold / warm.
@@ -76,10 +76,15 @@ fn main() {
         .nth(1)
         .map(|a| a.parse().expect("REPEATS is a number"))
         .unwrap_or(5);
-    let sequences = [
-        pile_settling(32, 250, &mut reference_solve),
-        box_slide(250, &mut reference_solve),
-    ];
+    let only = std::env::args().nth(2);
+    let wanted = |name: &str| only.as_deref().is_none_or(|o| name.starts_with(o));
+    let mut sequences = Vec::new();
+    if wanted("pile") {
+        sequences.push(pile_settling(32, 250, &mut reference_solve));
+    }
+    if wanted("box") {
+        sequences.push(box_slide(250, &mut reference_solve));
+    }
     let nsgs = |tol: f64| SolverConfig::new(NsgsOptions::default()).with_tolerance(tol);
     let nsn = |tol: f64| {
         SolverConfig::new(NsnOptions::new(NsnFormulation::AlartCurnier)).with_tolerance(tol)
@@ -105,7 +110,13 @@ fn main() {
     );
     for seq in &sequences {
         let contacts: usize = seq.steps.iter().map(|s| s.ids.len()).max().unwrap_or(0);
-        for (label, config) in &configs {
+        // NSN-AC does not solve the pile's hyperstatic steps (most end at its iteration limit,
+        // cold or warm, after minutes): it runs on the box only.
+        let skip_nsn = seq.name == "pile_settling";
+        for (label, config) in configs
+            .iter()
+            .filter(|(l, _)| !(skip_nsn && l.starts_with("NSN")))
+        {
             let (mut cold, mut warm) = (Vec::new(), Vec::new());
             let (mut cold_t, mut warm_t) = (None, None);
             for _ in 0..repeats {

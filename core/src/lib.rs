@@ -13,7 +13,8 @@
 //!
 //! Layers, bottom to top (no module imports one above it; `tests/architecture.rs` checks it):
 //! `error`, `math` → `matrix` → `problem` → `measure` → `contract` → `local` → `solvers` →
-//! `config` → `solve`; `io` and `scenes` build problems. See `docs/architecture.md`.
+//! `config` → `solve` → `workspace`; `io` and `scenes` build problems, `diagnostics` sits beside
+//! `measure`. See `docs/architecture.md`.
 
 pub mod config;
 pub mod contract;
