@@ -173,6 +173,14 @@ impl Workspace {
         // The warm iterate goes to a copy: r stays untouched if the solve fails.
         let mut start = crate::error::try_vec(problem.size(), 0.0, "warm start")?;
         let counts = self.initial_guess(ids, &mut start)?;
+        // Room to remember this step's contacts, reserved before anything changes.
+        self.next_memory.clear();
+        self.next_memory
+            .try_reserve(ids.len())
+            .map_err(|_| Fc3dError::OutOfMemory {
+                what: "workspace contact memory".into(),
+                bytes: ids.len() * std::mem::size_of::<(i64, ContactMemory)>(),
+            })?;
         let (rows, newton, stats) = (&mut self.rows, &mut self.newton, &mut self.stats);
         let mut runner = |p: &FrictionProblem<'_>,
                           cfg: &SolverConfig,
@@ -287,7 +295,12 @@ fn prepared_rows(
 }
 
 fn check_unique(ids: &[i64]) -> Result<(), Fc3dError> {
-    let mut seen = std::collections::HashSet::with_capacity(ids.len());
+    let mut seen = std::collections::HashSet::new();
+    seen.try_reserve(ids.len())
+        .map_err(|_| Fc3dError::OutOfMemory {
+            what: "contact id check".into(),
+            bytes: ids.len() * std::mem::size_of::<i64>(),
+        })?;
     for (c, id) in ids.iter().enumerate() {
         if !seen.insert(*id) {
             return Err(Fc3dError::InvalidOption(format!(
