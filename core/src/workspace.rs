@@ -299,7 +299,7 @@ fn check_unique(ids: &[i64]) -> Result<(), Fc3dError> {
     seen.try_reserve(ids.len())
         .map_err(|_| Fc3dError::OutOfMemory {
             what: "contact id check".into(),
-            bytes: ids.len() * std::mem::size_of::<i64>(),
+            bytes: std::mem::size_of_val(ids),
         })?;
     for (c, id) in ids.iter().enumerate() {
         if !seen.insert(*id) {

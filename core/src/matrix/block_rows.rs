@@ -165,9 +165,8 @@ impl<const D: usize> BlockRows<D> {
                 for bi in 0..nc {
                     let mut k = self.row_ptr[bi];
                     let mut have_diag = false;
-                    for p in row_ptr[bi]..row_ptr[bi + 1] {
-                        let bj = col_idx[p];
-                        let cm = &s.blocks()[p];
+                    let span = row_ptr[bi]..row_ptr[bi + 1];
+                    for (&bj, cm) in col_idx[span.clone()].iter().zip(&s.blocks()[span]) {
                         let mut b = zero;
                         for (i, row) in b.iter_mut().enumerate() {
                             for (j, v) in row.iter_mut().enumerate() {
