@@ -107,6 +107,24 @@ static int check_steps(void) {
   CHECK(info == 0 && o->iparam[SICONOS_IPARAM_ITER_DONE] <= 2, "step 3: info %d after %d sweeps", info,
         o->iparam[SICONOS_IPARAM_ITER_DONE]);
 
+  /* NSN through the same workspace (its Newton matrix kept between the two calls), then a
+     step with one more contact (a new block pattern: everything rebuilt). */
+  SolverOptions* nsn = solver_options_create(SICONOS_FRICTION_3D_NSN_AC);
+  nsn->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+  for (int rep = 0; rep < 2; rep++) {
+    info = fc3d_workspace_driver(ws, &s.p, ids2, r, u, nsn);
+    CHECK(info == 0, "NSN step %d: info %d", rep, info);
+    for (int c = 0; c < 3; c++) CHECK(fabs(r[3 * c] - push2[c]) < 1e-10, "NSN: r_N[%d] = %g", c, r[3 * c]);
+  }
+  double push4[4] = {3, 5, 1, 2};
+  int64_t ids4[4] = {30, 40, 10, 50};
+  spheres(&s, 4, push4);
+  info = fc3d_workspace_driver(ws, &s.p, ids4, r, u, nsn);
+  CHECK(info == 0, "4 contacts: info %d", info);
+  for (int c = 0; c < 4; c++) CHECK(fabs(r[3 * c] - push4[c]) < 1e-10, "4 contacts: r_N[%d] = %g", c, r[3 * c]);
+  solver_options_delete(nsn);
+  free(nsn);
+
   solver_options_delete(o);
   free(o);
   fc3d_workspace_free(ws);
