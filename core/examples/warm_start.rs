@@ -4,9 +4,12 @@
 //!
 //! `cargo run --release -p fc3d-core --example warm_start [-- REPEATS [pile|box]]`
 //!
-//! Prints, per sequence and solver, the median over REPEATS (default 5) of the total solve time,
-//! the total iterations, the largest error reached, and the ratio cold / warm.
+//! Prints, per sequence and solver, the median over REPEATS (default 5) of the total solve time
+//! cold, with the warm start alone (the host keeps the reactions by id and calls `solve`; W's
+//! structures are rebuilt) and through the workspace ("warm"), the ratio cold / warm, and for cold
+//! and warm the total iterations, the largest error and the steps not converged.
 
+use std::collections::HashMap;
 use std::time::Instant;
 
 use fc3d_core::scenes::sequences::{box_slide, pile_settling, Sequence};
@@ -40,8 +43,21 @@ struct Totals {
     not_converged: usize,
 }
 
-fn run(seq: &Sequence, config: &SolverConfig, warm: bool) -> Totals {
+/// How each step is solved.
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    /// `solve` from r = 0 (a host calling the driver).
+    Cold,
+    /// `solve` from the previous step's reactions matched by id, kept by the host (warm start
+    /// alone: everything built from W is rebuilt).
+    WarmOnly,
+    /// Through a `Workspace` (warm start and the prepared W structure kept).
+    Workspace,
+}
+
+fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
     let mut ws = Workspace::new();
+    let mut previous: HashMap<i64, [f64; 3]> = HashMap::new();
     let mut t = Totals {
         seconds: 0.0,
         iterations: 0,
@@ -52,10 +68,20 @@ fn run(seq: &Sequence, config: &SolverConfig, warm: bool) -> Totals {
         let n = step.problem.size();
         let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
         let start = Instant::now();
-        let report = if warm {
-            ws.solve(&step.problem, config, &step.ids, &mut r, &mut u)
-        } else {
-            solve(&step.problem, config, &mut r, &mut u)
+        let report = match mode {
+            Mode::Workspace => ws.solve(&step.problem, config, &step.ids, &mut r, &mut u),
+            Mode::Cold => solve(&step.problem, config, &mut r, &mut u),
+            Mode::WarmOnly => {
+                for (rc, id) in r.chunks_exact_mut(3).zip(&step.ids) {
+                    rc.copy_from_slice(previous.get(id).unwrap_or(&[0.0; 3]));
+                }
+                let report = solve(&step.problem, config, &mut r, &mut u);
+                previous.clear();
+                for (rc, &id) in r.chunks_exact(3).zip(&step.ids) {
+                    previous.insert(id, [rc[0], rc[1], rc[2]]);
+                }
+                report
+            }
         }
         .expect("valid step");
         t.seconds += start.elapsed().as_secs_f64();
@@ -95,12 +121,13 @@ fn main() {
         ("NSN-AC tol 1e-8", nsn(1e-8)),
     ];
     println!(
-        "{:<14} {:>5} {:>8} {:<16} {:>11} {:>11} {:>7} {:>9} {:>9} {:>9} {:>9}",
+        "{:<14} {:>5} {:>8} {:<16} {:>11} {:>11} {:>11} {:>7} {:>9} {:>9} {:>9} {:>9}",
         "sequence",
         "steps",
         "contacts",
         "solver",
         "cold ms",
+        "warm-only ms",
         "warm ms",
         "ratio",
         "cold it",
@@ -117,25 +144,28 @@ fn main() {
             .iter()
             .filter(|(l, _)| !(skip_nsn && l.starts_with("NSN")))
         {
-            let (mut cold, mut warm) = (Vec::new(), Vec::new());
+            let (mut cold, mut warm, mut warm_only) = (Vec::new(), Vec::new(), Vec::new());
             let (mut cold_t, mut warm_t) = (None, None);
             for _ in 0..repeats {
-                let c = run(seq, config, false);
-                let w = run(seq, config, true);
+                let c = run(seq, config, Mode::Cold);
+                let o = run(seq, config, Mode::WarmOnly);
+                let w = run(seq, config, Mode::Workspace);
                 cold.push(c.seconds);
+                warm_only.push(o.seconds);
                 warm.push(w.seconds);
                 cold_t = Some(c);
                 warm_t = Some(w);
             }
             let (c, w) = (cold_t.expect("repeats > 0"), warm_t.expect("repeats > 0"));
-            let (cm, wm) = (median(cold), median(warm));
+            let (cm, wm, om) = (median(cold), median(warm), median(warm_only));
             println!(
-                "{:<14} {:>5} {:>8} {:<16} {:>11.2} {:>11.2} {:>7.2} {:>9} {:>9} {:>9.1e} {:>9.1e}{}",
+                "{:<14} {:>5} {:>8} {:<16} {:>11.2} {:>11.2} {:>11.2} {:>7.2} {:>9} {:>9} {:>9.1e} {:>9.1e}{}",
                 seq.name,
                 seq.steps.len(),
                 contacts,
                 label,
                 1e3 * cm,
+                1e3 * om,
                 1e3 * wm,
                 cm / wm,
                 c.iterations,
