@@ -6,7 +6,7 @@ use fc3d_core::matrix::BlockRows;
 use fc3d_core::scenes::sequences::{box_slide, pile_settling, Sequence};
 use fc3d_core::{
     solve, BlockSparseMatrix, Delassus, FrictionProblem, Method, NsgsOptions, NsnFormulation,
-    NsnOptions, SolverConfig, Workspace,
+    NsnOptions, Rescaling, SolverConfig, Workspace,
 };
 
 /// `k` independent spheres on a plane (W block diagonal), each pushed down by `push[c]`.
@@ -108,6 +108,8 @@ fn equals_a_cold_solve_from_the_same_iterate_nsgs_and_nsn() {
     let nsn =
         SolverConfig::new(NsnOptions::new(NsnFormulation::AlartCurnier)).with_tolerance(1e-10);
     check_equal_to_cold_from_same_iterate(&seq, &nsn);
+    // Under a rescaling the prepared structures are those of the rescaled W, refilled alike.
+    check_equal_to_cold_from_same_iterate(&seq, &nsgs().with_rescaling(Rescaling::Scalar));
     // A family without prepared structure goes through its plain run.
     let prox = SolverConfig::new(
         Method::presets()
