@@ -10,6 +10,7 @@ fn main() {
         "c/solver_entries.c",
         "c/fc2d_checks.c",
         "c/rolling_checks.c",
+        "c/workspace_checks.c",
     ];
     let mut build = cc::Build::new();
     build

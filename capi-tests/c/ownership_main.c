@@ -14,6 +14,7 @@ int opt5_check_single_contacts_and_options(void);
 int capi_check_newton_and_prox(void);
 int capi_check_hostile_matrices(void);
 int capi_check_problem_copy(const char* data_dir);
+int capi_check_workspace(void);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   failed += capi_check_newton_and_prox() != 0;
   failed += capi_check_hostile_matrices() != 0;
   failed += capi_check_problem_copy(data) != 0;
-  printf("%d passed, %d failed\n", 12 - failed, failed);
+  failed += capi_check_workspace() != 0;
+  printf("%d passed, %d failed\n", 13 - failed, failed);
   return failed != 0;
 }

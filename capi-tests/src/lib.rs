@@ -72,6 +72,9 @@ extern "C" {
     ) -> c_int;
     /// The rolling API checks; `scratch` is a writable directory.
     pub fn capi_rolling_check_api(scratch: *const c_char) -> c_int;
+    /// The workspace (warm start by contact id) and the per-contact diagnostics
+    /// (`c/workspace_checks.c`).
+    pub fn capi_check_workspace() -> c_int;
     /// Solves a 2D file with `solver_id` through `fc2d_driver`.
     pub fn capi_fc2d_solve_file(
         path: *const c_char,

@@ -134,12 +134,29 @@
 // The largest `iSize` / `dSize` accepted (fc3d reads the first `OPTIONS_PARAM_SIZE` slots).
 #define FC3D_OPTIONS_MAX_PARAM_SIZE 1024
 
+// `fc3d_contact_diagnostics` status: no reaction, separating (`u_N > 0`).
+#define FC3D_CONTACT_TAKE_OFF 0
+
+// `fc3d_contact_diagnostics` status: reaction, no tangential slip.
+#define FC3D_CONTACT_STICK 1
+
+// `fc3d_contact_diagnostics` status: reaction with tangential slip.
+#define FC3D_CONTACT_SLIDE 2
+
+// `fc3d_contact_diagnostics` status: no reaction and no separation (the apex of the cone).
+#define FC3D_CONTACT_APEX 3
+
 // A problem read from a file (opaque), with W also kept in compressed rows for
 // `fc3d_problem_get`.
 typedef struct Fc3dProblem Fc3dProblem;
 
 // A solver and its settings (opaque): Siconos' options of a solver id, changed by the setters.
 typedef struct Fc3dSettings Fc3dSettings;
+
+// A workspace (opaque): what one solve learned for the next one of a time-stepping host —
+// the reaction of every contact by the host's contact id, the active set, and the structures
+// built from W while its block pattern does not change.
+typedef struct Fc3dWorkspace Fc3dWorkspace;
 
 // Siconos' data version counter.
 typedef struct NumericsDataVersion {
@@ -1361,6 +1378,55 @@ void fc3d_set_internalsolver_tolerance(struct FrictionContactProblem *problem,
                                        struct SolverOptions *options,
                                        struct SolverOptions *internalsolver_options,
                                        double error);
+
+// A new, empty workspace (the first solve through it is a cold one); NULL (and the last
+// error) if memory is short. Release it with `fc3d_workspace_free`.
+struct Fc3dWorkspace *fc3d_workspace_new(void);
+
+// Releases a workspace of `fc3d_workspace_new` and everything it kept (NULL is accepted).
+void fc3d_workspace_free(struct Fc3dWorkspace *workspace);
+
+// `fc3d_driver` for a host stepping in time: solves `problem` with the solver of `options`,
+// starting each contact from the reaction the contact with the same id had at the end of the
+// previous call on this workspace (zero for a contact that appeared; the ids of contacts that
+// vanished are forgotten), and reusing the structures prepared from W when its block pattern
+// is unchanged (NSGS's block rows, NSN's symbolic factorization).
+//
+// `contact_ids` holds one id per contact (`problem->numberOfContacts` of them, unique within
+// the call; any values, e.g. a hash of the two bodies and the feature). `reaction` is an
+// output: its values on entry are ignored (the warm start replaces them). Return codes,
+// outputs (`reaction`, `velocity`, `iparam[1]`, `dparam[1]`) and the callback are those of
+// `fc3d_driver`; on a negative return nothing is written and the workspace still holds the
+// previous step's reactions. The workspace copies what it keeps: the problem, ids and arrays
+// stay the host's.
+int fc3d_workspace_driver(struct Fc3dWorkspace *workspace,
+                          struct FrictionContactProblem *problem,
+                          const int64_t *contact_ids,
+                          double *reaction,
+                          double *velocity,
+                          struct SolverOptions *options);
+
+// Per-contact diagnostics of the reaction `reaction` (3 per contact) of `problem`, with
+// `u = W r + q` recomputed: why a step did not converge, which contacts to look at.
+//
+// Fills, for each contact `c` (arrays of `problem->numberOfContacts` entries, each may be NULL
+// when not wanted): `status[c]` (`FC3D_CONTACT_TAKE_OFF`, `_STICK`, `_SLIDE`, `_APEX`, by the
+// rules of fc3d_core's `diagnostics` module with relative tolerance `tolerance`; pass 0 or a
+// negative value for the default 1e-6), `error_contribution[c]` (the contact's part of the
+// relative natural-map error: the sum of their squares is the error squared),
+// `normal_velocity[c]` (`u_N`, negative when penetrating). `worst` (`k` entries, NULL when
+// `k` is 0) receives the 0-based indices of the `k` contacts with the largest contributions,
+// largest first, then -1 where there are fewer than `k` contacts.
+//
+// Returns 0, or a negative code on invalid input (nothing written). Nothing is kept.
+int fc3d_contact_diagnostics(struct FrictionContactProblem *problem,
+                             const double *reaction,
+                             double tolerance,
+                             int *status,
+                             double *error_contribution,
+                             double *normal_velocity,
+                             int k,
+                             int *worst);
 
 #ifdef __cplusplus
 }  // extern "C"

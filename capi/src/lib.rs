@@ -37,6 +37,7 @@ mod problem;
 mod rolling;
 mod solver_entries;
 mod stream;
+mod workspace;
 
 use std::os::raw::c_int;
 use std::sync::atomic::Ordering;
@@ -47,6 +48,9 @@ pub(crate) use errors::{ffi_guard, verbose, CError, CResult};
 pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
 pub use options::{
     FC3D_OPTIONS_MAX_DEPTH, FC3D_OPTIONS_MAX_INTERNAL_SOLVERS, FC3D_OPTIONS_MAX_PARAM_SIZE,
+};
+pub use workspace::{
+    Fc3dWorkspace, FC3D_CONTACT_APEX, FC3D_CONTACT_SLIDE, FC3D_CONTACT_STICK, FC3D_CONTACT_TAKE_OFF,
 };
 
 /// Index in `dparam` of fc3d's wall-clock budget in seconds (0, the default: no budget). An index

@@ -78,6 +78,12 @@ struct SolveArgs {
     /// (cylinder with local iterations), 570 (FP-VI-UPK), 571 (Dumont's EBP), 572 (Dumont's EAL).
     #[arg(long, value_name = "ID", default_value = "565", value_parser = parse_local)]
     local: LocalSolverKind,
+    /// After each problem, print per-contact diagnostics as `#` lines: how many contacts take
+    /// off, stick, slide or sit at the cone apex, and the K contacts (default 5) with the
+    /// largest share of the error, with their status and normal velocity u_N (< 0: penetrating).
+    /// Written `--diagnostics` or `--diagnostics=K`.
+    #[arg(long, value_name = "K", num_args = 0..=1, require_equals = true, default_missing_value = "5")]
+    diagnostics: Option<usize>,
 }
 
 fn parse_tolerance(s: &str) -> Result<f64, String> {
@@ -180,7 +186,7 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
             }
         };
         match solve_one(&problem, &config) {
-            Ok((report, time)) => {
+            Ok((report, time, r)) => {
                 let row = Row {
                     problem: name,
                     contacts: problem.n_contacts(),
@@ -194,6 +200,13 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
                 for line in table.push(row) {
                     if !out(line) {
                         return ExitCode::SUCCESS;
+                    }
+                }
+                if let Some(k) = args.diagnostics {
+                    for line in diagnostic_lines(&problem, &r, &report, k) {
+                        if !out(line) {
+                            return ExitCode::SUCCESS;
+                        }
                     }
                 }
             }
@@ -247,17 +260,49 @@ fn load_input(input: Input) -> Loaded {
     }
 }
 
-/// Solves from r = 0 and times the solve call alone.
+/// Solves from r = 0 and times the solve call alone; returns the reaction too.
 fn solve_one(
     problem: &FrictionProblem<'_>,
     config: &SolverConfig,
-) -> Result<(SolveReport, Duration), Fc3dError> {
+) -> Result<(SolveReport, Duration, Vec<f64>), Fc3dError> {
     let n = problem.size();
     let mut r = vec![0.0; n];
     let mut u = vec![0.0; n];
     let start = Instant::now();
     let report = solve(problem, config, &mut r, &mut u)?;
-    Ok((report, start.elapsed()))
+    Ok((report, start.elapsed(), r))
+}
+
+/// `--diagnostics`: the status counts and the `k` worst contacts of the solution `r`, as `#`
+/// lines. The status tolerance follows the error reached (10 times it, at least the default),
+/// so that a contact is not called sliding for a velocity the solve left unresolved.
+fn diagnostic_lines(
+    problem: &FrictionProblem<'_>,
+    r: &[f64],
+    report: &SolveReport,
+    k: usize,
+) -> Vec<String> {
+    let tolerance = (10.0 * report.error).max(fc3d_core::DiagnosticOptions::default().tolerance);
+    let d = match fc3d_core::diagnose(problem, r, &fc3d_core::DiagnosticOptions { tolerance }) {
+        Ok(d) => d,
+        Err(e) => return vec![format!("#   diagnostics: {e}")],
+    };
+    let (take_off, stick, slide, apex) = d.counts();
+    let mut lines = vec![format!(
+        "#   contacts: {take_off} take-off, {stick} stick, {slide} slide, {apex} apex (status tolerance {tolerance:.1e})"
+    )];
+    for c in d.worst(k) {
+        let cd = &d.contacts[c];
+        lines.push(format!(
+            "#   contact {c:>6}: {:<8} error share {:.2e}  u_N {:+.3e}  r_N {:+.3e}  |u_T| {:.3e}",
+            cd.status.name(),
+            cd.error_contribution,
+            cd.normal_velocity,
+            cd.normal_reaction,
+            cd.tangential_velocity
+        ));
+    }
+    lines
 }
 
 fn display_name(path: &Path) -> String {

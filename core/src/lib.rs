@@ -13,10 +13,12 @@
 //!
 //! Layers, bottom to top (no module imports one above it; `tests/architecture.rs` checks it):
 //! `error`, `math` → `matrix` → `problem` → `measure` → `contract` → `local` → `solvers` →
-//! `config` → `solve`; `io` and `scenes` build problems. See `docs/architecture.md`.
+//! `config` → `solve` → `workspace`; `io` and `scenes` build problems, `diagnostics` sits beside
+//! `measure`. See `docs/architecture.md`.
 
 pub mod config;
 pub mod contract;
+pub mod diagnostics;
 pub mod error;
 pub mod io;
 pub mod local;
@@ -27,11 +29,13 @@ pub mod problem;
 pub mod scenes;
 pub mod solve;
 pub mod solvers;
+pub mod workspace;
 
 pub use config::{Method, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
+pub use diagnostics::{diagnose, ContactDiagnostic, ContactStatus, DiagnosticOptions, Diagnostics};
 pub use error::Fc3dError;
 pub use local::rolling::RollingProjectionIteration;
 pub use local::{
@@ -58,6 +62,7 @@ pub use solvers::vi::{
     ExtraGradientCorrection, HyperplaneSearch, SelfAdaptiveStep, StepRatio, StepSize, TrialStart,
     ViIteration, ViOptions, ViSolver,
 };
+pub use workspace::{WarmStart, Workspace, WorkspaceStats};
 
 /// The README's Rust examples are compiled and run as doctests.
 #[cfg(doctest)]

@@ -42,11 +42,49 @@ pub fn solve_with_observer(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolveReport, Fc3dError> {
+    solve_with_runner(problem, config, r, u, observer, &mut run_family)
+}
+
+/// Runs the configured family on a problem (the host's, or its rescaled copy).
+pub(crate) type Runner<'a> = dyn FnMut(
+        &FrictionProblem<'_>,
+        &SolverConfig,
+        &mut [f64],
+        &mut [f64],
+        &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError>
+    + 'a;
+
+/// The family's own run: everything it needs is prepared from the problem.
+fn run_family(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    config
+        .method
+        .family()
+        .run(problem, &config.limits(), r, u, observer)
+}
+
+/// [`solve_with_observer`] with the family run by `runner` (a workspace's, which reuses the
+/// structures it prepared for an earlier problem); the checks, rescaling, trivial case and
+/// post-processing are the ones every solve goes through.
+pub(crate) fn solve_with_runner(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+    runner: &mut Runner<'_>,
+) -> Result<SolveReport, Fc3dError> {
     check_iterate(problem.size(), r, u)?;
     config.validate()?;
     let outcome = match config.rescaling {
-        Rescaling::None => run(problem, config, r, u, observer)?,
-        Rescaling::Scalar => run_rescaled(problem, config, r, observer)?,
+        Rescaling::None => run(problem, config, r, u, observer, runner)?,
+        Rescaling::Scalar => run_rescaled(problem, config, r, observer, runner)?,
     };
     Ok(finish(problem, config, outcome, r, u))
 }
@@ -59,15 +97,13 @@ fn run(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
+    runner: &mut Runner<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     if problem.q().chunks_exact(3).all(|qc| qc[0] >= -f64::EPSILON) {
         r.iter_mut().for_each(|v| *v = 0.0);
         return Ok(SolverOutcome::stopped(0, false));
     }
-    config
-        .method
-        .family()
-        .run(problem, &config.limits(), r, u, observer)
+    runner(problem, config, r, u, observer)
 }
 
 /// [`run`] on FC(s W, t q, mu) with the factors of [`scalar_factors`]; `r` is mapped to and from
@@ -77,6 +113,7 @@ fn run_rescaled(
     config: &SolverConfig,
     r: &mut [f64],
     observer: &mut Observer<'_>,
+    runner: &mut Runner<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     let n = problem.size();
     let (s, t) = scalar_factors(problem);
@@ -96,7 +133,7 @@ fn run_rescaled(
             error: ev.error,
         });
     };
-    let outcome = run(&scaled, config, &mut r_s, &mut u_s, &mut mapped)?;
+    let outcome = run(&scaled, config, &mut r_s, &mut u_s, &mut mapped, runner)?;
     for (h, v) in r.iter_mut().zip(&r_s) {
         *h = to_host * v;
     }

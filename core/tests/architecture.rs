@@ -15,11 +15,13 @@ const LAYERS: &[(&str, usize)] = &[
     ("measure", 4),
     ("io", 4),
     ("scenes", 4),
+    ("diagnostics", 4),
     ("contract", 5),
     ("local", 6),
     ("solvers", 7),
     ("config", 8),
     ("solve", 9),
+    ("workspace", 10),
 ];
 
 fn layer(module: &str) -> usize {

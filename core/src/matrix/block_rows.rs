@@ -118,6 +118,85 @@ impl<const D: usize> BlockRows<D> {
         })
     }
 
+    /// Overwrites the stored blocks with those of `w` when `w` has exactly the block pattern
+    /// these rows were built with (same contacts, same non-zero off-diagonal blocks in the same
+    /// order); allocates nothing. Returns `false` otherwise, and then the rows are left in an
+    /// unspecified state: the caller rebuilds them with [`BlockRows::from_delassus`]. A time
+    /// stepper whose contact set did not change between steps keeps its prepared rows this way.
+    pub fn refill_from(&mut self, w: &Delassus<'_>) -> bool {
+        let nc = self.n_contacts;
+        if w.nrows() != D * nc || w.ncols() != D * nc {
+            return false;
+        }
+        let zero: Block<D> = [[0.0; D]; D];
+        // Next slot to fill in each block row.
+        let mut cursor_ok = true;
+        match w {
+            Delassus::Dense(d) => {
+                for bi in 0..nc {
+                    let mut k = self.row_ptr[bi];
+                    for bj in 0..nc {
+                        let mut b = zero;
+                        let mut nonzero = false;
+                        for (i, row) in b.iter_mut().enumerate() {
+                            for (j, v) in row.iter_mut().enumerate() {
+                                *v = d.get(D * bi + i, D * bj + j);
+                                nonzero |= *v != 0.0;
+                            }
+                        }
+                        if bi == bj {
+                            self.diagonal[bi] = b;
+                        } else if nonzero {
+                            if k >= self.row_ptr[bi + 1] || self.cols[k] != bj {
+                                return false;
+                            }
+                            self.blocks[k] = b;
+                            k += 1;
+                        }
+                    }
+                    cursor_ok &= k == self.row_ptr[bi + 1];
+                }
+            }
+            Delassus::SparseBlock(s) => {
+                if D != 3 {
+                    return false;
+                }
+                let (row_ptr, col_idx) = (s.row_ptr(), s.col_idx());
+                for bi in 0..nc {
+                    let mut k = self.row_ptr[bi];
+                    let mut have_diag = false;
+                    let span = row_ptr[bi]..row_ptr[bi + 1];
+                    for (&bj, cm) in col_idx[span.clone()].iter().zip(&s.blocks()[span]) {
+                        let mut b = zero;
+                        for (i, row) in b.iter_mut().enumerate() {
+                            for (j, v) in row.iter_mut().enumerate() {
+                                *v = cm[i + 3 * j];
+                            }
+                        }
+                        if bi == bj {
+                            // A repeated diagonal block is summed by `from_delassus`: leave
+                            // that rare layout to it.
+                            if have_diag {
+                                return false;
+                            }
+                            self.diagonal[bi] = b;
+                            have_diag = true;
+                        } else if b.iter().flatten().any(|&v| v != 0.0) {
+                            if k >= self.row_ptr[bi + 1] || self.cols[k] != bj {
+                                return false;
+                            }
+                            self.blocks[k] = b;
+                            k += 1;
+                        }
+                    }
+                    cursor_ok &= have_diag && k == self.row_ptr[bi + 1];
+                }
+            }
+            Delassus::Sparse(_) => return false,
+        }
+        cursor_ok
+    }
+
     pub fn n_contacts(&self) -> usize {
         self.n_contacts
     }

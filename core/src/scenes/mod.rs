@@ -17,6 +17,8 @@
 //! of the linearised gyroscopic term `omega x I omega`, `C = [omega]_x I - [I omega]_x`, which makes
 //! `W` non-symmetric (relative asymmetry around 1e-4), as the W of real simulators are.
 
+pub mod sequences;
+
 use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
@@ -372,6 +374,26 @@ impl World {
             }
         }
         q
+    }
+
+    /// The velocity change `M^-1 G^T r` of every body `(linear, angular)` under the contact
+    /// impulses `r` (3 per contact).
+    fn impulse_response(&self, r: &[f64]) -> Vec<[f64; 6]> {
+        let mut dv = vec![[0.0; 6]; self.bodies.len()];
+        for c in 0..self.contacts.len() {
+            let rc = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
+            for k in self.bodies_of(c) {
+                let (l, a) = self.jacobian(c, k).expect("body of the contact");
+                let body = &self.bodies[k];
+                let force = mat3_vec(&transpose(&l), &rc);
+                let torque = mat3_vec(&body.inv_inertia, &mat3_vec(&transpose(&a), &rc));
+                for i in 0..3 {
+                    dv[k][i] += force[i] / body.mass;
+                    dv[k][3 + i] += torque[i];
+                }
+            }
+        }
+        dv
     }
 
     /// The block `W_cd`. With symmetric mass matrices, `W_dc = W_cd^T` exactly: the blocks

@@ -64,15 +64,40 @@ pub(crate) fn nsgs(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
-    // Everything that can fail happens before r is touched.
-    let mut sweeper = Sweeper::with_options(problem, options, limits.tolerance)?;
+    // Everything that can fail happens before r is touched (the options are checked below).
+    let rows = problem.w().block_rows()?;
+    nsgs_on_rows(problem, options, limits, rows, r, u, observer).0
+}
+
+/// [`nsgs`] over block rows of `problem`'s W prepared earlier: the rows are moved into the
+/// sweeper and handed back with the outcome, so that a workspace keeps them for the next step.
+pub(crate) fn nsgs_on_rows(
+    problem: &FrictionProblem<'_>,
+    options: &NsgsOptions,
+    limits: &Limits,
+    rows: crate::matrix::BlockRows,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> (
+    Result<SolverOutcome, Fc3dError>,
+    Option<crate::matrix::BlockRows>,
+) {
+    if let Err(e) = options.validate() {
+        return (Err(e), Some(rows));
+    }
+    let mut sweeper = match Sweeper::with_rows(rows, options, limits.tolerance) {
+        Ok(s) => s,
+        Err(e) => return (Err(e), None),
+    };
     let schedule = SweepSchedule {
         error_evaluation: options.error_evaluation,
         evaluation_frequency: options.evaluation_frequency,
         local_tolerance: options.local_tolerance,
         stop_when_stalled: true,
     };
-    run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
+    let outcome = run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer);
+    (outcome, Some(sweeper.into_rows()))
 }
 
 /// How a Gauss-Seidel run tests for convergence and tunes its local tolerance.

@@ -239,6 +239,16 @@ impl Sweeper {
     ) -> Result<Self, Fc3dError> {
         options.validate()?;
         let rows = problem.w().block_rows()?;
+        Self::with_rows(rows, options, tolerance)
+    }
+
+    /// [`Sweeper::with_options`] over block rows prepared earlier (a workspace keeps them from
+    /// one time step to the next); `options` must have been validated.
+    pub(crate) fn with_rows(
+        rows: BlockRows,
+        options: &NsgsOptions,
+        tolerance: f64,
+    ) -> Result<Self, Fc3dError> {
         let step = LocalStep::new(&rows, &options.local)?;
         Ok(GaussSeidel::from_parts(
             rows,
@@ -338,6 +348,11 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
         }
         d_sq
+    }
+
+    /// Gives the block rows back (to be kept for the next problem with the same pattern).
+    pub(crate) fn into_rows(self) -> BlockRows<D> {
+        self.rows
     }
 
     pub(crate) fn any_frozen(&self) -> bool {

@@ -77,19 +77,33 @@ pub(crate) struct NewtonSolver {
 
 impl NewtonSolver {
     pub fn new(problem: &FrictionProblem<'_>, options: &NsnOptions) -> Result<Self, Fc3dError> {
+        Ok(Self::reusing(problem, options, None)?.0)
+    }
+
+    /// [`NewtonSolver::new`], keeping `previous`'s Newton matrix pattern and symbolic
+    /// factorization when `problem`'s W has the same 3x3 block pattern as the W `previous` was
+    /// built for (a time stepper whose contact set did not change): only the values are replaced.
+    /// The flag tells whether `previous` was reused.
+    pub fn reusing(
+        problem: &FrictionProblem<'_>,
+        options: &NsnOptions,
+        previous: Option<NewtonSolver>,
+    ) -> Result<(Self, bool), Fc3dError> {
         options.validate()?;
         let w = problem.w().to_block_sparse()?;
+        let diagonal_scale = diagonal_scale_of(&w);
+        if let Some(mut kept) = previous {
+            if kept.w.row_ptr() == w.row_ptr() && kept.w.col_idx() == w.col_idx() {
+                kept.options = *options;
+                kept.w = w;
+                kept.diagonal_scale = diagonal_scale;
+                return Ok((kept, true));
+            }
+        }
         let matrix = NewtonMatrix::new(&w)?;
         let n = problem.size();
         let nc = problem.n_contacts();
-        let mut diagonal_scale = 0.0_f64;
-        for c in 0..nc {
-            let blk = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
-            for (i, row) in blk.iter().enumerate() {
-                diagonal_scale = diagonal_scale.max(row[i].abs());
-            }
-        }
-        Ok(NewtonSolver {
+        let solver = NewtonSolver {
             options: *options,
             w,
             matrix,
@@ -107,12 +121,9 @@ impl NewtonSolver {
             d: vec![0.0; n],
             wd: vec![0.0; n],
             best_r: vec![0.0; n],
-            diagonal_scale: if diagonal_scale > 0.0 {
-                diagonal_scale
-            } else {
-                1.0
-            },
-        })
+            diagonal_scale,
+        };
+        Ok((solver, false))
     }
 
     /// `u <- (W + shift I) r + q`.
@@ -315,6 +326,22 @@ impl NewtonSolver {
     }
 }
 
+/// max_c max_i |W_cc[i][i]|, or 1 for a zero diagonal: the scale of the regularization shifts.
+fn diagonal_scale_of(w: &BlockSparseMatrix) -> f64 {
+    let mut scale = 0.0_f64;
+    for c in 0..w.n_block_rows() {
+        let blk = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
+        for (i, row) in blk.iter().enumerate() {
+            scale = scale.max(row[i].abs());
+        }
+    }
+    if scale > 0.0 {
+        scale
+    } else {
+        1.0
+    }
+}
+
 #[inline]
 fn take3(x: &[f64], c: usize) -> Vec3 {
     [x[3 * c], x[3 * c + 1], x[3 * c + 2]]
@@ -383,8 +410,21 @@ impl Family for NsnOptions {
         observer: &mut Observer<'_>,
     ) -> Result<SolverOutcome, Fc3dError> {
         let mut solver = NewtonSolver::new(problem, self)?;
-        let run = limits.start();
-        let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
-        Ok(SolverOutcome::stopped(out.iterations, out.out_of_time))
+        Ok(nsn_on(&mut solver, problem, limits, r, u, observer))
     }
+}
+
+/// A nonsmooth Newton solve of `problem` with a solver prepared for it ([`NewtonSolver::new`] or
+/// [`NewtonSolver::reusing`]).
+pub(crate) fn nsn_on(
+    solver: &mut NewtonSolver,
+    problem: &FrictionProblem<'_>,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> SolverOutcome {
+    let run = limits.start();
+    let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
+    SolverOutcome::stopped(out.iterations, out.out_of_time)
 }

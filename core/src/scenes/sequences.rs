@@ -1,0 +1,381 @@
+//! Time-stepping sequences: the problems a Moreau-Jean stepper solves at every step of a short
+//! simulation (a pile of spheres settling, a box carrying a box sliding to rest), with the
+//! host-side contact ids that name the same contact from one step to the next.
+//!
+//! Each step assembles FC(W, q, mu) with the [`World`] of the built-in scenes (`W = G M^-1 G^T`,
+//! `q = G v_free`), hands it to the caller's solver, applies the impulses
+//! (`v+ = v_free + M^-1 G^T r`) and moves the bodies explicitly (`x += dt v+`, orientation
+//! rotated by `dt omega+`). Contacts are detected from the positions at the start of the step:
+//! a pair whose gap `g` is below [`MARGIN`] plus what the free motion closes in one step is
+//! active, and its normal row is shifted by `g / dt` when `g > 0` (`u_N + g / dt >= 0`: the bodies
+//! may close the gap in this step but not pass through). The generator takes the solver as a
+//! closure (this module sits below the solvers).
+
+use super::{cross, Body, World, DT, E_Z};
+use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
+use crate::problem::FrictionProblem;
+
+/// Gap below which two shapes are in contact even without approaching (m).
+pub const MARGIN: f64 = 1e-3;
+
+/// One step of a sequence.
+#[derive(Debug, Clone)]
+pub struct Step {
+    pub problem: FrictionProblem<'static>,
+    /// The host's name of each contact, stable while the contact persists.
+    pub ids: Vec<i64>,
+}
+
+/// A named sequence of steps.
+#[derive(Debug, Clone)]
+pub struct Sequence {
+    pub name: &'static str,
+    pub description: &'static str,
+    pub steps: Vec<Step>,
+}
+
+/// The reaction `r` of a step's problem (3 entries per contact), as the stepper's solver returns
+/// it.
+pub type StepSolver<'a> = dyn FnMut(&FrictionProblem<'_>) -> Vec<f64> + 'a;
+
+#[derive(Debug, Clone, Copy)]
+enum Shape {
+    Sphere { radius: f64 },
+    Cuboid { h: Vec3 },
+}
+
+#[derive(Debug, Clone)]
+struct SimBody {
+    shape: Shape,
+    mass: f64,
+    x: Vec3,
+    rot: Mat3,
+    v: Vec3,
+    omega: Vec3,
+}
+
+impl SimBody {
+    fn body(&self) -> Body {
+        match self.shape {
+            Shape::Sphere { radius } => Body::sphere(self.x, self.mass, radius, self.v, self.omega),
+            Shape::Cuboid { h } => {
+                Body::cuboid(self.x, self.mass, h, self.rot, self.v, self.omega, false)
+            }
+        }
+    }
+}
+
+/// A contact candidate found by the detection: bodies, point, normal (into `a`), gap, mu, id.
+struct Candidate {
+    a: usize,
+    b: Option<usize>,
+    point: Vec3,
+    normal: Vec3,
+    gap: f64,
+    mu: f64,
+    id: i64,
+}
+
+/// Ids: kind in the high bits, then the bodies (and the corner).
+fn contact_id(kind: i64, i: usize, j: usize) -> i64 {
+    (kind << 48) | ((i as i64) << 24) | j as i64
+}
+
+/// Runs `steps` steps of `bodies` under `detect`, solving each step's problem with `solve`.
+fn simulate(
+    name: &'static str,
+    description: &'static str,
+    mut bodies: Vec<SimBody>,
+    steps: usize,
+    detect: &dyn Fn(&[SimBody]) -> Vec<Candidate>,
+    solve: &mut StepSolver<'_>,
+) -> Sequence {
+    let mut out = Vec::with_capacity(steps);
+    for _ in 0..steps {
+        let mut world = World::new();
+        for b in &bodies {
+            world.add_body(b.body());
+        }
+        // Keep the contacts the free motion can close within the step.
+        let candidates: Vec<Candidate> = detect(&bodies)
+            .into_iter()
+            .filter(|c| {
+                let va = &world.bodies[c.a].v_free;
+                let mut vn = approach(va, &world.bodies[c.a].x, &c.point, &c.normal);
+                if let Some(b) = c.b {
+                    let vb = &world.bodies[b].v_free;
+                    vn -= approach(vb, &world.bodies[b].x, &c.point, &c.normal);
+                }
+                c.gap + DT * vn.min(0.0) < MARGIN
+            })
+            .collect();
+        if candidates.is_empty() {
+            // Free flight: no problem to solve this step.
+            for (s, b) in bodies.iter_mut().zip(&world.bodies) {
+                advance(s, &b.v_free);
+            }
+            continue;
+        }
+        for c in &candidates {
+            world.add_contact(c.a, c.b, c.point, c.normal, c.mu);
+        }
+        let ids: Vec<i64> = candidates.iter().map(|c| c.id).collect();
+        let mut problem = world.problem(super::Storage::SparseBlock);
+        let mut q = problem.q().to_vec();
+        for (k, c) in candidates.iter().enumerate() {
+            if c.gap > 0.0 {
+                q[3 * k] += c.gap / DT;
+            }
+        }
+        problem = FrictionProblem::new(problem.w().clone(), q, problem.mu().to_vec())
+            .expect("consistent step");
+        let r = solve(&problem);
+        let dv = world.impulse_response(&r);
+        for ((s, b), d) in bodies.iter_mut().zip(&world.bodies).zip(&dv) {
+            let v: [f64; 6] = std::array::from_fn(|i| b.v_free[i] + d[i]);
+            advance(s, &v);
+        }
+        out.push(Step { problem, ids });
+    }
+    Sequence {
+        name,
+        description,
+        steps: out,
+    }
+}
+
+/// Normal velocity of the material point of a body at `p` along `n`.
+fn approach(v: &[f64; 6], x: &Vec3, p: &Vec3, n: &Vec3) -> f64 {
+    let arm = [p[0] - x[0], p[1] - x[1], p[2] - x[2]];
+    let w = cross(&[v[3], v[4], v[5]], &arm);
+    (v[0] + w[0]) * n[0] + (v[1] + w[1]) * n[1] + (v[2] + w[2]) * n[2]
+}
+
+/// Explicit position update with the end-of-step velocity `v`.
+fn advance(s: &mut SimBody, v: &[f64; 6]) {
+    s.v = [v[0], v[1], v[2]];
+    s.omega = [v[3], v[4], v[5]];
+    for i in 0..3 {
+        s.x[i] += DT * s.v[i];
+    }
+    s.rot = mat3_mul(&rotation(&s.omega, DT), &s.rot);
+}
+
+/// Rotation by the angle `|omega| dt` about `omega` (Rodrigues).
+fn rotation(omega: &Vec3, dt: f64) -> Mat3 {
+    let theta = (omega[0] * omega[0] + omega[1] * omega[1] + omega[2] * omega[2]).sqrt() * dt;
+    let mut r = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    if theta < 1e-14 {
+        return r;
+    }
+    let k: Vec3 = std::array::from_fn(|i| omega[i] * dt / theta);
+    let kx = [[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]];
+    let kx2 = mat3_mul(&kx, &kx);
+    let (s, c) = theta.sin_cos();
+    for i in 0..3 {
+        for j in 0..3 {
+            r[i][j] += s * kx[i][j] + (1.0 - c) * kx2[i][j];
+        }
+    }
+    r
+}
+
+/// Width of the pile's bin relative to its 4 x 4 bottom layer.
+const BIN_ROOM: f64 = 1.1;
+
+/// A small deterministic generator (the positions of the pile, identical on every platform).
+fn jitter(seed: &mut u64) -> f64 {
+    *seed = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    ((*seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+}
+
+/// `n` spheres (radius 0.1, mass 1) dropped in layers into a square bin (frictionless walls),
+/// settling on the ground for `steps` steps: contacts appear as the spheres land and touch,
+/// vanish when they bounce apart or roll away, and the set stabilises as the pile comes to rest.
+/// Friction 0.5 on the ground, 0.3 between spheres.
+pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
+    let radius = 0.1;
+    let per_side = 4usize;
+    // Room for the bottom layer to spread: a jammed packing wall to wall is a much harder
+    // (and less typical) problem than a pile.
+    let half_bin = 0.5 * per_side as f64 * 2.2 * radius * BIN_ROOM;
+    let mut seed = 0x5EED_u64;
+    let bodies: Vec<SimBody> = (0..n)
+        .map(|k| {
+            let layer = k / (per_side * per_side);
+            let (i, j) = ((k % (per_side * per_side)) / per_side, k % per_side);
+            let off = if layer % 2 == 1 { 0.5 } else { 0.0 };
+            let x = -half_bin
+                + (i as f64 + 0.5 + 0.5 * off) * 2.2 * radius * 0.97
+                + 0.02 * jitter(&mut seed);
+            let y = -half_bin
+                + (j as f64 + 0.5 + 0.5 * off) * 2.2 * radius * 0.97
+                + 0.02 * jitter(&mut seed);
+            SimBody {
+                shape: Shape::Sphere { radius },
+                mass: 1.0,
+                x: [x, y, radius + 0.01 + layer as f64 * 2.1 * radius],
+                rot: super::yaw(0.0),
+                v: [0.05 * jitter(&mut seed), 0.05 * jitter(&mut seed), 0.0],
+                omega: [0.0; 3],
+            }
+        })
+        .collect();
+    let detect = move |bodies: &[SimBody]| {
+        let mut found = Vec::new();
+        let reach = MARGIN + 0.1;
+        for (i, s) in bodies.iter().enumerate() {
+            let x = s.x;
+            if x[2] - radius < reach {
+                found.push(Candidate {
+                    a: i,
+                    b: None,
+                    point: [x[0], x[1], 0.0],
+                    normal: E_Z,
+                    gap: x[2] - radius,
+                    mu: 0.5,
+                    id: contact_id(1, i, 0),
+                });
+            }
+            for (w, (axis, sign)) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)]
+                .iter()
+                .enumerate()
+            {
+                // Wall at coordinate `sign * half_bin` on `axis`, normal pointing inwards.
+                let gap = half_bin - sign * x[*axis] - radius;
+                if gap < reach {
+                    let mut normal = [0.0; 3];
+                    normal[*axis] = -sign;
+                    let mut point = x;
+                    point[*axis] = sign * half_bin;
+                    found.push(Candidate {
+                        a: i,
+                        b: None,
+                        point,
+                        normal,
+                        gap,
+                        mu: 0.0,
+                        id: contact_id(2, i, w),
+                    });
+                }
+            }
+            for (j, t) in bodies.iter().enumerate().skip(i + 1) {
+                let d = [x[0] - t.x[0], x[1] - t.x[1], x[2] - t.x[2]];
+                let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let gap = dist - 2.0 * radius;
+                if gap < reach {
+                    let n = [d[0] / dist, d[1] / dist, d[2] / dist];
+                    let p = [
+                        t.x[0] + radius * n[0],
+                        t.x[1] + radius * n[1],
+                        t.x[2] + radius * n[2],
+                    ];
+                    found.push(Candidate {
+                        a: i,
+                        b: Some(j),
+                        point: p,
+                        normal: n,
+                        gap,
+                        mu: 0.3,
+                        id: contact_id(3, i, j),
+                    });
+                }
+            }
+        }
+        found
+    };
+    simulate(
+        "pile_settling",
+        "spheres dropped in layers into a bin, settling on the ground",
+        bodies,
+        steps,
+        &detect,
+        solve,
+    )
+}
+
+/// A box (0.8 x 0.6 x 0.2, mass 4) carrying a smaller yawed box (mass 1) slides on the ground at
+/// 1.5 m/s with a slight spin, until friction (0.3 on the ground, 0.5 between the boxes) stops
+/// it: 8 corner contacts, sliding then sticking; a corner that lifts is dropped.
+pub fn box_slide(steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
+    let h0 = [0.4, 0.3, 0.1];
+    let h1 = [0.2, 0.15, 0.1];
+    let r1 = super::yaw(0.3);
+    let bodies = vec![
+        SimBody {
+            shape: Shape::Cuboid { h: h0 },
+            mass: 4.0,
+            x: [0.0, 0.0, h0[2]],
+            rot: super::yaw(0.0),
+            v: [1.5, 0.2, 0.0],
+            omega: [0.0, 0.0, 0.4],
+        },
+        SimBody {
+            shape: Shape::Cuboid { h: h1 },
+            mass: 1.0,
+            x: [0.0, 0.0, 2.0 * h0[2] + h1[2]],
+            rot: r1,
+            v: [1.5, 0.2, 0.0],
+            omega: [0.0, 0.0, 0.4],
+        },
+    ];
+    let detect = move |bodies: &[SimBody]| {
+        let mut found = Vec::new();
+        let reach = MARGIN + 0.05;
+        let (lower, upper) = (&bodies[0], &bodies[1]);
+        for (k, p) in super::bottom_corners(&lower.x, &h0, &lower.rot)
+            .into_iter()
+            .enumerate()
+        {
+            if p[2] < reach {
+                found.push(Candidate {
+                    a: 0,
+                    b: None,
+                    point: [p[0], p[1], 0.0],
+                    normal: E_Z,
+                    gap: p[2],
+                    mu: 0.3,
+                    id: contact_id(1, 0, k),
+                });
+            }
+        }
+        // The upper box's corners against the lower box's top face.
+        let n = mat3_vec(&lower.rot, &E_Z);
+        let top = mat3_vec(&lower.rot, &[0.0, 0.0, h0[2]]);
+        let face = [
+            lower.x[0] + top[0],
+            lower.x[1] + top[1],
+            lower.x[2] + top[2],
+        ];
+        for (k, p) in super::bottom_corners(&upper.x, &h1, &upper.rot)
+            .into_iter()
+            .enumerate()
+        {
+            let d = [p[0] - face[0], p[1] - face[1], p[2] - face[2]];
+            let gap = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+            if gap < reach {
+                let point = [p[0] - gap * n[0], p[1] - gap * n[1], p[2] - gap * n[2]];
+                found.push(Candidate {
+                    a: 1,
+                    b: Some(0),
+                    point,
+                    normal: n,
+                    gap,
+                    mu: 0.5,
+                    id: contact_id(4, 1, k),
+                });
+            }
+        }
+        found
+    };
+    simulate(
+        "box_slide",
+        "a box carrying a smaller box slides on the ground until friction stops it",
+        bodies,
+        steps,
+        &detect,
+        solve,
+    )
+}
