@@ -32,6 +32,7 @@ pub use config::{Method, PlanarConfig, Rescaling, SolverConfig};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
+pub use contract::{Stage, StageEnd, StageKind, StageLog};
 pub use error::Fc3dError;
 pub use local::{
     AlgorithmVariant, LocalSolverKind, LocalSolverOptions, NewtonFormulation, RhoRule,
@@ -42,6 +43,7 @@ pub use problem::{FrictionProblem, FrictionProblem2d};
 pub use solve::{solve, solve_planar, solve_planar_with_observer, solve_with_observer};
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+pub use solvers::auto::{AutoOptions, ProblemFeatures};
 pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;

@@ -150,6 +150,7 @@ fn finish(
         final_rho: outcome
             .final_rho
             .filter(|_| config.rescaling == Rescaling::None),
+        stages: outcome.stages,
     }
 }
 
@@ -257,5 +258,6 @@ pub fn solve_planar_with_observer(
         error,
         dumont_criterion: None,
         final_rho: None,
+        stages: None,
     })
 }
