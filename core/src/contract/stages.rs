@@ -14,24 +14,29 @@ pub enum StageKind {
     /// ADMM on the local formulation (523): fast to loose tolerances on strongly coupled
     /// problems.
     Admm,
+    /// Tresca fixed point with Gauss-Seidel sub-problems (TFP, 503): the fastest to every
+    /// tolerance on most small and weakly coupled shared problems.
+    Tresca,
 }
 
 impl StageKind {
     /// Every kind, in the order of their codes.
-    pub const ALL: [StageKind; 4] = [
+    pub const ALL: [StageKind; 5] = [
         StageKind::Nsgs,
         StageKind::Newton,
         StageKind::Prox,
         StageKind::Admm,
+        StageKind::Tresca,
     ];
 
-    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1, 2, 3, 4.
+    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1, 2, 3, 4, 5.
     pub fn code(self) -> u8 {
         match self {
             StageKind::Nsgs => 1,
             StageKind::Newton => 2,
             StageKind::Prox => 3,
             StageKind::Admm => 4,
+            StageKind::Tresca => 5,
         }
     }
 
@@ -47,6 +52,7 @@ impl StageKind {
             StageKind::Newton => "NSN-AC",
             StageKind::Prox => "PROX",
             StageKind::Admm => "ADMM",
+            StageKind::Tresca => "TFP",
         }
     }
 }
@@ -189,7 +195,7 @@ mod tests {
             Some(vec![StageKind::Nsgs, StageKind::Newton, StageKind::Prox])
         );
         assert_eq!(StageLog::unpack_codes(0), Some(vec![]));
-        assert_eq!(StageLog::unpack_codes(15), None);
+        assert_eq!(StageLog::unpack_codes(16), None);
         // A full log packs into 9 digits, below i32::MAX.
         let mut full = StageLog::new(0);
         while full.push(Stage {

@@ -24,6 +24,7 @@ use crate::solvers::admm::AdmmOptions;
 use crate::solvers::nsgs::{run_sweeps, NsgsOptions, SweepSchedule, Sweeper};
 use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 use crate::solvers::prox::ProxOptions;
+use crate::solvers::tresca::TrescaOptions;
 
 /// Cheap features of a problem, computed in one pass over W's stored entries (O(nnz)).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,7 +51,17 @@ pub struct ProblemFeatures {
     pub singular_contacts: usize,
 }
 
+/// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
+pub const STRONG_MU: f64 = 0.25;
+/// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
+pub const WEAK_DOMINANCE: f64 = 0.16;
+
 impl ProblemFeatures {
+    /// Strong frictional coupling (see [`Condition::strongly_coupled`]).
+    pub fn strongly_coupled(&self) -> bool {
+        self.mu_max >= STRONG_MU && self.diagonal_dominance < WEAK_DOMINANCE
+    }
+
     pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
         let nc = problem.n_contacts();
         let mu = problem.mu();
@@ -141,6 +152,12 @@ pub struct Condition {
     pub max_contacts: Option<usize>,
     /// The tolerance is at least this (a loose solve).
     pub min_tolerance: Option<f64>,
+    /// At least this many contacts.
+    pub min_contacts: Option<usize>,
+    /// Strong frictional coupling: `mu_max >= STRONG_MU` and a normal row far from diagonal
+    /// dominance (`diagonal_dominance < WEAK_DOMINANCE`), the case where Gauss-Seidel and the
+    /// Tresca fixed point crawl.
+    pub strongly_coupled: Option<bool>,
 }
 
 impl Condition {
@@ -148,6 +165,8 @@ impl Condition {
         singular_contacts: None,
         max_contacts: None,
         min_tolerance: None,
+        min_contacts: None,
+        strongly_coupled: None,
     };
 
     fn holds(&self, f: &ProblemFeatures, tolerance: f64) -> bool {
@@ -155,6 +174,10 @@ impl Condition {
             .is_none_or(|s| s == (f.singular_contacts > 0))
             && self.max_contacts.is_none_or(|m| f.n_contacts <= m)
             && self.min_tolerance.is_none_or(|t| tolerance >= t)
+            && self.min_contacts.is_none_or(|m| f.n_contacts >= m)
+            && self
+                .strongly_coupled
+                .is_none_or(|s| s == f.strongly_coupled())
     }
 }
 
@@ -166,7 +189,7 @@ pub struct Rule {
     pub why: &'static str,
 }
 
-use StageKind::{Admm, Newton, Nsgs, Prox};
+use StageKind::{Admm, Newton, Nsgs, Prox, Tresca};
 
 /// AUTO's rule table: the first row whose condition holds gives the plan. The last row holds
 /// always. README.md "AUTO" has the bench runs behind each row.
@@ -182,28 +205,37 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         when: Condition {
-            min_tolerance: Some(1e-5),
+            strongly_coupled: Some(true),
+            min_contacts: Some(100),
+            min_tolerance: Some(1e-6),
             ..Condition::ANY
         },
-        plan: &[stage(Nsgs, None), stage(Newton, None), stage(Prox, None)],
-        why: "at loose tolerances Gauss-Seidel sweeps are the fastest on most shared problems; \
-              Newton takes over where they stall",
+        plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
+        why: "large strongly coupled problems (Capsules, RockPile) to 1e-4 or 1e-6: ADMM is the \
+              fastest, NSGS and TFP crawl",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems (OneObject, Capsules at 1e-8): the proximal Newton \
+              converges in a few steps where NSGS does not converge at all",
     },
     Rule {
         when: Condition::ANY,
         plan: &[
-            stage(Nsgs, Some(NSGS_WARM_UP)),
-            stage(Newton, None),
+            stage(Tresca, None),
             stage(Nsgs, None),
             stage(Prox, None),
+            stage(Newton, None),
         ],
-        why: "at tight tolerances a few sweeps find the active set, then Newton converges \
-              quadratically; sweeps again, then PROX, where Newton stalls",
+        why: "small or weakly coupled problems (Rover, Confeti, NESpheres, one-contact ones): the \
+              Tresca fixed point is the fastest or close to it; NSGS goes on where it stalls, \
+              then PROX and Newton",
     },
 ];
-
-/// Sweeps of the Gauss-Seidel warm-up before Newton at tight tolerances.
-pub const NSGS_WARM_UP: usize = 20;
 
 /// How each stage kind is watched: iterations per chunk, and the factor by which the error must
 /// fall over a chunk for the stage to go on.
@@ -215,7 +247,7 @@ pub struct StallRule {
 }
 
 /// The stall rules (one per kind).
-pub const STALL: [StallRule; 4] = [
+pub const STALL: [StallRule; 5] = [
     StallRule {
         kind: Nsgs,
         chunk: 10,
@@ -235,6 +267,11 @@ pub const STALL: [StallRule; 4] = [
     StallRule {
         kind: Admm,
         chunk: 1000,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: Tresca,
+        chunk: 5,
         factor: 0.5,
     },
 ];
@@ -351,6 +388,7 @@ fn auto(
     let mut sweeper: Option<Sweeper> = None;
     let prox_options = ProxOptions::default();
     let admm_options = AdmmOptions::default();
+    let tresca_options = TrescaOptions::default();
     let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
     let mut newton: Option<NewtonSolver> = None;
 
@@ -418,17 +456,14 @@ fn auto(
                         .run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted)
                         .iterations
                 }
-                Prox => {
+                Prox | Admm | Tresca => {
+                    let family: &dyn Family = match planned.kind {
+                        Prox => &prox_options,
+                        Admm => &admm_options,
+                        _ => &tresca_options,
+                    };
                     let l = stage_limits(tolerance, chunk, run.deadline());
-                    prox_options
-                        .run(problem, &l, r, u, &mut shifted)?
-                        .iterations
-                }
-                Admm => {
-                    let l = stage_limits(tolerance, chunk, run.deadline());
-                    admm_options
-                        .run(problem, &l, r, u, &mut shifted)?
-                        .iterations
+                    family.run(problem, &l, r, u, &mut shifted)?.iterations
                 }
             };
             // A stage that did nothing (converged at entry, or cut at once) still counts one
