@@ -205,14 +205,22 @@ pub const RULES: &[Rule] = &[
     },
     Rule {
         when: Condition {
+            max_contacts: Some(1),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None)],
+        why: "one contact: one Gauss-Seidel sweep is the one-contact solver itself, which solves \
+              it to the tolerance",
+    },
+    Rule {
+        when: Condition {
             strongly_coupled: Some(true),
-            min_contacts: Some(100),
             min_tolerance: Some(1e-6),
             ..Condition::ANY
         },
         plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
-        why: "large strongly coupled problems (Capsules, RockPile) to 1e-4 or 1e-6: ADMM is the \
-              fastest, NSGS and TFP crawl",
+        why: "strongly coupled problems (BoxesStack, Capsules, RockPile) to 1e-4 or 1e-6: ADMM is \
+              the fastest on most, NSGS and TFP crawl; PROX takes over where ADMM stalls",
     },
     Rule {
         when: Condition {
