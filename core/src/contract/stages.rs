@@ -5,7 +5,7 @@
 /// The method of one stage.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StageKind {
-    /// Gauss-Seidel sweeps (NSGS with its default local solver, 565).
+    /// Gauss-Seidel sweeps (NSGS with the local solver 551, Newton with Goldstein-Price).
     Nsgs,
     /// Alart-Curnier nonsmooth Newton with Goldstein-Price line search (NSN-AC, 504).
     Newton,

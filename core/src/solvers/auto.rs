@@ -18,6 +18,7 @@ use crate::contract::{
     StageKind, StageLog,
 };
 use crate::error::Fc3dError;
+use crate::matrix::Delassus;
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 use crate::solvers::admm::AdmmOptions;
@@ -65,22 +66,7 @@ impl ProblemFeatures {
     pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
         let nc = problem.n_contacts();
         let mu = problem.mu();
-        let mut w_nn = vec![0.0_f64; nc];
-        let mut off_normal = vec![0.0_f64; nc];
-        let mut entries = 0usize;
-        problem.w().for_each_entry(|i, j, v| {
-            entries += 1;
-            let (ci, cj) = (i / 3, j / 3);
-            if i % 3 == 0 {
-                if ci == cj {
-                    if j == i {
-                        w_nn[ci] += v;
-                    }
-                } else {
-                    off_normal[ci] += v.abs();
-                }
-            }
-        });
+        let (w_nn, off_normal, stored_blocks) = normal_rows(problem.w(), nc);
         let mut block_asymmetry = 0.0_f64;
         for c in 0..nc {
             if let Some(b) = problem.w().diagonal_block(c) {
@@ -109,10 +95,6 @@ impl ProblemFeatures {
             .zip(&off_normal)
             .map(|(&d, &o)| if o > 0.0 { d / o } else { f64::INFINITY })
             .fold(f64::INFINITY, f64::min);
-        let stored_blocks = match problem.w() {
-            crate::matrix::Delassus::SparseBlock(s) => s.n_blocks() as f64,
-            _ => entries as f64 / 9.0,
-        };
         ProblemFeatures {
             n_contacts: nc,
             block_density: if nc > 0 {
@@ -129,6 +111,57 @@ impl ProblemFeatures {
             singular_contacts,
         }
     }
+}
+
+/// Per contact, `W_NN` and the sum of `|W_Nj|` over the normal row outside the contact's block,
+/// and the number of stored 3x3 blocks: only the normal rows are read (a third of a dense W).
+fn normal_rows(w: &Delassus<'_>, nc: usize) -> (Vec<f64>, Vec<f64>, f64) {
+    let mut w_nn = vec![0.0_f64; nc];
+    let mut off = vec![0.0_f64; nc];
+    let stored = match w {
+        Delassus::Dense(d) => {
+            let n = 3 * nc;
+            let values = d.values();
+            for (c, (diag, off)) in w_nn.iter_mut().zip(off.iter_mut()).enumerate() {
+                let i = 3 * c;
+                for j in 0..n {
+                    let v = values[i + j * n];
+                    if j / 3 != c {
+                        *off += v.abs();
+                    } else if j == i {
+                        *diag = v;
+                    }
+                }
+            }
+            (nc * nc) as f64
+        }
+        Delassus::SparseBlock(b) => {
+            for (bi, bj, block) in b.iter_blocks() {
+                // Column-major: the normal row is entries 0, 3, 6.
+                if bi == bj {
+                    w_nn[bi] += block[0];
+                } else {
+                    off[bi] += block[0].abs() + block[3].abs() + block[6].abs();
+                }
+            }
+            b.n_blocks() as f64
+        }
+        Delassus::Sparse(m) => {
+            let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
+            for c in 0..nc {
+                let i = 3 * c;
+                for k in ptr[i]..ptr[i + 1] {
+                    if cols[k] / 3 != c {
+                        off[c] += values[k].abs();
+                    } else if cols[k] == i {
+                        w_nn[c] += values[k];
+                    }
+                }
+            }
+            m.nnz() as f64 / 9.0
+        }
+    };
+    (w_nn, off, stored)
 }
 
 /// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
@@ -234,14 +267,14 @@ pub const RULES: &[Rule] = &[
     Rule {
         when: Condition::ANY,
         plan: &[
-            stage(Tresca, None),
             stage(Nsgs, None),
+            stage(Tresca, None),
             stage(Prox, None),
             stage(Newton, None),
         ],
-        why: "small or weakly coupled problems (Rover, Confeti, NESpheres, one-contact ones): the \
-              Tresca fixed point is the fastest or close to it; NSGS goes on where it stalls, \
-              then PROX and Newton",
+        why: "small or weakly coupled problems (Rover, Confeti, NESpheres, FC3D_Example1): NSGS \
+              with the Newton local solver 551 is the fastest or within 1.5x of it (TFP, PFP); \
+              TFP, PROX and Newton go on where it stalls",
     },
 ];
 
@@ -381,12 +414,16 @@ fn auto(
         None => choose(&ProblemFeatures::of(problem), tolerance),
     };
     let mut log = StageLog::new(rule);
-    let mut error = natural_map_error(problem, r, u);
+    // The initial error is not measured (a product with W, as much as a whole solve of a small
+    // problem): the first stage starts from r as given.
+    let mut error = f64::INFINITY;
     let mut best = BestIterate::new(r, error);
     let mut best_error = error;
     let mut total = 0usize;
     let mut out_of_time = false;
-    let nsgs_options = NsgsOptions::default();
+    // Local solver 551 (Newton with Goldstein-Price): the fastest NSGS on the small shared
+    // problems (README "AUTO").
+    let nsgs_options = NsgsOptions::with_local(crate::local::LocalSolverKind::NewtonAlartCurnierGp);
     let schedule = SweepSchedule {
         error_evaluation: nsgs_options.error_evaluation,
         evaluation_frequency: nsgs_options.evaluation_frequency,
@@ -451,18 +488,21 @@ fn auto(
                     error: ev.error,
                 })
             };
-            let iterations = match planned.kind {
+            // The families report the natural-map error of (r, u = W r + q) when their last
+            // step measured it (the contract of `SolverOutcome::final_error`): then it is not
+            // measured again.
+            let (iterations, measured) = match planned.kind {
                 Nsgs => {
                     let sweeper = sweeper.as_mut().expect("built above");
                     let l = stage_limits(tolerance, chunk, run.deadline());
-                    run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?.iterations
+                    let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
+                    (o.iterations, o.final_error)
                 }
                 Newton => {
                     let solver = newton.as_mut().expect("built above");
                     let inner = run.inner(tolerance, chunk);
-                    solver
-                        .run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted)
-                        .iterations
+                    let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
+                    (o.iterations, None)
                 }
                 Prox | Admm | Tresca => {
                     let family: &dyn Family = match planned.kind {
@@ -471,7 +511,8 @@ fn auto(
                         _ => &tresca_options,
                     };
                     let l = stage_limits(tolerance, chunk, run.deadline());
-                    family.run(problem, &l, r, u, &mut shifted)?.iterations
+                    let o = family.run(problem, &l, r, u, &mut shifted)?;
+                    (o.iterations, o.final_error)
                 }
             };
             // A stage that did nothing (converged at entry, or cut at once) still counts one
@@ -479,7 +520,7 @@ fn auto(
             let iterations = iterations.max(1);
             done += iterations;
             total += iterations;
-            error = natural_map_error(problem, r, u);
+            error = measured.unwrap_or_else(|| natural_map_error(problem, r, u));
             best.offer(r, error);
             best_error = best_error.min(error);
             if error <= tolerance {
@@ -504,9 +545,12 @@ fn auto(
             end,
         });
     }
-    best.restore_if_better(r, error);
+    // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
+    // family's last step): it is the final error unless an earlier iterate was better.
+    let restored = best.restore_if_better(r, error);
     Ok(SolverOutcome {
         stages: Some(log),
         ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
+            .with_final_error((!restored && error.is_finite()).then_some(error))
     })
 }
