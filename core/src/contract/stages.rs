@@ -17,19 +17,23 @@ pub enum StageKind {
     /// Tresca fixed point with Gauss-Seidel sub-problems (TFP, 503): the fastest to every
     /// tolerance on most small and weakly coupled shared problems.
     Tresca,
+    /// Siconos' extragradient with a self-adaptive step (EG, 512): the fastest to 1e-4 on the
+    /// large strongly coupled shared problems.
+    ExtraGradient,
 }
 
 impl StageKind {
     /// Every kind, in the order of their codes.
-    pub const ALL: [StageKind; 5] = [
+    pub const ALL: [StageKind; 6] = [
         StageKind::Nsgs,
         StageKind::Newton,
         StageKind::Prox,
         StageKind::Admm,
         StageKind::Tresca,
+        StageKind::ExtraGradient,
     ];
 
-    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1, 2, 3, 4, 5.
+    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1 to 6.
     pub fn code(self) -> u8 {
         match self {
             StageKind::Nsgs => 1,
@@ -37,6 +41,7 @@ impl StageKind {
             StageKind::Prox => 3,
             StageKind::Admm => 4,
             StageKind::Tresca => 5,
+            StageKind::ExtraGradient => 6,
         }
     }
 
@@ -53,6 +58,7 @@ impl StageKind {
             StageKind::Prox => "PROX",
             StageKind::Admm => "ADMM",
             StageKind::Tresca => "TFP",
+            StageKind::ExtraGradient => "EG",
         }
     }
 }
@@ -195,7 +201,7 @@ mod tests {
             Some(vec![StageKind::Nsgs, StageKind::Newton, StageKind::Prox])
         );
         assert_eq!(StageLog::unpack_codes(0), Some(vec![]));
-        assert_eq!(StageLog::unpack_codes(16), None);
+        assert_eq!(StageLog::unpack_codes(17), None);
         // A full log packs into 9 digits, below i32::MAX.
         let mut full = StageLog::new(0);
         while full.push(Stage {

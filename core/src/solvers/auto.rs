@@ -26,6 +26,7 @@ use crate::solvers::nsgs::{run_sweeps, NsgsOptions, SweepSchedule, Sweeper};
 use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 use crate::solvers::prox::ProxOptions;
 use crate::solvers::tresca::TrescaOptions;
+use crate::solvers::vi::{ViOptions, ViSolver};
 
 /// Cheap features of a problem, computed in one pass over W's stored entries (O(nnz)).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -222,7 +223,7 @@ pub struct Rule {
     pub why: &'static str,
 }
 
-use StageKind::{Admm, Newton, Nsgs, Prox, Tresca};
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
 
 /// AUTO's rule table: the first row whose condition holds gives the plan. The last row holds
 /// always. README.md "AUTO" has the bench runs behind each row.
@@ -244,6 +245,23 @@ pub const RULES: &[Rule] = &[
         plan: &[stage(Nsgs, None), stage(Prox, None)],
         why: "one contact: one Gauss-Seidel sweep is the one-contact solver itself, which solves \
               it to the tolerance",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_tolerance: Some(1e-5),
+            min_contacts: Some(100),
+            ..Condition::ANY
+        },
+        plan: &[
+            stage(ExtraGradient, None),
+            stage(Admm, None),
+            stage(Prox, None),
+            stage(Nsgs, None),
+        ],
+        why: "large strongly coupled problems to 1e-4 (Capsules, RockPile): EG's iterations (one \
+              product with W) are the cheapest, EG is the fastest on the Capsules (3-10x ADMM); \
+              where it stalls (RockPile) ADMM, then PROX take over",
     },
     Rule {
         when: Condition {
@@ -288,7 +306,7 @@ pub struct StallRule {
 }
 
 /// The stall rules (one per kind).
-pub const STALL: [StallRule; 5] = [
+pub const STALL: [StallRule; 6] = [
     StallRule {
         kind: Nsgs,
         chunk: 10,
@@ -313,6 +331,11 @@ pub const STALL: [StallRule; 5] = [
     StallRule {
         kind: Tresca,
         chunk: 5,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: ExtraGradient,
+        chunk: 100,
         factor: 0.5,
     },
 ];
@@ -434,6 +457,7 @@ fn auto(
     let prox_options = ProxOptions::default();
     let admm_options = AdmmOptions::default();
     let tresca_options = TrescaOptions::default();
+    let eg_options = ViOptions::new(ViSolver::ExtraGradient);
     let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
     let mut newton: Option<NewtonSolver> = None;
 
@@ -504,10 +528,11 @@ fn auto(
                     let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
                     (o.iterations, None)
                 }
-                Prox | Admm | Tresca => {
+                Prox | Admm | Tresca | ExtraGradient => {
                     let family: &dyn Family = match planned.kind {
                         Prox => &prox_options,
                         Admm => &admm_options,
+                        ExtraGradient => &eg_options,
                         _ => &tresca_options,
                     };
                     let l = stage_limits(tolerance, chunk, run.deadline());
