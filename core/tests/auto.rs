@@ -181,7 +181,7 @@ fn the_rule_table_is_total_and_singular_contacts_start_with_prox() {
     assert_eq!(f.n_contacts, 2);
     assert_eq!(f.singular_contacts, 0);
     assert!((f.diagonal_dominance - 2.0).abs() < 1e-12);
-    let (rule, _) = choose(&f, 1e-12);
+    let (rule, _) = choose(&f, 1e-12, None);
     assert!(rule < RULES.len());
     // A contact with W_NN = 0.
     let mut w = vec![0.0; 36];
@@ -196,6 +196,25 @@ fn the_rule_table_is_total_and_singular_contacts_start_with_prox() {
     .unwrap();
     let f = ProblemFeatures::of(&singular);
     assert_eq!(f.singular_contacts, 1);
-    let (_, plan) = choose(&f, 1e-6);
+    let (_, plan) = choose(&f, 1e-6, None);
     assert_eq!(plan[0].kind, StageKind::Prox);
+}
+
+#[test]
+fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
+    // OneObject-i1028-138: mu 0.3, normal-row dominance 0.14, 23 contacts.
+    let f = ProblemFeatures::of(&shared("OneObject-i1028-138.hdf5.dat"));
+    assert!(f.strongly_coupled());
+    let first = |tol: f64, budget: Option<Duration>| choose(&f, tol, budget).1[0].kind;
+    assert_eq!(first(0.0, Some(Duration::from_millis(1))), StageKind::Nsgs);
+    assert_eq!(first(0.0, Some(Duration::from_secs(1))), StageKind::Prox);
+    assert_eq!(first(1e-8, None), StageKind::Prox);
+    assert_eq!(first(1e-4, None), StageKind::Admm);
+    // Capsules-i101-404: 225 contacts, EG first at loose tolerances.
+    let f = ProblemFeatures::of(&shared("Capsules-i101-404.dat"));
+    assert_eq!(choose(&f, 1e-4, None).1[0].kind, StageKind::ExtraGradient);
+    // A weakly coupled problem: NSGS first whatever the tolerance.
+    let f = ProblemFeatures::of(&shared("Confeti-ex13-Fc3D-SBM.dat"));
+    assert!(!f.strongly_coupled());
+    assert_eq!(choose(&f, 1e-8, None).1[0].kind, StageKind::Nsgs);
 }

@@ -11,7 +11,7 @@
 //! The rules and the stall factors are data ([`RULES`], [`STALL`]); README.md "AUTO" gives the
 //! `fc3d bench` runs on the shared problems that justify them.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::contract::{
     BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
@@ -52,6 +52,9 @@ pub struct ProblemFeatures {
     /// (`W_NN <= 1e-12 max W_NN`): their one-contact problems are singular.
     pub singular_contacts: usize,
 }
+
+/// A time budget this short favours methods whose first iterations are cheap.
+pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
 
 /// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
 pub const STRONG_MU: f64 = 0.25;
@@ -192,6 +195,8 @@ pub struct Condition {
     /// dominance (`diagonal_dominance < WEAK_DOMINANCE`), the case where Gauss-Seidel and the
     /// Tresca fixed point crawl.
     pub strongly_coupled: Option<bool>,
+    /// The solve has a time budget of at most this (a short anytime solve).
+    pub max_budget: Option<Duration>,
 }
 
 impl Condition {
@@ -201,9 +206,10 @@ impl Condition {
         min_tolerance: None,
         min_contacts: None,
         strongly_coupled: None,
+        max_budget: None,
     };
 
-    fn holds(&self, f: &ProblemFeatures, tolerance: f64) -> bool {
+    fn holds(&self, f: &ProblemFeatures, tolerance: f64, budget: Option<Duration>) -> bool {
         self.singular_contacts
             .is_none_or(|s| s == (f.singular_contacts > 0))
             && self.max_contacts.is_none_or(|m| f.n_contacts <= m)
@@ -212,6 +218,9 @@ impl Condition {
             && self
                 .strongly_coupled
                 .is_none_or(|s| s == f.strongly_coupled())
+            && self
+                .max_budget
+                .is_none_or(|m| budget.is_some_and(|b| b <= m))
     }
 }
 
@@ -245,6 +254,17 @@ pub const RULES: &[Rule] = &[
         plan: &[stage(Nsgs, None), stage(Prox, None)],
         why: "one contact: one Gauss-Seidel sweep is the one-contact solver itself, which solves \
               it to the tolerance",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None), stage(Admm, None)],
+        why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
+              solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
+              step is not done yet); PROX takes over where it stalls",
     },
     Rule {
         when: Condition {
@@ -348,11 +368,15 @@ fn stall_rule(kind: StageKind) -> StallRule {
 }
 
 /// The index of the rule that applies and its plan.
-pub fn choose(features: &ProblemFeatures, tolerance: f64) -> (usize, &'static [PlannedStage]) {
+pub fn choose(
+    features: &ProblemFeatures,
+    tolerance: f64,
+    budget: Option<Duration>,
+) -> (usize, &'static [PlannedStage]) {
     RULES
         .iter()
         .enumerate()
-        .find(|(_, r)| r.when.holds(features, tolerance))
+        .find(|(_, r)| r.when.holds(features, tolerance, budget))
         .map(|(i, r)| (i, r.plan))
         .expect("the last rule always holds")
 }
@@ -416,7 +440,7 @@ fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> L
         // An exhausted budget still allows one iteration (the caller stops right after).
         time_budget: deadline.map(|d| {
             d.saturating_duration_since(Instant::now())
-                .max(std::time::Duration::from_nanos(1))
+                .max(Duration::from_nanos(1))
         }),
     }
 }
@@ -434,7 +458,7 @@ fn auto(
     let tolerance = run.tolerance;
     let (rule, plan) = match options.plan {
         Some(plan) => (usize::MAX, plan),
-        None => choose(&ProblemFeatures::of(problem), tolerance),
+        None => choose(&ProblemFeatures::of(problem), tolerance, limits.time_budget),
     };
     let mut log = StageLog::new(rule);
     // The initial error is not measured (a product with W, as much as a whole solve of a small
