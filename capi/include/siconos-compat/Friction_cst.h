@@ -96,7 +96,7 @@ enum FRICTION_SOLVER
   /** Dumont's EAL: Newton on the augmented-Lagrangian fixed point (= 550 with Dumont's rho). */
   SICONOS_FRICTION_3D_ONECONTACT_EAL = 572,
   /* fc3d's solver that chooses (FC3D_AUTO in fc3d.h, name "FC3D_AUTO"): stages of NSGS,
-     NSN-AC, PROX and ADMM picked from the problem's features, the tolerance and the budget;
+     NSN-AC, PROX, ADMM, TFP and EG picked from the problem's features, the tolerance and the budget;
      iparam[FC3D_IPARAM_AUTO_STAGES] reports the stages taken. */
   SICONOS_FRICTION_3D_AUTO = 590
 };
