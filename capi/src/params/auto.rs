@@ -9,7 +9,9 @@ use std::os::raw::c_int;
 
 use super::{Encoded, Params, DPARAM_TOL, IPARAM_MAX_ITER};
 use crate::{CResult, FC3D_AUTO, FC3D_IPARAM_AUTO_STAGES};
-use fc3d_core::{AutoOptions, Method, SolverConfig, StageKind, StageLog};
+#[cfg(test)]
+use fc3d_core::StageKind;
+use fc3d_core::{AutoOptions, Method, SolverConfig, StageLog};
 
 pub(crate) const IPARAM_STAGES: usize = FC3D_IPARAM_AUTO_STAGES as usize;
 
@@ -31,7 +33,9 @@ pub(super) fn encode_stages(log: &StageLog) -> c_int {
     c_int::try_from(log.packed_codes()).unwrap_or(c_int::MAX)
 }
 
-/// The stages a packed code stands for (`None`: not a code AUTO writes).
+/// The stages a packed code stands for (`None`: not a code AUTO writes): the inverse of
+/// [`encode_stages`], which the tests check.
+#[cfg(test)]
 pub(crate) fn decode_stages(code: c_int) -> Option<Vec<StageKind>> {
     u32::try_from(code).ok().and_then(StageLog::unpack_codes)
 }
