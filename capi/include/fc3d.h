@@ -58,6 +58,20 @@
 // the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 #define FC3D_ONECONTACT_EAL 572
 
+// AUTO, fc3d's solver that chooses (in 568..=599, a range Siconos 4.4 leaves free; named
+// "FC3D_AUTO" by `solver_options_id_to_name`): from cheap features of the problem, the
+// tolerance and the budget it picks a plan of stages (NSGS, NSN-AC, PROX, ADMM, TFP, EG) and
+// switches stage when the error stalls, each stage going on from the best iterate. iparam[0]
+// counts the iterations of all stages, `dparam[FC3D_DPARAM_TIME_BUDGET]` is one budget for all
+// of them; a tolerance of 0 with a budget is an anytime solve (the best iterate reached, with
+// its true error in dparam[1]). The stages taken are written to
+// `iparam[FC3D_IPARAM_AUTO_STAGES]`.
+#define FC3D_AUTO 590
+
+// Output index in AUTO's `iparam`: the stages it took, one decimal digit each, first stage
+// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG; 12 = NSGS then NSN-AC).
+#define FC3D_IPARAM_AUTO_STAGES 18
+
 // Major version of the library (semantic versioning: the C ABI changes only with it).
 #define FC3D_VERSION_MAJOR 0
 

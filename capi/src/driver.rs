@@ -131,6 +131,18 @@ unsafe fn driver_impl(
             report.error,
             config.tolerance
         );
+        if let Some(log) = &report.stages {
+            for (k, s) in log.stages().enumerate() {
+                eprintln!(
+                    "fc3d: AUTO stage {}: {} {} iterations, error {:e}, {}",
+                    k + 1,
+                    s.kind.name(),
+                    s.iterations,
+                    s.error,
+                    s.end.name()
+                );
+            }
+        }
     }
     Ok(report.status.info_code())
 }

@@ -37,6 +37,9 @@ macro_rules! solver_names {
 /// solver Siconos puts in PFP's options (registered before all the others).
 const OTHER_NAMES: &[(c_int, &CStr)] = &[(202, c"PGS")];
 
+/// fc3d's own top-level solvers (ids Siconos leaves free).
+const FC3D_NAMES: &[(c_int, &CStr)] = &[(crate::FC3D_AUTO, c"FC3D_AUTO")];
+
 solver_names! {
     1000 SICONOS_VI_EG_STR = c"VI_EG";
     1001 SICONOS_VI_FPP_STR = c"VI_FPP";
@@ -156,6 +159,7 @@ fn registered() -> impl Iterator<Item = (c_int, &'static CStr)> {
                 .filter_map(|&(id, name)| id.map(|id| (id, name))),
         )
         .chain(fc3d_local_names().iter().map(|(id, n)| (*id, n.as_c_str())))
+        .chain(FC3D_NAMES.iter().copied())
 }
 
 /// fc3d's one-contact solvers whose ids Siconos does not register, by their registry names
@@ -203,6 +207,8 @@ mod tests {
         assert_eq!(solver_name(5000), c"GFC3D_NSGS_WR");
         assert_eq!(solver_name_to_id(c"GFC3D_NSGS_WR"), 600);
         assert_eq!(solver_name_to_id(c"no such solver"), 0);
+        assert_eq!(solver_name(590), c"FC3D_AUTO");
+        assert_eq!(solver_name_to_id(c"FC3D_AUTO"), 590);
         for kind in LocalSolverKind::ALL {
             let id = kind.siconos_id();
             assert_ne!(solver_name(id), c"NONAME", "{kind:?}");

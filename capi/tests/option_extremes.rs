@@ -29,7 +29,7 @@ struct Variant {
 
 fn variants() -> Vec<Variant> {
     let mut v: Vec<Variant> = [
-        500, 502, 503, 504, 505, 506, 507, 511, 512, 513, 516, 517, 520, 522, 523,
+        500, 502, 503, 504, 505, 506, 507, 511, 512, 513, 516, 517, 520, 522, 523, 590,
     ]
     .iter()
     .map(|&id| Variant { id, internal: None })

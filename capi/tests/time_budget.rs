@@ -71,7 +71,7 @@ fn every_solver_id_keeps_a_50_ms_budget_with_int_max_limits() {
     ))
     .unwrap();
     let mut variants: Vec<(c_int, Option<c_int>)> = [
-        500, 502, 503, 504, 505, 506, 507, 511, 512, 513, 516, 517, 520, 522, 523,
+        500, 502, 503, 504, 505, 506, 507, 511, 512, 513, 516, 517, 520, 522, 523, 590,
     ]
     .iter()
     .map(|&id| (id, None))

@@ -1,7 +1,8 @@
 //! The `fc3d` command.
 //!
-//! * `fc3d` solves every built-in scene ([`fc3d_core::scenes::default_scenes`]) with NSGS and prints a
-//!   table: problem, contacts, storage, solver, iterations, error, status, time.
+//! * `fc3d` solves every built-in scene ([`fc3d_core::scenes::default_scenes`]) with AUTO (or the
+//!   solver of `--solver`) and prints a table: problem, contacts, storage, solver, iterations,
+//!   error, status, time; for AUTO, the stages it took under each row.
 //! * `fc3d FILE.dat [MORE FILES OR DIRECTORIES]` solves Siconos `.dat` problem files instead; a
 //!   directory stands for the `*.dat` files directly in it (sorted by name; files that hold a problem
 //!   fc3d does not handle, e.g. a 2D one, are skipped with a note on stderr).
@@ -11,8 +12,10 @@
 //! * `fc3d convert IN OUT` rewrites a problem file as `.dat` or FCLIB `.hdf5`, by OUT's
 //!   extension, without changing a bit (see the `convert` module).
 //!
-//! Defaults: NSGS with the hybrid Alart-Curnier local solver (565, Siconos' default), tolerance
-//! 1e-8 on the natural-map error, at most 100000 sweeps. The tolerance is tighter than Siconos'
+//! Defaults: AUTO (fc3d's solver that chooses), tolerance 1e-8 on the natural-map error, at most
+//! 100000 iterations. `--solver` takes any solver by name or Siconos id as `fc3d bench` does
+//! (`NSGS`, `500/552`, `PROX`, `590`...), `--local` the local solver of NSGS, `--budget` a time
+//! budget per problem, `--option NAME=VALUE` Siconos' option slots by name. The tolerance is tighter than Siconos'
 //! 1e-4 default so that the table shows how accurate the solvers can be; the sweep limit leaves the
 //! slow-converging problems of the Siconos collection room without letting one run for minutes.
 //! The error column is the one measured on the returned `(r, u)`, not the solver's own test.
@@ -30,8 +33,10 @@ use clap::{Args, Parser, Subcommand};
 
 mod bench;
 mod convert;
+use bench::spec::{parse_spec, SolverSpec};
 use fc3d_core::{
-    solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolverConfig,
+    solve, Fc3dError, FrictionProblem, LocalSolverKind, Method, NsgsOptions, Rescaling,
+    SolveReport, SolverConfig,
 };
 
 /// Solves 3D frictional contact problems FC(W, q, mu) (Signorini + Coulomb, Delassus form).
@@ -67,23 +72,136 @@ struct SolveArgs {
     /// Tolerance on the relative natural-map error.
     #[arg(long, value_name = "X", default_value = "1e-8", value_parser = parse_tolerance)]
     tol: f64,
-    /// Maximum number of NSGS sweeps.
+    /// Iteration limit (sweeps for NSGS, Newton steps for NSN, all stages together for AUTO).
     #[arg(long, value_name = "N", default_value_t = 100_000)]
     max_iter: usize,
-    /// Local solver, by Siconos id: 550 (Alart-Curnier Newton), 551 (Newton with Goldstein-Price
-    /// line search), 552 (one projection on the cone), 553 (projection on the cone with local
-    /// iterations), 557 (one projection on the cylinder), 565 (hybrid Newton, the default),
-    /// 554 (projection with regularization), 555 (projection with diagonalization), 558
-    /// (projection in velocity), 561 (Fischer-Burmeister Newton), 562 (QUARTIC, exact), 564
-    /// (cylinder with local iterations), 570 (FP-VI-UPK), 571 (Dumont's EBP), 572 (Dumont's EAL).
-    #[arg(long, value_name = "ID", default_value = "565", value_parser = parse_local)]
-    local: LocalSolverKind,
+    /// Solver, by name or Siconos id, with its defaults (as `fc3d bench --solvers`): AUTO (590,
+    /// the default), NSGS or 500 (local solver 565), NSGS/552, VI-FPP, NSN-AC, PROX, TFP, ADMM...
+    #[arg(long, value_name = "SOLVER", default_value = "AUTO", value_parser = parse_spec)]
+    solver: SolverSpec,
+    /// NSGS's local solver, by Siconos id (only with an NSGS solver): 550 (Alart-Curnier
+    /// Newton), 551 (Newton with Goldstein-Price line search), 552 (one projection on the cone),
+    /// 553 (projection on the cone with local iterations), 557 (one projection on the
+    /// cylinder), 565 (hybrid Newton, NSGS's default), 554, 555, 558, 561, 562, 564, 570, 571,
+    /// 572.
+    #[arg(long, value_name = "ID", value_parser = parse_local)]
+    local: Option<LocalSolverKind>,
+    /// Wall-clock budget of each solve (`10ms`, `1s`...): the solver stops when it is spent and
+    /// returns its best iterate (with tolerance 0: an anytime solve).
+    #[arg(long, value_name = "TIME", value_parser = bench::args::parse_duration)]
+    budget: Option<Duration>,
+    /// A Siconos option slot by name, applied after the flags above (repeatable):
+    /// SICONOS_IPARAM_MAX_ITER, SICONOS_DPARAM_TOL, FC3D_DPARAM_TIME_BUDGET (s, 0 = none),
+    /// SICONOS_FRICTION_3D_IPARAM_RESCALING (0 none, 1 scalar),
+    /// SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE (NSGS, 0 = none).
+    #[arg(long = "option", value_name = "NAME=VALUE", value_parser = parse_option)]
+    options: Vec<(SiconosOption, f64)>,
     /// After each problem, print per-contact diagnostics as `#` lines: how many contacts take
     /// off, stick, slide or sit at the cone apex, and the K contacts (default 5) with the
     /// largest share of the error, with their status and normal velocity u_N (< 0: penetrating).
     /// Written `--diagnostics` or `--diagnostics=K`.
     #[arg(long, value_name = "K", num_args = 0..=1, require_equals = true, default_missing_value = "5")]
     diagnostics: Option<usize>,
+}
+
+/// The Siconos option slots `--option` sets, by their Siconos names.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum SiconosOption {
+    MaxIter,
+    Tolerance,
+    TimeBudget,
+    Rescaling,
+    Relaxation,
+}
+
+const OPTION_NAMES: [(&str, SiconosOption); 5] = [
+    ("SICONOS_IPARAM_MAX_ITER", SiconosOption::MaxIter),
+    ("SICONOS_DPARAM_TOL", SiconosOption::Tolerance),
+    ("FC3D_DPARAM_TIME_BUDGET", SiconosOption::TimeBudget),
+    (
+        "SICONOS_FRICTION_3D_IPARAM_RESCALING",
+        SiconosOption::Rescaling,
+    ),
+    (
+        "SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE",
+        SiconosOption::Relaxation,
+    ),
+];
+
+fn parse_option(s: &str) -> Result<(SiconosOption, f64), String> {
+    let (name, value) = s
+        .split_once('=')
+        .ok_or_else(|| format!("'{s}' is not NAME=VALUE"))?;
+    let option = OPTION_NAMES
+        .iter()
+        .find(|(n, _)| n.eq_ignore_ascii_case(name.trim()))
+        .map(|(_, o)| *o)
+        .ok_or_else(|| {
+            let names: Vec<&str> = OPTION_NAMES.iter().map(|(n, _)| *n).collect();
+            format!("unknown option '{name}' (one of {})", names.join(", "))
+        })?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("'{value}' is not a number (in '{s}')"))?;
+    Ok((option, value))
+}
+
+/// The configuration the flags describe, checked by the core.
+fn config_of(args: &SolveArgs) -> Result<SolverConfig, String> {
+    let method = match (args.solver.method, args.local) {
+        (Method::Nsgs(_), Some(local)) => Method::Nsgs(NsgsOptions::with_local(local)),
+        (m, Some(_)) => {
+            return Err(format!(
+                "--local applies to NSGS only, not to {}",
+                m.label()
+            ))
+        }
+        (m, None) => m,
+    };
+    let mut config = SolverConfig::new(method)
+        .with_tolerance(args.tol)
+        .with_max_iter(args.max_iter)
+        .with_time_budget(args.budget);
+    for &(option, v) in &args.options {
+        let whole = |what: &str| {
+            (v.fract() == 0.0 && v >= 0.0 && v <= usize::MAX as f64)
+                .then_some(v as usize)
+                .ok_or_else(|| format!("{what} must be a whole number >= 0, got {v}"))
+        };
+        match option {
+            SiconosOption::MaxIter => config.max_iter = whole("SICONOS_IPARAM_MAX_ITER")?,
+            SiconosOption::Tolerance => config.tolerance = v,
+            SiconosOption::TimeBudget if v == 0.0 => config.time_budget = None,
+            SiconosOption::TimeBudget => {
+                config.time_budget = Some(Duration::try_from_secs_f64(v).map_err(|_| {
+                    format!("FC3D_DPARAM_TIME_BUDGET must be 0 or a positive number of seconds, got {v}")
+                })?)
+            }
+            SiconosOption::Rescaling => {
+                config.rescaling = match whole("SICONOS_FRICTION_3D_IPARAM_RESCALING")? {
+                    0 => Rescaling::None,
+                    1 => Rescaling::Scalar,
+                    other => {
+                        return Err(format!(
+                            "SICONOS_FRICTION_3D_IPARAM_RESCALING = {other} is not 0 (none) or 1 (scalar)"
+                        ))
+                    }
+                }
+            }
+            SiconosOption::Relaxation => match &mut config.method {
+                Method::Nsgs(o) => o.relaxation = (v != 0.0).then_some(v),
+                m => {
+                    return Err(format!(
+                        "SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE applies to NSGS only, not to {}",
+                        m.label()
+                    ))
+                }
+            },
+        }
+    }
+    config.validate().map_err(|e| e.to_string())?;
+    Ok(config)
 }
 
 fn parse_tolerance(s: &str) -> Result<f64, String> {
@@ -157,21 +275,39 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
         inputs
     };
 
-    let config = SolverConfig::new(NsgsOptions::with_local(args.local))
-        .with_tolerance(args.tol)
-        .with_max_iter(args.max_iter);
+    let config = match config_of(args) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("fc3d: {e}");
+            return ExitCode::from(2);
+        }
+    };
 
     let mut stdout = std::io::stdout().lock();
     // A closed stdout (e.g. `fc3d | head`) ends the program quietly, never with a panic.
     let mut out = |line: String| writeln!(stdout, "{line}").is_ok();
-    if !out(format!(
-        "# NSGS, local solver {} ({:?}), tolerance {:e}, at most {} sweeps; error = relative \
-         natural-map error of the returned (r, u)",
-        args.local.siconos_id(),
-        args.local,
-        args.tol,
-        args.max_iter
-    )) {
+    let budget = config
+        .time_budget
+        .map_or(String::new(), |b| format!(", budget {b:?}"));
+    let header = match config.method {
+        Method::Nsgs(o) => format!(
+            "# NSGS, local solver {} ({:?}), tolerance {:e}, at most {} sweeps{budget}; error = \
+             relative natural-map error of the returned (r, u)",
+            o.local.kind.siconos_id(),
+            o.local.kind,
+            config.tolerance,
+            config.max_iter
+        ),
+        m => format!(
+            "# {} (id {}), tolerance {:e}, at most {} iterations{budget}; error = relative \
+             natural-map error of the returned (r, u)",
+            m.label(),
+            m.siconos_id(),
+            config.tolerance,
+            config.max_iter
+        ),
+    };
+    if !out(header) {
         return ExitCode::SUCCESS;
     }
 
@@ -197,7 +333,8 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
                 };
                 // Rows are printed as they come (a long run shows progress) with the widths
                 // the table has settled on; the header comes first.
-                for line in table.push(row) {
+                let stages = row.report.stages.map(|log| stage_line(&row.problem, &log));
+                for line in table.push(row).into_iter().chain(stages) {
                     if !out(line) {
                         return ExitCode::SUCCESS;
                     }
@@ -221,6 +358,27 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// AUTO's stages as a comment line: `#   AUTO on NAME: TFP 3 it. -> 1.2e-3 (stalled) > ...`.
+fn stage_line(problem: &str, log: &fc3d_core::StageLog) -> String {
+    let stages: Vec<String> = log
+        .stages()
+        .map(|s| {
+            format!(
+                "{} {} it. -> {} ({})",
+                s.kind.name(),
+                s.iterations,
+                scientific(s.error),
+                s.end.name()
+            )
+        })
+        .collect();
+    format!(
+        "#   AUTO on {problem} (rule {}): {}",
+        log.rule,
+        stages.join(" > ")
+    )
 }
 
 /// What reading one input gave.
@@ -487,7 +645,9 @@ mod tests {
         assert!(cli.solve.paths.is_empty());
         assert_eq!(cli.solve.tol, 1e-8);
         assert_eq!(cli.solve.max_iter, 100_000);
-        assert_eq!(cli.solve.local, LocalSolverKind::NewtonHybrid);
+        assert_eq!(cli.solve.local, None);
+        assert_eq!(cli.solve.solver, parse_spec("AUTO").unwrap());
+        assert_eq!(cli.solve.budget, None);
 
         let cli = Cli::try_parse_from([
             "fc3d",
@@ -507,13 +667,13 @@ mod tests {
         );
         assert_eq!(cli.solve.tol, 1e-6);
         assert_eq!(cli.solve.max_iter, 50);
-        assert_eq!(cli.solve.local, LocalSolverKind::ProjectionOnCone);
+        assert_eq!(cli.solve.local, Some(LocalSolverKind::ProjectionOnCone));
 
         let cli = Cli::try_parse_from(["fc3d", "solve", "x.dat", "--local", "557"]).unwrap();
         match cli.command {
             Some(Command::Solve(a)) => {
                 assert_eq!(a.paths, vec![PathBuf::from("x.dat")]);
-                assert_eq!(a.local, LocalSolverKind::ProjectionOnCylinder);
+                assert_eq!(a.local, Some(LocalSolverKind::ProjectionOnCylinder));
             }
             _ => panic!("expected the solve subcommand"),
         }
@@ -528,7 +688,9 @@ mod tests {
             _ => panic!("expected the bench subcommand"),
         }
         assert!(Cli::try_parse_from(["fc3d", "--reps", "1"]).is_err());
-        assert!(Cli::try_parse_from(["fc3d", "solve", "--budget", "1ms"]).is_err());
+        assert!(Cli::try_parse_from(["fc3d", "solve", "--timeout", "1s"]).is_err());
+        // `--budget` is both a solve flag (one budget) and a bench flag (a list).
+        assert!(Cli::try_parse_from(["fc3d", "solve", "--budget", "1ms"]).is_ok());
         // A file named like the subcommand, written with a path, is still a file.
         let cli = Cli::try_parse_from(["fc3d", "./bench"]).unwrap();
         assert!(cli.command.is_none());
@@ -587,9 +749,78 @@ mod tests {
             vec!["fc3d", "--tol", "inf"],
             vec!["fc3d", "--max-iter", "-3"],
             vec!["fc3d", "--frobnicate"],
+            vec!["fc3d", "--solver", "PSOR"],
+            vec!["fc3d", "--budget", "soon"],
+            vec!["fc3d", "--option", "SICONOS_IPARAM_MAX_ITER"],
+            vec!["fc3d", "--option", "NO_SUCH_SLOT=1"],
+            vec!["fc3d", "--option", "SICONOS_DPARAM_TOL=x"],
         ] {
             assert!(Cli::try_parse_from(&bad).is_err(), "{bad:?}");
         }
+        // Parsed, but refused when the configuration is built.
+        for bad in [
+            vec!["fc3d", "--solver", "PROX", "--local", "552"],
+            vec!["fc3d", "--option", "SICONOS_IPARAM_MAX_ITER=2.5"],
+            vec!["fc3d", "--option", "SICONOS_FRICTION_3D_IPARAM_RESCALING=3"],
+            vec!["fc3d", "--option", "SICONOS_DPARAM_TOL=-1"],
+            vec![
+                "fc3d",
+                "--solver",
+                "AUTO",
+                "--option",
+                "SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE=0.5",
+            ],
+        ] {
+            let cli = Cli::try_parse_from(&bad).unwrap();
+            assert!(config_of(&cli.solve).is_err(), "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn solver_budget_and_options_build_the_config() {
+        let cli = Cli::try_parse_from(["fc3d"]).unwrap();
+        let c = config_of(&cli.solve).unwrap();
+        assert_eq!(c.siconos_id(), 590);
+        assert_eq!(
+            (c.tolerance, c.max_iter, c.time_budget),
+            (1e-8, 100_000, None)
+        );
+        let cli = Cli::try_parse_from([
+            "fc3d",
+            "--solver",
+            "nsgs",
+            "--local",
+            "552",
+            "--budget",
+            "10ms",
+            "--option",
+            "SICONOS_IPARAM_MAX_ITER=77",
+            "--option",
+            "siconos_dparam_tol=1e-5",
+            "--option",
+            "SICONOS_FRICTION_3D_IPARAM_RESCALING=1",
+            "--option",
+            "SICONOS_FRICTION_3D_NSGS_RELAXATION_VALUE=0.9",
+        ])
+        .unwrap();
+        let c = config_of(&cli.solve).unwrap();
+        assert_eq!(c.label(), "NSGS/552");
+        assert_eq!((c.tolerance, c.max_iter), (1e-5, 77));
+        assert_eq!(c.time_budget, Some(Duration::from_millis(10)));
+        assert_eq!(c.rescaling, Rescaling::Scalar);
+        let Method::Nsgs(o) = c.method else { panic!() };
+        assert_eq!(o.relaxation, Some(0.9));
+        let cli = Cli::try_parse_from([
+            "fc3d",
+            "--solver",
+            "504",
+            "--option",
+            "FC3D_DPARAM_TIME_BUDGET=0.5",
+        ])
+        .unwrap();
+        let c = config_of(&cli.solve).unwrap();
+        assert_eq!(c.label(), "NSN-AC/GP");
+        assert_eq!(c.time_budget, Some(Duration::from_millis(500)));
     }
 
     #[test]

@@ -36,6 +36,7 @@ pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
 pub use diagnostics::{diagnose, ContactDiagnostic, ContactStatus, DiagnosticOptions, Diagnostics};
+pub use contract::{Stage, StageEnd, StageKind, StageLog};
 pub use error::Fc3dError;
 pub use local::rolling::RollingProjectionIteration;
 pub use local::{
@@ -50,6 +51,7 @@ pub use solve::{
 };
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+pub use solvers::auto::{AutoOptions, ProblemFeatures};
 pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;

@@ -187,6 +187,7 @@ fn finish(
         final_rho: outcome
             .final_rho
             .filter(|_| config.rescaling == Rescaling::None),
+        stages: outcome.stages,
     }
 }
 
@@ -294,6 +295,7 @@ pub fn solve_planar_with_observer(
         error,
         dumont_criterion: None,
         final_rho: None,
+        stages: None,
     })
 }
 
@@ -349,5 +351,6 @@ pub fn solve_rolling_with_observer<const D: usize>(
         error,
         dumont_criterion: outcome.dumont_criterion,
         final_rho: None,
+        stages: outcome.stages,
     })
 }

@@ -95,7 +95,11 @@ enum FRICTION_SOLVER
   /** Dumont's EBP: Newton on the bipotential fixed point, condensed 3x3 system. */
   SICONOS_FRICTION_3D_ONECONTACT_EBP = 571,
   /** Dumont's EAL: Newton on the augmented-Lagrangian fixed point (= 550 with Dumont's rho). */
-  SICONOS_FRICTION_3D_ONECONTACT_EAL = 572
+  SICONOS_FRICTION_3D_ONECONTACT_EAL = 572,
+  /* fc3d's solver that chooses (FC3D_AUTO in fc3d.h, name "FC3D_AUTO"): stages of NSGS,
+     NSN-AC, PROX, ADMM, TFP and EG picked from the problem's features, the tolerance and the budget;
+     iparam[FC3D_IPARAM_AUTO_STAGES] reports the stages taken. */
+  SICONOS_FRICTION_3D_AUTO = 590
 };
 
 /* iparam indices shared by the 3D friction solvers. */

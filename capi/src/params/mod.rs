@@ -6,6 +6,7 @@
 //! core rejects.
 
 mod admm;
+pub(crate) mod auto;
 mod fixed_point;
 mod local;
 mod nsgs;
@@ -362,6 +363,7 @@ pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig
         516 => Method::Aclm(fixed_point::read_aclm(&p, internal)?),
         517 => Method::Soclcp(fixed_point::read_soclcp(&p, internal)?),
         523 => Method::Admm(admm::read(&p)?),
+        super::FC3D_AUTO => Method::Auto(auto::read(&p)?),
         id if planar::is_planar(id) => {
             return Err(CError::new(
                 FC3D_ERR_UNSUPPORTED_SOLVER,
@@ -401,6 +403,9 @@ pub(crate) unsafe fn write_outputs(o: &mut SolverOptions, report: &fc3d_core::So
     if let Some(rho) = report.final_rho {
         *o.dparam.add(vi::DPARAM_RHO) = -rho;
     }
+    if let Some(log) = &report.stages {
+        *o.iparam.add(auto::IPARAM_STAGES) = auto::encode_stages(log);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -439,6 +444,9 @@ pub(crate) fn defaults(id: c_int) -> CResult<Encoded> {
     }
     if let Some(kind) = LocalSolverKind::from_siconos_id(id) {
         return Ok(local::write(&fc3d_core::LocalSolverOptions::new(kind)));
+    }
+    if id == super::FC3D_AUTO {
+        return Ok(auto::defaults());
     }
     Err(CError::new(
         FC3D_ERR_UNSUPPORTED_SOLVER,

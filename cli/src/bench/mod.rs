@@ -14,7 +14,7 @@
 //! The error in every row is measured here ([`check::independent_error`]) and compared with the
 //! solver's report; a disagreement is flagged in the CSV and on stderr, and makes the exit status 1.
 
-mod args;
+pub(crate) mod args;
 mod check;
 mod csv;
 mod format;
@@ -24,7 +24,7 @@ mod plot;
 mod problems;
 mod profile;
 mod runner;
-mod spec;
+pub(crate) mod spec;
 mod stats;
 mod summary;
 #[cfg(test)]

@@ -41,6 +41,72 @@ fn color(k: usize) -> RGBColor {
     COLORS[k % COLORS.len()]
 }
 
+/// Point markers: solver `k` gets colour `k mod 10` and marker `k div 10`, so that 40 solvers
+/// have distinct (colour, marker) pairs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Marker {
+    Circle,
+    Triangle,
+    Square,
+    Cross,
+}
+
+const MARKERS: [Marker; 4] = [
+    Marker::Circle,
+    Marker::Triangle,
+    Marker::Square,
+    Marker::Cross,
+];
+
+fn marker(k: usize) -> Marker {
+    MARKERS[(k / COLORS.len()) % MARKERS.len()]
+}
+
+/// Draws `marker` of `size` pixels at each point of a chart.
+fn draw_markers<DB: DrawingBackend, CT: plotters::coord::CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'_, DB, CT>,
+    points: &[(f64, f64)],
+    marker: Marker,
+    size: i32,
+    style: ShapeStyle,
+) -> Result<(), String> {
+    let at = points.iter().copied();
+    match marker {
+        Marker::Circle => chart
+            .draw_series(at.map(|p| Circle::new(p, size, style)))
+            .map(|_| ()),
+        Marker::Triangle => chart
+            .draw_series(at.map(|p| TriangleMarker::new(p, size + 1, style)))
+            .map(|_| ()),
+        Marker::Square => chart
+            .draw_series(at.map(|p| {
+                EmptyElement::at(p) + Rectangle::new([(-size, -size), (size, size)], style)
+            }))
+            .map(|_| ()),
+        Marker::Cross => chart
+            .draw_series(at.map(|p| Cross::new(p, size + 1, style.stroke_width(2))))
+            .map(|_| ()),
+    }
+    .map_err(err)
+}
+
+/// The marker at pixel `(x, y)` of a legend.
+fn draw_legend_marker<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    (x, y): (i32, i32),
+    marker: Marker,
+    c: RGBColor,
+) -> Result<(), String> {
+    let style = c.filled();
+    match marker {
+        Marker::Circle => area.draw(&Circle::new((x, y), 5, style)),
+        Marker::Triangle => area.draw(&TriangleMarker::new((x, y), 6, style)),
+        Marker::Square => area.draw(&Rectangle::new([(x - 5, y - 5), (x + 5, y + 5)], style)),
+        Marker::Cross => area.draw(&Cross::new((x, y), 6, c.stroke_width(2))),
+    }
+    .map_err(err)
+}
+
 /// Line width of curve `k` of `n`: the first drawn are the widest, so that a curve hidden under a
 /// later one with the same values still shows at its edges.
 fn width(k: usize, n: usize) -> u32 {
@@ -84,12 +150,12 @@ fn size_with_legend(entries: usize) -> (u32, u32) {
 /// (outside the chart, so that it never hides data).
 fn split_legend<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
-    entries: &[(String, RGBColor)],
+    entries: &[(String, RGBColor, Marker)],
 ) -> Result<DrawingArea<DB, Shift>, String> {
     let (w, h) = root.dim_in_pixel();
     let (chart, legend) = root.split_vertically(h - legend_height(entries.len()));
     let column = (w as i32 - 40) / LEGEND_COLUMNS as i32;
-    for (k, (text, c)) in entries.iter().enumerate() {
+    for (k, (text, c, m)) in entries.iter().enumerate() {
         let x = 40 + (k % LEGEND_COLUMNS) as i32 * column;
         let y = 8 + (k / LEGEND_COLUMNS) as i32 * LEGEND_ROW as i32 + LEGEND_ROW as i32 / 2;
         legend
@@ -98,6 +164,7 @@ fn split_legend<DB: DrawingBackend>(
                 c.stroke_width(3),
             ))
             .map_err(err)?;
+        draw_legend_marker(&legend, (x + 14, y), *m, *c)?;
         legend
             .draw(&Text::new(
                 text.clone(),
@@ -153,7 +220,7 @@ pub struct ProfilePicture<'a> {
 }
 
 impl ProfilePicture<'_> {
-    fn legend(&self) -> Vec<(String, RGBColor)> {
+    fn legend(&self) -> Vec<(String, RGBColor, Marker)> {
         (0..self.profile.n_solvers())
             .map(|s| {
                 let text = format!(
@@ -162,7 +229,7 @@ impl ProfilePicture<'_> {
                     self.profile.rho(s, 1.0),
                     100.0 * self.profile.robustness(s)
                 );
-                (text, color(s))
+                (text, color(s), marker(s))
             })
             .collect()
     }
@@ -203,10 +270,12 @@ impl Picture for ProfilePicture<'_> {
                 .collect();
             chart
                 .draw_series(LineSeries::new(
-                    points,
+                    points.clone(),
                     color(s).stroke_width(width(s, self.profile.n_solvers())),
                 ))
                 .map_err(err)?;
+            // A marker at each step's corner tells apart curves of the same colour.
+            draw_markers(&mut chart, &points, marker(s), 4, color(s).filled())?;
         }
         Ok(())
     }
@@ -251,6 +320,18 @@ fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> (f64, f64) {
     }
 }
 
+/// The error axis: whole decades around the positive errors and, when some error is exactly 0,
+/// one more decade below whose upper line (returned) is the row of the zeros.
+fn error_axis(errors: impl Iterator<Item = f64>) -> (f64, f64, Option<f64>) {
+    let errors: Vec<f64> = errors.filter(|e| e.is_finite()).collect();
+    let (lo, hi) = log_range(errors.iter().copied().filter(|&e| e > 0.0), ERROR_FLOOR);
+    if errors.iter().any(|&e| e <= 0.0) {
+        (lo / 100.0, hi, Some(lo / 10.0))
+    } else {
+        (lo, hi, None)
+    }
+}
+
 impl Picture for WorkPrecisionPicture {
     fn size(&self) -> (u32, u32) {
         size_with_legend(self.curves.len())
@@ -258,11 +339,11 @@ impl Picture for WorkPrecisionPicture {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         root.fill(&WHITE).map_err(err)?;
-        let legend: Vec<(String, RGBColor)> = self
+        let legend: Vec<(String, RGBColor, Marker)> = self
             .curves
             .iter()
             .enumerate()
-            .map(|(s, c)| (c.name.clone(), color(s)))
+            .map(|(s, c)| (c.name.clone(), color(s), marker(s)))
             .collect();
         let root = &split_legend(root, &legend)?;
         let all = || {
@@ -271,7 +352,7 @@ impl Picture for WorkPrecisionPicture {
                 .flat_map(|c| c.points.iter().chain(&c.runs))
         };
         let (x0, x1) = log_range(all().map(|p| p.0), TIME_FLOOR);
-        let (y0, y1) = log_range(all().map(|p| p.1), ERROR_FLOOR);
+        let (y0, y1, zero_row) = error_axis(all().map(|p| p.1));
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, (FONT, 24))
             .margin(16)
@@ -286,10 +367,22 @@ impl Picture for WorkPrecisionPicture {
             .axis_desc_style((FONT, 18))
             .label_style((FONT, 15))
             .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .y_label_formatter(&|y| match zero_row {
+                Some(z) if (y / z - 1.0).abs() < 1e-6 => "0".to_string(),
+                Some(z) if *y < z => String::new(),
+                _ => format!("{y:.0e}"),
+            })
             .draw()
             .map_err(err)?;
-        let clamp = |&(x, y): &(f64, f64)| (x.max(TIME_FLOOR), y.max(ERROR_FLOOR));
+        // Errors of exactly 0 are drawn on the row labelled 0, a decade below the smallest
+        // positive error.
+        let clamp = |&(x, y): &(f64, f64)| {
+            let y = match zero_row {
+                Some(z) if y <= 0.0 => z,
+                _ => y.max(ERROR_FLOOR),
+            };
+            (x.max(TIME_FLOOR), y)
+        };
         for (s, curve) in self.curves.iter().enumerate() {
             let c = color(s);
             chart
@@ -308,9 +401,7 @@ impl Picture for WorkPrecisionPicture {
                     c.stroke_width(width(s, self.curves.len())),
                 ))
                 .map_err(err)?;
-            chart
-                .draw_series(points.into_iter().map(|p| Circle::new(p, 4, c.filled())))
-                .map_err(err)?;
+            draw_markers(&mut chart, &points, marker(s), 4, c.filled())?;
         }
         Ok(())
     }
@@ -327,5 +418,27 @@ mod tests {
         assert_eq!(log_range([f64::INFINITY].into_iter(), 1e-7), (1e-7, 1e-6));
         let (lo, hi) = log_range([1e-3].into_iter(), 1e-9);
         assert!(hi > lo);
+    }
+
+    #[test]
+    fn zero_errors_get_their_own_row_below_the_data() {
+        assert_eq!(error_axis([2e-5, 3e-3].into_iter()), (1e-5, 1e-2, None));
+        let (lo, hi, zero) = error_axis([0.0, 2e-5, 3e-3].into_iter());
+        assert_eq!(hi, 1e-2);
+        let zero = zero.unwrap();
+        assert!((zero / 1e-6 - 1.0).abs() < 1e-12 && (lo / 1e-7 - 1.0).abs() < 1e-12);
+        // Only zeros: the floor's decades.
+        let (lo, _, zero) = error_axis([0.0].into_iter());
+        assert!(zero.unwrap() > lo);
+    }
+
+    #[test]
+    fn forty_solvers_have_distinct_colour_and_marker() {
+        let styles: Vec<(RGBColor, Marker)> = (0..40).map(|k| (color(k), marker(k))).collect();
+        for i in 0..40 {
+            for j in 0..i {
+                assert_ne!(styles[i], styles[j], "{i} and {j}");
+            }
+        }
     }
 }

@@ -8,6 +8,7 @@
 use crate::contract::Family;
 use crate::solvers::aclm::AclmOptions;
 use crate::solvers::admm::AdmmOptions;
+use crate::solvers::auto::AutoOptions;
 use crate::solvers::nsgs::NsgsOptions;
 use crate::solvers::nsn::NsnOptions;
 use crate::solvers::pfp::PfpOptions;
@@ -70,6 +71,8 @@ methods! {
     Soclcp(SoclcpOptions),
     /// ADMM on the local formulation (Siconos id 523).
     Admm(AdmmOptions),
+    /// AUTO: chooses and switches between NSGS, NSN-AC and PROX (fc3d id 590, `FC3D_AUTO`).
+    Auto(AutoOptions),
 }
 
 impl Method {

@@ -10,6 +10,7 @@ mod limits;
 mod outer;
 mod report;
 mod schedule;
+mod stages;
 
 pub(crate) use family::Family;
 pub use limits::Limits;
@@ -20,6 +21,7 @@ pub(crate) use outer::OuterLoop;
 pub use report::{SolveReport, SolveStatus};
 pub use schedule::ErrorEvaluation;
 pub(crate) use schedule::{ErrorSchedule, Measure};
+pub use stages::{Stage, StageEnd, StageKind, StageLog, MAX_STAGES};
 
 /// Progress of an iterative solver, handed to an observer after every iteration.
 #[derive(Debug, Clone, Copy)]
@@ -55,6 +57,8 @@ pub(crate) struct SolverOutcome {
     /// The step size a self-adaptive run ends with, for the families whose Siconos solver hands
     /// it back to the host (see [`SolveReport::final_rho`](crate::SolveReport)).
     pub final_rho: Option<f64>,
+    /// The stages a composite solver (AUTO) took.
+    pub stages: Option<StageLog>,
 }
 
 impl SolverOutcome {
@@ -68,6 +72,7 @@ impl SolverOutcome {
             relaxation_converged: false,
             diverged: false,
             final_rho: None,
+            stages: None,
         }
     }
 

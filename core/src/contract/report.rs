@@ -65,6 +65,9 @@ pub struct SolveReport {
     /// that a host reusing its options starts the next solve from it; `fc3d_driver` does the
     /// same. `None` for the other solvers, and when the solve ran rescaled.
     pub final_rho: Option<f64>,
+    /// The stages AUTO (`Method::Auto`, `FC3D_AUTO`) took, in order; `None` for the other
+    /// solvers.
+    pub stages: Option<super::StageLog>,
 }
 
 impl SolveReport {

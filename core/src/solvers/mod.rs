@@ -6,6 +6,7 @@
 
 pub mod aclm;
 pub mod admm;
+pub mod auto;
 pub mod nsgs;
 pub mod nsn;
 pub mod pfp;

@@ -1,0 +1,605 @@
+//! AUTO (fc3d id 590, `FC3D_AUTO`): the solver that chooses. From cheap features of the
+//! problem ([`ProblemFeatures`], one pass over W's stored entries), the tolerance and the
+//! budget, the first matching row of [`RULES`] gives a plan: a sequence of stages (Gauss-Seidel
+//! sweeps, a nonsmooth Newton with line search, the proximal point method). Each stage starts
+//! from the best iterate so far and runs in chunks; after each chunk the natural-map error is
+//! measured, and a stage whose error does not fall by its stall factor over a chunk hands over to
+//! the next one. The iteration limit counts the iterations of all stages together and the time
+//! budget is one deadline for the whole solve. With a tolerance of 0 the solve is an anytime
+//! one: it runs until the limits and returns the best iterate it measured.
+//!
+//! The rules and the stall factors are data ([`RULES`], [`STALL`]); README.md "AUTO" gives the
+//! `fc3d bench` runs on the shared problems that justify them.
+
+use std::time::{Duration, Instant};
+
+use crate::contract::{
+    BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
+    StageKind, StageLog,
+};
+use crate::error::Fc3dError;
+use crate::matrix::Delassus;
+use crate::measure::natural_map_error;
+use crate::problem::FrictionProblem;
+use crate::solvers::admm::AdmmOptions;
+use crate::solvers::nsgs::{run_sweeps, NsgsOptions, SweepSchedule, Sweeper};
+use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
+use crate::solvers::prox::ProxOptions;
+use crate::solvers::tresca::TrescaOptions;
+use crate::solvers::vi::{ViOptions, ViSolver};
+
+/// Cheap features of a problem, computed in one pass over W's stored entries (O(nnz)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProblemFeatures {
+    pub n_contacts: usize,
+    /// Stored 3x3 blocks of W (nonzero entries / 9 for an entry-wise storage) over `nc^2`: 1 for
+    /// a fully coupled W.
+    pub block_density: f64,
+    pub mu_min: f64,
+    pub mu_max: f64,
+    /// Contacts with mu = 0 (frictionless).
+    pub frictionless: usize,
+    /// min over contacts of `W_NN / sum |W_Nj|` over the entries j of the normal row outside
+    /// the contact's block (infinite for an uncoupled contact): > 1 is a diagonally dominant
+    /// normal row, the case where Gauss-Seidel converges fast.
+    pub diagonal_dominance: f64,
+    /// max over the diagonal blocks of `max |B - B^T| / max |B|`.
+    pub block_asymmetry: f64,
+    /// Conditioning estimate: `max W_NN / min W_NN` over the contacts (infinite when some
+    /// `W_NN <= 0`).
+    pub diagonal_spread: f64,
+    /// Contacts whose normal diagonal entry is not positive relative to the largest one
+    /// (`W_NN <= 1e-12 max W_NN`): their one-contact problems are singular.
+    pub singular_contacts: usize,
+}
+
+/// A time budget this short favours methods whose first iterations are cheap.
+pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
+
+/// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
+pub const STRONG_MU: f64 = 0.25;
+/// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
+pub const WEAK_DOMINANCE: f64 = 0.16;
+
+impl ProblemFeatures {
+    /// Strong frictional coupling (see [`Condition::strongly_coupled`]).
+    pub fn strongly_coupled(&self) -> bool {
+        self.mu_max >= STRONG_MU && self.diagonal_dominance < WEAK_DOMINANCE
+    }
+
+    pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
+        let nc = problem.n_contacts();
+        let mu = problem.mu();
+        let (w_nn, off_normal, stored_blocks) = normal_rows(problem.w(), nc);
+        let mut block_asymmetry = 0.0_f64;
+        for c in 0..nc {
+            if let Some(b) = problem.w().diagonal_block(c) {
+                let scale = b.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let mut skew = 0.0_f64;
+                for i in 0..3 {
+                    for j in 0..i {
+                        skew = skew.max((b[i][j] - b[j][i]).abs());
+                    }
+                }
+                if scale > 0.0 {
+                    block_asymmetry = block_asymmetry.max(skew / scale);
+                }
+            }
+        }
+        let largest = w_nn.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let singular_contacts = w_nn.iter().filter(|&&v| v <= 1e-12 * largest).count();
+        let smallest = w_nn.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+        let diagonal_spread = if smallest > 0.0 {
+            largest / smallest
+        } else {
+            f64::INFINITY
+        };
+        let diagonal_dominance = w_nn
+            .iter()
+            .zip(&off_normal)
+            .map(|(&d, &o)| if o > 0.0 { d / o } else { f64::INFINITY })
+            .fold(f64::INFINITY, f64::min);
+        ProblemFeatures {
+            n_contacts: nc,
+            block_density: if nc > 0 {
+                stored_blocks / (nc as f64 * nc as f64)
+            } else {
+                0.0
+            },
+            mu_min: mu.iter().copied().fold(f64::INFINITY, f64::min),
+            mu_max: mu.iter().copied().fold(0.0, f64::max),
+            frictionless: mu.iter().filter(|&&m| m == 0.0).count(),
+            diagonal_dominance,
+            block_asymmetry,
+            diagonal_spread,
+            singular_contacts,
+        }
+    }
+}
+
+/// Per contact, `W_NN` and the sum of `|W_Nj|` over the normal row outside the contact's block,
+/// and the number of stored 3x3 blocks: only the normal rows are read (a third of a dense W).
+fn normal_rows(w: &Delassus<'_>, nc: usize) -> (Vec<f64>, Vec<f64>, f64) {
+    let mut w_nn = vec![0.0_f64; nc];
+    let mut off = vec![0.0_f64; nc];
+    let stored = match w {
+        Delassus::Dense(d) => {
+            let n = 3 * nc;
+            let values = d.values();
+            for (c, (diag, off)) in w_nn.iter_mut().zip(off.iter_mut()).enumerate() {
+                let i = 3 * c;
+                for j in 0..n {
+                    let v = values[i + j * n];
+                    if j / 3 != c {
+                        *off += v.abs();
+                    } else if j == i {
+                        *diag = v;
+                    }
+                }
+            }
+            (nc * nc) as f64
+        }
+        Delassus::SparseBlock(b) => {
+            for (bi, bj, block) in b.iter_blocks() {
+                // Column-major: the normal row is entries 0, 3, 6.
+                if bi == bj {
+                    w_nn[bi] += block[0];
+                } else {
+                    off[bi] += block[0].abs() + block[3].abs() + block[6].abs();
+                }
+            }
+            b.n_blocks() as f64
+        }
+        Delassus::Sparse(m) => {
+            let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
+            for c in 0..nc {
+                let i = 3 * c;
+                for k in ptr[i]..ptr[i + 1] {
+                    if cols[k] / 3 != c {
+                        off[c] += values[k].abs();
+                    } else if cols[k] == i {
+                        w_nn[c] += values[k];
+                    }
+                }
+            }
+            m.nnz() as f64 / 9.0
+        }
+    };
+    (w_nn, off, stored)
+}
+
+/// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
+/// or the limits stop it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlannedStage {
+    pub kind: StageKind,
+    pub allowance: Option<usize>,
+}
+
+const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedStage {
+    PlannedStage { kind, allowance }
+}
+
+/// When a rule applies: every condition given must hold (`None`: any value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Condition {
+    /// Some contact has a singular one-contact problem (`W_NN <= 0`).
+    pub singular_contacts: Option<bool>,
+    /// At most this many contacts.
+    pub max_contacts: Option<usize>,
+    /// The tolerance is at least this (a loose solve).
+    pub min_tolerance: Option<f64>,
+    /// At least this many contacts.
+    pub min_contacts: Option<usize>,
+    /// Strong frictional coupling: `mu_max >= STRONG_MU` and a normal row far from diagonal
+    /// dominance (`diagonal_dominance < WEAK_DOMINANCE`), the case where Gauss-Seidel and the
+    /// Tresca fixed point crawl.
+    pub strongly_coupled: Option<bool>,
+    /// The solve has a time budget of at most this (a short anytime solve).
+    pub max_budget: Option<Duration>,
+}
+
+impl Condition {
+    const ANY: Condition = Condition {
+        singular_contacts: None,
+        max_contacts: None,
+        min_tolerance: None,
+        min_contacts: None,
+        strongly_coupled: None,
+        max_budget: None,
+    };
+
+    fn holds(&self, f: &ProblemFeatures, tolerance: f64, budget: Option<Duration>) -> bool {
+        self.singular_contacts
+            .is_none_or(|s| s == (f.singular_contacts > 0))
+            && self.max_contacts.is_none_or(|m| f.n_contacts <= m)
+            && self.min_tolerance.is_none_or(|t| tolerance >= t)
+            && self.min_contacts.is_none_or(|m| f.n_contacts >= m)
+            && self
+                .strongly_coupled
+                .is_none_or(|s| s == f.strongly_coupled())
+            && self
+                .max_budget
+                .is_none_or(|m| budget.is_some_and(|b| b <= m))
+    }
+}
+
+/// A row of the rule table: when it applies, the plan, and why (the measurement behind it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rule {
+    pub when: Condition,
+    pub plan: &'static [PlannedStage],
+    pub why: &'static str,
+}
+
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
+
+/// AUTO's rule table: the first row whose condition holds gives the plan. The last row holds
+/// always. README.md "AUTO" has the bench runs behind each row.
+pub const RULES: &[Rule] = &[
+    Rule {
+        when: Condition {
+            singular_contacts: Some(true),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Nsgs, None)],
+        why: "a contact with W_NN <= 0 has no well-posed one-contact problem: Gauss-Seidel's \
+              local solves and an unshifted Newton matrix break down, the proximal shift does not",
+    },
+    Rule {
+        when: Condition {
+            max_contacts: Some(1),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None)],
+        why: "one contact: one Gauss-Seidel sweep is the one-contact solver itself, which solves \
+              it to the tolerance",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None), stage(Admm, None)],
+        why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
+              solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
+              step is not done yet); PROX takes over where it stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_tolerance: Some(1e-5),
+            min_contacts: Some(100),
+            ..Condition::ANY
+        },
+        plan: &[
+            stage(ExtraGradient, None),
+            stage(Admm, None),
+            stage(Prox, None),
+            stage(Nsgs, None),
+        ],
+        why: "large strongly coupled problems to 1e-4 (Capsules, RockPile): EG's iterations (one \
+              product with W) are the cheapest, EG is the fastest on the Capsules (3-10x ADMM); \
+              where it stalls (RockPile) ADMM, then PROX take over",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_tolerance: Some(1e-6),
+            ..Condition::ANY
+        },
+        plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
+        why: "strongly coupled problems (BoxesStack, Capsules, RockPile) to 1e-4 or 1e-6: ADMM is \
+              the fastest on most, NSGS and TFP crawl; PROX takes over where ADMM stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems (OneObject, Capsules at 1e-8): the proximal Newton \
+              converges in a few steps where NSGS does not converge at all",
+    },
+    Rule {
+        when: Condition::ANY,
+        plan: &[
+            stage(Nsgs, None),
+            stage(Tresca, None),
+            stage(Prox, None),
+            stage(Newton, None),
+        ],
+        why: "small or weakly coupled problems (Rover, Confeti, NESpheres, FC3D_Example1): NSGS \
+              with the Newton local solver 551 is the fastest or within 1.5x of it (TFP, PFP); \
+              TFP, PROX and Newton go on where it stalls",
+    },
+];
+
+/// How each stage kind is watched: iterations per chunk, and the factor by which the error must
+/// fall over a chunk for the stage to go on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StallRule {
+    pub kind: StageKind,
+    pub chunk: usize,
+    pub factor: f64,
+}
+
+/// The stall rules (one per kind).
+pub const STALL: [StallRule; 6] = [
+    StallRule {
+        kind: Nsgs,
+        chunk: 10,
+        factor: 0.7,
+    },
+    StallRule {
+        kind: Newton,
+        chunk: 5,
+        factor: 0.5,
+    },
+    // PROX and ADMM build their matrices at each call: long chunks.
+    StallRule {
+        kind: Prox,
+        chunk: 50,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: Admm,
+        chunk: 1000,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: Tresca,
+        chunk: 5,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: ExtraGradient,
+        chunk: 100,
+        factor: 0.5,
+    },
+];
+
+fn stall_rule(kind: StageKind) -> StallRule {
+    STALL
+        .into_iter()
+        .find(|s| s.kind == kind)
+        .expect("one stall rule per kind")
+}
+
+/// The index of the rule that applies and its plan.
+pub fn choose(
+    features: &ProblemFeatures,
+    tolerance: f64,
+    budget: Option<Duration>,
+) -> (usize, &'static [PlannedStage]) {
+    RULES
+        .iter()
+        .enumerate()
+        .find(|(_, r)| r.when.holds(features, tolerance, budget))
+        .map(|(i, r)| (i, r.plan))
+        .expect("the last rule always holds")
+}
+
+/// Settings of AUTO. Its limits default to a tolerance of 1e-4 (Siconos' NSGS default) and
+/// 10000 iterations over all stages.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct AutoOptions {
+    /// Run this plan instead of the rule table's (tests, experiments).
+    pub plan: Option<&'static [PlannedStage]>,
+}
+
+impl Family for AutoOptions {
+    fn name(&self) -> &'static str {
+        "AUTO"
+    }
+
+    fn label(&self) -> String {
+        "AUTO".into()
+    }
+
+    fn siconos_id(&self) -> i32 {
+        AUTO_ID
+    }
+
+    fn default_limits(&self) -> (f64, usize) {
+        (1e-4, 10_000)
+    }
+
+    fn validate(&self) -> Result<(), Fc3dError> {
+        if let Some(plan) = self.plan {
+            if plan.is_empty() {
+                return Err(Fc3dError::InvalidOption(
+                    "AUTO: a plan needs at least one stage".into(),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn run(
+        &self,
+        problem: &FrictionProblem<'_>,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        auto(problem, self, limits, r, u, observer)
+    }
+}
+
+/// AUTO's id: fc3d's own, in the range 568..=599 Siconos 4.4 leaves free.
+pub const AUTO_ID: i32 = 590;
+
+/// The remaining budget as limits for a stage of at most `max_iter` iterations.
+fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> Limits {
+    Limits {
+        tolerance,
+        max_iter,
+        // An exhausted budget still allows one iteration (the caller stops right after).
+        time_budget: deadline.map(|d| {
+            d.saturating_duration_since(Instant::now())
+                .max(Duration::from_nanos(1))
+        }),
+    }
+}
+
+fn auto(
+    problem: &FrictionProblem<'_>,
+    options: &AutoOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    options.validate()?;
+    let run = limits.start();
+    let tolerance = run.tolerance;
+    let (rule, plan) = match options.plan {
+        Some(plan) => (usize::MAX, plan),
+        None => choose(&ProblemFeatures::of(problem), tolerance, limits.time_budget),
+    };
+    let mut log = StageLog::new(rule);
+    // The initial error is not measured (a product with W, as much as a whole solve of a small
+    // problem): the first stage starts from r as given.
+    let mut error = f64::INFINITY;
+    let mut best = BestIterate::new(r, error);
+    let mut best_error = error;
+    let mut total = 0usize;
+    let mut out_of_time = false;
+    // Local solver 551 (Newton with Goldstein-Price): the fastest NSGS on the small shared
+    // problems (README "AUTO").
+    let nsgs_options = NsgsOptions::with_local(crate::local::LocalSolverKind::NewtonAlartCurnierGp);
+    let schedule = SweepSchedule {
+        error_evaluation: nsgs_options.error_evaluation,
+        evaluation_frequency: nsgs_options.evaluation_frequency,
+        local_tolerance: nsgs_options.local_tolerance,
+        stop_when_stalled: true,
+    };
+    let mut sweeper: Option<Sweeper> = None;
+    let prox_options = ProxOptions::default();
+    let admm_options = AdmmOptions::default();
+    let tresca_options = TrescaOptions::default();
+    let eg_options = ViOptions::new(ViSolver::ExtraGradient);
+    let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
+    let mut newton: Option<NewtonSolver> = None;
+
+    'plan: for planned in plan {
+        if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
+            break;
+        }
+        // Every stage starts from the best iterate seen.
+        if best.restore_if_better(r, error) {
+            error = best_error;
+        }
+        let watch = stall_rule(planned.kind);
+        let allowance = planned.allowance.unwrap_or(usize::MAX);
+        let mut done = 0usize;
+        let end;
+        // The sweeper and the Newton matrix are built once per solve, at their first stage.
+        let built = match planned.kind {
+            Newton if newton.is_none() => NewtonSolver::new(problem, &newton_options)
+                .map(|s| newton = Some(s))
+                .is_ok(),
+            Nsgs if sweeper.is_none() => Sweeper::with_options(problem, &nsgs_options, tolerance)
+                .map(|s| sweeper = Some(s))
+                .is_ok(),
+            _ => true,
+        };
+        if !built {
+            log.push(Stage {
+                kind: planned.kind,
+                iterations: 0,
+                error,
+                end: StageEnd::Failed,
+            });
+            continue 'plan;
+        }
+        loop {
+            let left = (run.max_iter - total).min(allowance - done);
+            if left == 0 {
+                end = if done >= allowance {
+                    StageEnd::Allowance
+                } else {
+                    StageEnd::Limits
+                };
+                break;
+            }
+            let chunk = watch.chunk.min(left);
+            let before = error;
+            let offset = total;
+            let mut shifted = |ev: &IterationEvent<'_>| {
+                observer(&IterationEvent {
+                    iteration: offset + ev.iteration,
+                    reaction: ev.reaction,
+                    error: ev.error,
+                })
+            };
+            // The families report the natural-map error of (r, u = W r + q) when their last
+            // step measured it (the contract of `SolverOutcome::final_error`): then it is not
+            // measured again.
+            let (iterations, measured) = match planned.kind {
+                Nsgs => {
+                    let sweeper = sweeper.as_mut().expect("built above");
+                    let l = stage_limits(tolerance, chunk, run.deadline());
+                    let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
+                    (o.iterations, o.final_error)
+                }
+                Newton => {
+                    let solver = newton.as_mut().expect("built above");
+                    let inner = run.inner(tolerance, chunk);
+                    let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
+                    (o.iterations, None)
+                }
+                Prox | Admm | Tresca | ExtraGradient => {
+                    let family: &dyn Family = match planned.kind {
+                        Prox => &prox_options,
+                        Admm => &admm_options,
+                        ExtraGradient => &eg_options,
+                        _ => &tresca_options,
+                    };
+                    let l = stage_limits(tolerance, chunk, run.deadline());
+                    let o = family.run(problem, &l, r, u, &mut shifted)?;
+                    (o.iterations, o.final_error)
+                }
+            };
+            // A stage that did nothing (converged at entry, or cut at once) still counts one
+            // iteration so that the loop ends.
+            let iterations = iterations.max(1);
+            done += iterations;
+            total += iterations;
+            error = measured.unwrap_or_else(|| natural_map_error(problem, r, u));
+            best.offer(r, error);
+            best_error = best_error.min(error);
+            if error <= tolerance {
+                end = StageEnd::Converged;
+                break;
+            }
+            if run.out_of_time() {
+                out_of_time = true;
+                end = StageEnd::Limits;
+                break;
+            }
+            // NaN compares false: a non-finite error is a stall.
+            if !(error <= watch.factor * before) {
+                end = StageEnd::Stalled;
+                break;
+            }
+        }
+        log.push(Stage {
+            kind: planned.kind,
+            iterations: done,
+            error,
+            end,
+        });
+    }
+    // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
+    // family's last step): it is the final error unless an earlier iterate was better.
+    let restored = best.restore_if_better(r, error);
+    Ok(SolverOutcome {
+        stages: Some(log),
+        ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
+            .with_final_error((!restored && error.is_finite()).then_some(error))
+    })
+}
