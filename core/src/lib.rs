@@ -35,8 +35,8 @@ pub use config::{Method, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };
-pub use diagnostics::{diagnose, ContactDiagnostic, ContactStatus, DiagnosticOptions, Diagnostics};
 pub use contract::{Stage, StageEnd, StageKind, StageLog};
+pub use diagnostics::{diagnose, ContactDiagnostic, ContactStatus, DiagnosticOptions, Diagnostics};
 pub use error::Fc3dError;
 pub use local::rolling::RollingProjectionIteration;
 pub use local::{
