@@ -49,3 +49,46 @@ fn a_small_pile_scene_solves_with_nsgs() {
     assert!(touching > 0 && open + touching == p.n_contacts());
     eprintln!("touching {touching} (sliding {sliding}), open {open}");
 }
+
+/// A dense W whose blocks are mostly zero is solved through its sparse-block form: every family
+/// gives the same iterates, bit for bit, as on the sparse-block copy of the same matrix.
+#[test]
+fn a_mostly_zero_dense_w_is_solved_as_sparse_blocks() {
+    use fc3d_core::{Delassus, Method};
+    let spec = PileSpec {
+        contacts: 120,
+        piles: 3,
+        seed: 4,
+    };
+    let sparse = sphere_piles(&spec).unwrap();
+    let dense = sparse
+        .with_w(Delassus::Dense(sparse.w().to_dense()))
+        .unwrap();
+    let view = dense
+        .w()
+        .sparse_block_view()
+        .expect("a pile's W is mostly zero blocks");
+    assert_eq!(Delassus::SparseBlock(view), *sparse.w());
+    // A full W is left dense.
+    let full = fc3d_core::DenseMatrix::new(6, 6, vec![1.0; 36]).unwrap();
+    assert!(Delassus::Dense(full).sparse_block_view().is_none());
+    for id in [500, 512, 507] {
+        let method = Method::presets()
+            .into_iter()
+            .find(|m| m.siconos_id() == id)
+            .unwrap();
+        let config = SolverConfig::new(method)
+            .with_tolerance(1e-5)
+            .with_max_iter(300);
+        let run = |p: &fc3d_core::FrictionProblem<'_>| {
+            let mut r = vec![0.0; p.size()];
+            let mut u = vec![0.0; p.size()];
+            let report = solve(p, &config, &mut r, &mut u).unwrap();
+            (
+                report.iterations,
+                r.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+            )
+        };
+        assert_eq!(run(&dense), run(&sparse), "solver {id}");
+    }
+}
