@@ -7,7 +7,7 @@
 #   bash scripts/scale-bench.sh --sizes 1000,10000 --timeout 60
 #
 # Per size and library, one process reads the .dat (peak RSS of the read alone), then measures
-#   - per-call set-up and per-sweep time: medians of fc3d_driver calls limited to 1 and 1 + SWEEPS
+#   - per-call set-up and per-sweep time (CPU seconds of the process, robust on a shared machine): medians of fc3d_driver calls limited to 1 and 1 + SWEEPS
 #     sweeps (set-up = t(1) - one sweep: everything a call does besides its sweeps);
 #   - peak RSS of the solving part alone (VmHWM reset after the read);
 #   - time and sweeps to 1e-3, 1e-4, 1e-6 (NSGS with Siconos' defaults, 500 = local solver 565),
@@ -57,7 +57,8 @@ read -r -a libs <<<"$(echo "$libs" | tr ',' ' ')"
 OUT=target/scale
 mkdir -p "$OUT/scenes" "$OUT/bin"
 echo "== building libfc3d, the fc3d command, scale_report and the two benchmark binaries"
-cargo build --release -p fc3d -p fc3d-cli --bins
+cargo build --release -p fc3d
+cargo build --release -p fc3d-cli --bins
 cp target/release/libfc3d.so "$OUT/bin/libfc3d.so.0"
 ln -sf libfc3d.so.0 "$OUT/bin/libfc3d.so"
 CFLAGS=(-std=c99 -O2 -Wall -Wextra -Werror)

@@ -257,3 +257,77 @@ impl<const D: usize> BlockRows<D> {
         acc
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 3 contacts, a chain: 0-1 coupled, 1-2 coupled, 0-2 not; block (0, 1) stored twice.
+    fn chain() -> BlockSparseMatrix {
+        let b = |s: f64| -> [f64; 9] { std::array::from_fn(|k| s + k as f64) };
+        BlockSparseMatrix::new(
+            3,
+            3,
+            vec![0, 3, 6, 8],
+            vec![0, 1, 1, 0, 1, 2, 1, 2],
+            vec![
+                b(10.0),
+                b(1.0),
+                b(0.5),
+                b(2.0),
+                b(20.0),
+                b(3.0),
+                b(4.0),
+                b(30.0),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn sparse_block_rows_share_w_and_agree_with_dense_and_csr() {
+        let s = chain();
+        let rows = BlockRows::<3>::from_block_sparse(&s).unwrap();
+        // The coupling blocks are W's own arrays, not a copy.
+        assert!(Arc::ptr_eq(&rows.values, &s.shared_parts().2));
+        assert_eq!(rows.n_off_diagonal(), 5);
+        let sparse = Delassus::SparseBlock(s);
+        let dense = Delassus::Dense(sparse.to_dense());
+        let csr = Delassus::Sparse(sparse.to_csr());
+        let q: Vec<f64> = (0..9).map(|k| 0.1 * k as f64 - 0.3).collect();
+        let r: Vec<f64> = (0..9).map(|k| 1.0 + 0.25 * k as f64).collect();
+        for w in [&dense, &csr] {
+            let other = BlockRows::<3>::from_delassus(w).unwrap();
+            assert_eq!(other.n_off_diagonal(), 4, "{}", w.storage_name());
+            for c in 0..3 {
+                assert_eq!(rows.diagonal(c), other.diagonal(c));
+                let (a, b) = (rows.local_q(c, &q, &r), other.local_q(c, &q, &r));
+                for i in 0..3 {
+                    approx::assert_relative_eq!(a[i], b[i], max_relative = 1e-15);
+                }
+                approx::assert_relative_eq!(
+                    rows.local_q_normal(c, &q, &r),
+                    other.local_q_normal(c, &q, &r),
+                    max_relative = 1e-15
+                );
+            }
+        }
+        // u = W r + q through the view equals the product of W.
+        let mut u = vec![0.0; 9];
+        rows.velocity(&q, &r, &mut u);
+        let mut expected = vec![0.0; 9];
+        sparse.velocity(&r, &q, &mut expected);
+        for i in 0..9 {
+            approx::assert_relative_eq!(u[i], expected[i], max_relative = 1e-15);
+        }
+    }
+
+    #[test]
+    fn a_missing_diagonal_block_is_refused() {
+        let s = BlockSparseMatrix::new(2, 2, vec![0, 1, 2], vec![0, 0], vec![[1.0; 9]; 2]).unwrap();
+        assert!(matches!(
+            BlockRows::<3>::from_block_sparse(&s),
+            Err(Fc3dError::MissingDiagonalBlock { contact: 1 })
+        ));
+    }
+}
