@@ -99,7 +99,7 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
             });
         }
         if let Delassus::SparseBlock(s) = &w {
-            if let Some(c) = (0..nc).find(|&c| s.diagonal_block(c).is_none()) {
+            if let Some(c) = (0..nc).find(|&c| !s.has_diagonal_block(c)) {
                 return Err(Fc3dError::MissingDiagonalBlock { contact: c });
             }
         }

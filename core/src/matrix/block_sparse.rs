@@ -49,17 +49,20 @@ impl BlockSparseMatrix {
     /// The matrix whose block `k` (storage order, column-major) is `block(k)`, built in one
     /// streaming pass: each block is checked finite as it is copied into storage allocated once,
     /// fallibly (no zero-filled buffer first, no second pass). What a host's sparse-block W is
-    /// converted with.
+    /// converted with. `storage` is where the values go (cleared first): a caller may hand a
+    /// buffer it prepared (reserved, or advised to the kernel), else `Vec::new()`.
     pub fn from_block_fn<E: From<Fc3dError>>(
         n_block_rows: usize,
         n_block_cols: usize,
         row_ptr: Vec<usize>,
         col_idx: Vec<usize>,
+        storage: Vec<f64>,
         mut block: impl FnMut(usize) -> Result<[f64; 9], E>,
     ) -> Result<Self, E> {
         check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
-        let mut values = Vec::new();
+        let mut values = storage;
+        values.clear();
         values
             .try_reserve_exact(9 * nb)
             .map_err(|_| Fc3dError::OutOfMemory {
@@ -180,15 +183,28 @@ impl BlockSparseMatrix {
     }
 
     pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
-        for (bi, bj, b) in self.iter_blocks() {
-            let xs = &x[3 * bj..3 * bj + 3];
-            let ys = &mut y[3 * bi..3 * bi + 3];
-            for (c, &xc) in xs.iter().enumerate() {
-                ys[0] += b[3 * c] * xc;
-                ys[1] += b[3 * c + 1] * xc;
-                ys[2] += b[3 * c + 2] * xc;
+        let blocks = self.blocks();
+        for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(self.n_block_rows) {
+            // The row's sums kept in registers; each entry gets its terms in the same order as
+            // block by block into y.
+            let mut acc = [ys[0], ys[1], ys[2]];
+            for k in self.row_ptr[bi]..self.row_ptr[bi + 1] {
+                let b = &blocks[k];
+                let bj = self.col_idx[k];
+                let xs = &x[3 * bj..3 * bj + 3];
+                for (c, &xc) in xs.iter().enumerate() {
+                    acc[0] += b[3 * c] * xc;
+                    acc[1] += b[3 * c + 1] * xc;
+                    acc[2] += b[3 * c + 2] * xc;
+                }
             }
+            ys.copy_from_slice(&acc);
         }
+    }
+
+    /// Whether block row `c` stores its diagonal block (indices only: no value is read).
+    pub fn has_diagonal_block(&self, c: usize) -> bool {
+        self.col_idx[self.row_ptr[c]..self.row_ptr[c + 1]].contains(&c)
     }
 
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
@@ -235,7 +251,8 @@ fn check_structure(
 
 #[inline]
 fn check_block(k: usize, b: &[f64; 9]) -> Result<(), Fc3dError> {
-    if b.iter().all(|v| v.is_finite()) {
+    // v - v is 0 for a finite v and NaN otherwise: one branch per block, not one per value.
+    if b.iter().fold(0.0, |a, v| a + (v - v)) == 0.0 {
         return Ok(());
     }
     check_finite("W", b).map_err(|_| Fc3dError::NonFinite {
