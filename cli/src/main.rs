@@ -455,6 +455,61 @@ mod tests {
     use clap::CommandFactory;
 
     #[test]
+    fn generated_inputs_are_scenes_not_files() {
+        let (inputs, errors) = expand_paths(&[
+            PathBuf::from("gen:contacts=10,piles=2"),
+            PathBuf::from("gen:piles=2"),
+        ]);
+        assert_eq!((inputs.len(), errors.len()), (1, 1), "{errors:?}");
+        match load_input(inputs.into_iter().next().unwrap()) {
+            Loaded::Problem(name, p) => {
+                assert_eq!(name, "piles-c10-p2-s1");
+                assert_eq!(p.n_contacts(), 10);
+            }
+            _ => panic!("a generated scene loads"),
+        }
+    }
+
+    #[test]
+    fn scene_writes_the_generated_problem_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("fc3d-scene-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("p.dat");
+        let cli = Cli::try_parse_from(
+            [
+                "fc3d",
+                "scene",
+                "--contacts",
+                "50",
+                "--piles",
+                "2",
+                "--seed",
+                "3",
+                "-o",
+            ]
+            .into_iter()
+            .map(String::from)
+            .chain([out.display().to_string()]),
+        )
+        .unwrap();
+        let Some(Command::Scene(args)) = cli.command else {
+            panic!("expected the scene subcommand");
+        };
+        assert_eq!(scene::run(&args), ExitCode::SUCCESS);
+        let read = read_problem(&out).unwrap();
+        let spec = fc3d_core::scenes::PileSpec {
+            contacts: 50,
+            piles: 2,
+            seed: 3,
+        };
+        let made = fc3d_core::scenes::sphere_piles(&spec).unwrap();
+        assert_eq!(read.w(), made.w());
+        assert_eq!(read.q(), made.q());
+        assert_eq!(read.mu(), made.mu());
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
     fn cli_is_well_formed() {
         Cli::command().debug_assert();
     }
