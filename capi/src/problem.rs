@@ -14,7 +14,8 @@ use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
 use super::matrix::{
-    c_slice, delassus_from_c_blocks, matrix_to_c, nm_clear_impl, nm_duplicate, nm_scale_in_place,
+    c_slice, delassus_from_c_blocks, matrix_into_c, matrix_to_c, nm_clear_impl, nm_duplicate,
+    nm_scale_in_place,
 };
 use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
@@ -131,11 +132,41 @@ pub(crate) unsafe fn parts_from_c<'a, const D: usize>(
 }
 
 /// A C-allocated problem holding a copy of a problem read from a file.
-fn dat_problem_to_c(p: &DatProblem) -> CResult<*mut FrictionContactProblem> {
+fn dat_problem_to_c(p: DatProblem) -> CResult<*mut FrictionContactProblem> {
     match p {
-        DatProblem::Spatial(p) => problem_to_c(p),
-        DatProblem::Planar(p) => problem_to_c(p),
+        DatProblem::Spatial(p) => problem_into_c(p),
+        DatProblem::Planar(p) => problem_into_c(p),
     }
+}
+
+/// As [`problem_to_c`], consuming `p`: q and mu are copied first, then W is moved over to C and
+/// released as it goes (a reader holds one copy of W at a time).
+fn problem_into_c<const D: usize>(
+    p: FrictionProblem<'_, D>,
+) -> CResult<*mut FrictionContactProblem> {
+    let nc = c_int::try_from(p.n_contacts())
+        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
+    let (w, q, mu) = p.into_parts();
+    let q = c_copy(&q)?;
+    let mu = c_copy(&mu).inspect_err(|_| unsafe { c_free(q) })?;
+    let release = |ptrs: &[*mut c_double]| unsafe {
+        for &x in ptrs {
+            c_free(x);
+        }
+    };
+    let m = matrix_into_c(w).inspect_err(|_| release(&[q, mu]))?;
+    c_box(FrictionContactProblem {
+        dimension: D as c_int,
+        numberOfContacts: nc,
+        M: m,
+        q,
+        mu,
+    })
+    .inspect_err(|_| unsafe {
+        release(&[q, mu]);
+        super::matrix::nm_clear_impl(m);
+        c_free(m);
+    })
 }
 
 /// A C-allocated problem holding a copy of `p` (W in the same storage; a 2D problem's W, held as
@@ -329,7 +360,7 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
                 return super::fclib::read_fclib_problem(path);
             }
             let p = fc3d_core::io::dat::read_dat_file_any(std::path::Path::new(path))?;
-            dat_problem_to_c(&p)
+            dat_problem_to_c(p)
         },
     )
 }
@@ -355,7 +386,7 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
             match fc3d_core::io::dat::read_dat_any(&mut stream, len, "<FILE stream>") {
                 Ok((p, used)) => {
                     stream.finish(Some(used));
-                    dat_problem_to_c(&p)
+                    dat_problem_to_c(p)
                 }
                 Err(e) => {
                     stream.finish(None);

@@ -33,6 +33,7 @@ use clap::{Args, Parser, Subcommand};
 
 mod bench;
 mod convert;
+mod scene;
 use bench::spec::{parse_spec, SolverSpec};
 use fc3d_core::{
     solve, Fc3dError, FrictionProblem, LocalSolverKind, Method, NsgsOptions, Rescaling,
@@ -61,6 +62,8 @@ enum Command {
     /// Convert a problem file between Siconos .dat and FCLIB .hdf5 (by OUT's extension),
     /// losslessly. FCLIB needs fc3d built with the `fclib` feature.
     Convert(convert::ConvertArgs),
+    /// Generate a pile scene (seeded, deterministic) and write it as a Siconos .dat file.
+    Scene(scene::SceneArgs),
 }
 
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -228,9 +231,11 @@ fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
         .ok_or_else(|| format!("unknown local solver '{s}' (one of {})", ids.join(", ")))
 }
 
-/// One problem to solve: a built-in scene or a file.
+/// One problem to solve: a built-in scene, a generated one (`gen:contacts=N,piles=P,seed=S`)
+/// or a file.
 enum Input {
     Scene(fc3d_core::scenes::Scene),
+    Generated(fc3d_core::scenes::PileSpec),
     File { path: PathBuf, from_directory: bool },
 }
 
@@ -254,6 +259,7 @@ fn main() -> ExitCode {
         Some(Command::Solve(args)) => args,
         Some(Command::Bench(args)) => return bench::run(&args),
         Some(Command::Convert(args)) => return convert::run(&args),
+        Some(Command::Scene(args)) => return scene::run(&args),
         None => cli.solve,
     };
     run_solve(&args)
@@ -394,6 +400,13 @@ enum Loaded {
 fn load_input(input: Input) -> Loaded {
     match input {
         Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
+        Input::Generated(spec) => match fc3d_core::scenes::sphere_piles(&spec) {
+            Ok(p) => Loaded::Problem(spec.name(), p),
+            Err(e) => {
+                eprintln!("fc3d: {e}");
+                Loaded::Failed
+            }
+        },
         Input::File {
             path,
             from_directory,
@@ -469,12 +482,23 @@ fn display_name(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
+/// An input named `gen:contacts=N,piles=P,seed=S` is a generated pile scene
+/// ([`fc3d_core::scenes::sphere_piles`]), not a file.
+const GENERATED_PREFIX: &str = "gen:";
+
 /// Files as given, directories replaced by their `*.dat` files sorted by name; paths that cannot
 /// be used are returned as messages (the others are still solved).
 fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
     let mut inputs = Vec::new();
     let mut errors = Vec::new();
     for path in paths {
+        if let Some(spec) = path.to_str().and_then(|p| p.strip_prefix(GENERATED_PREFIX)) {
+            match fc3d_core::scenes::PileSpec::parse(spec) {
+                Ok(spec) => inputs.push(Input::Generated(spec)),
+                Err(e) => errors.push(e.to_string()),
+            }
+            continue;
+        }
         match std::fs::metadata(path) {
             Err(e) => errors.push(format!("{}: {e}", path.display())),
             Ok(meta) if meta.is_dir() => match dat_files_in(path) {
@@ -632,6 +656,61 @@ fn format_time(t: Duration) -> String {
 mod tests {
     use super::*;
     use clap::CommandFactory;
+
+    #[test]
+    fn generated_inputs_are_scenes_not_files() {
+        let (inputs, errors) = expand_paths(&[
+            PathBuf::from("gen:contacts=10,piles=2"),
+            PathBuf::from("gen:piles=2"),
+        ]);
+        assert_eq!((inputs.len(), errors.len()), (1, 1), "{errors:?}");
+        match load_input(inputs.into_iter().next().unwrap()) {
+            Loaded::Problem(name, p) => {
+                assert_eq!(name, "piles-c10-p2-s1");
+                assert_eq!(p.n_contacts(), 10);
+            }
+            _ => panic!("a generated scene loads"),
+        }
+    }
+
+    #[test]
+    fn scene_writes_the_generated_problem_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("fc3d-scene-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("p.dat");
+        let cli = Cli::try_parse_from(
+            [
+                "fc3d",
+                "scene",
+                "--contacts",
+                "50",
+                "--piles",
+                "2",
+                "--seed",
+                "3",
+                "-o",
+            ]
+            .into_iter()
+            .map(String::from)
+            .chain([out.display().to_string()]),
+        )
+        .unwrap();
+        let Some(Command::Scene(args)) = cli.command else {
+            panic!("expected the scene subcommand");
+        };
+        assert_eq!(scene::run(&args), ExitCode::SUCCESS);
+        let read = read_problem(&out).unwrap();
+        let spec = fc3d_core::scenes::PileSpec {
+            contacts: 50,
+            piles: 2,
+            seed: 3,
+        };
+        let made = fc3d_core::scenes::sphere_piles(&spec).unwrap();
+        assert_eq!(read.w(), made.w());
+        assert_eq!(read.q(), made.q());
+        assert_eq!(read.mu(), made.mu());
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     #[test]
     fn cli_is_well_formed() {

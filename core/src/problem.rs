@@ -99,7 +99,7 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
             });
         }
         if let Delassus::SparseBlock(s) = &w {
-            if let Some(c) = (0..nc).find(|&c| s.diagonal_block(c).is_none()) {
+            if let Some(c) = (0..nc).find(|&c| !s.has_diagonal_block(c)) {
                 return Err(Fc3dError::MissingDiagonalBlock { contact: c });
             }
         }
@@ -138,6 +138,12 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
     }
 
     /// An owned copy that no longer borrows any host array.
+    /// W, q and mu, taken apart without a copy (what a converter that releases the problem as it
+    /// goes needs).
+    pub fn into_parts(self) -> (Delassus<'a>, Cow<'a, [f64]>, Cow<'a, [f64]>) {
+        (self.w, self.q, self.mu)
+    }
+
     pub fn into_owned(self) -> FrictionProblem<'static, D> {
         let w = match self.w {
             Delassus::Dense(d) => Delassus::Dense(d.into_owned()),

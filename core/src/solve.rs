@@ -6,6 +6,7 @@ use crate::config::{scalar_factors, PlanarConfig, Rescaling, RollingConfig, Solv
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::norm;
+use crate::matrix::Delassus;
 use crate::measure::{natural_map_error, rolling_error};
 use crate::problem::{FrictionProblem, FrictionProblem2d, RollingProblem};
 
@@ -102,6 +103,11 @@ fn run(
     if problem.q().chunks_exact(3).all(|qc| qc[0] >= -f64::EPSILON) {
         r.iter_mut().for_each(|v| *v = 0.0);
         return Ok(SolverOutcome::stopped(0, false));
+    }
+    // A dense W that is mostly zero blocks is solved through its sparse-block form (same values).
+    if let Some(view) = problem.w().sparse_block_view() {
+        let view = problem.with_w(Delassus::SparseBlock(view))?;
+        return runner(&view, config, r, u, observer);
     }
     runner(problem, config, r, u, observer)
 }

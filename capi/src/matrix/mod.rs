@@ -334,6 +334,27 @@ fn c_size(n: usize) -> CResult<c_int> {
     })
 }
 
+/// As [`matrix_to_c`], consuming `w`: a sparse-block W is released as it is copied (see
+/// `sbm_into_c`), so that a reader never holds two copies of it.
+pub(crate) fn matrix_into_c(w: Delassus<'_>) -> CResult<*mut NumericsMatrix> {
+    let Delassus::SparseBlock(b) = w else {
+        return matrix_to_c(&w);
+    };
+    let mut m = null_matrix();
+    m.size0 = c_size(b.nrows())?;
+    m.size1 = c_size(b.ncols())?;
+    let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
+    m.storageType = NM_SPARSE_BLOCK;
+    m.matrix1 = sbm::sbm_into_c(b)?;
+    let out = out.into_raw();
+    // SAFETY: out is a fresh allocation for one NumericsMatrix.
+    unsafe {
+        out.write(m);
+        own_destructible(out);
+    }
+    Ok(out)
+}
+
 /// A C-allocated NumericsMatrix holding a copy of `w` in the same storage
 /// (CSR becomes Siconos' CSC origin). Nothing is left allocated on failure.
 pub(crate) fn matrix_to_c(w: &Delassus<'_>) -> CResult<*mut NumericsMatrix> {

@@ -74,20 +74,39 @@ unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
 
 /// The checked structure of a host SBM with uniform `b x b` blocks covering `rows x cols`: block
 /// row pointers, and the block columns and block pointers of each row sorted by column.
-struct UniformSbm {
+struct UniformSbm<'a> {
     nbr: usize,
     nbc: usize,
     row_ptr: Vec<usize>,
     col_idx: Vec<usize>,
-    blocks: Vec<*const c_double>,
+    /// The host's block pointers, in its order.
+    pointers: &'a [*mut c_double],
+    /// Where block `k` (sorted order) is among `pointers`; `None` when the host's rows are
+    /// already sorted (the usual case: no permutation is built).
+    order: Option<Vec<usize>>,
 }
 
-unsafe fn uniform_sbm(
-    s: &SparseBlockStructuredMatrix,
+impl UniformSbm<'_> {
+    fn n_blocks(&self) -> usize {
+        self.col_idx.len()
+    }
+
+    /// The host's pointer to block `k` of the sorted order.
+    fn block(&self, k: usize) -> *const c_double {
+        block_pointer(self.pointers, self.order.as_deref(), k)
+    }
+}
+
+fn block_pointer(pointers: &[*mut c_double], order: Option<&[usize]>, k: usize) -> *const c_double {
+    pointers[order.map_or(k, |o| o[k])] as *const c_double
+}
+
+unsafe fn uniform_sbm<'a>(
+    s: &'a SparseBlockStructuredMatrix,
     rows: usize,
     cols: usize,
     b: usize,
-) -> CResult<UniformSbm> {
+) -> CResult<UniformSbm<'a>> {
     let (nbr, nbc) = (s.blocknumber0 as usize, s.blocknumber1 as usize);
     if b * nbr != rows || b * nbc != cols {
         return Err(size_err(format!(
@@ -123,25 +142,34 @@ unsafe fn uniform_sbm(
     let given_cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
     let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
     // A Siconos SBM need not sort the blocks of a row (SBCM_to_SBM keeps their coordinate
-    // order): the copy sorts them, so that products sum in the same order whatever the input
-    // order.
-    let mut order = try_vec(nb, 0usize, "SBM block order")?;
-    order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
-    for i in 0..nbr {
-        order[row_ptr[i]..row_ptr[i + 1]].sort_by_key(|&k| given_cols[k]);
-    }
-    let mut col_idx = try_vec(nb, 0usize, "SBM block columns")?;
-    let mut blocks = try_vec(nb, std::ptr::null(), "SBM block pointers")?;
-    for ((&k, c), p) in order.iter().zip(col_idx.iter_mut()).zip(blocks.iter_mut()) {
-        *c = given_cols[k];
-        *p = ptrs[k] as *const c_double;
-    }
+    // order): the copy sorts them (stably), so that products sum in the same order whatever the
+    // input order. Sorted rows, the usual case, need no permutation.
+    let sorted = (0..nbr).all(|i| {
+        given_cols[row_ptr[i]..row_ptr[i + 1]]
+            .windows(2)
+            .all(|w| w[0] <= w[1])
+    });
+    let (col_idx, order) = if sorted {
+        (try_copy(given_cols, "SBM block columns")?, None)
+    } else {
+        let mut order = try_vec(nb, 0usize, "SBM block order")?;
+        order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
+        for i in 0..nbr {
+            order[row_ptr[i]..row_ptr[i + 1]].sort_by_key(|&k| given_cols[k]);
+        }
+        let mut col_idx = try_vec(nb, 0usize, "SBM block columns")?;
+        for (&k, c) in order.iter().zip(col_idx.iter_mut()) {
+            *c = given_cols[k];
+        }
+        (col_idx, Some(order))
+    };
     Ok(UniformSbm {
         nbr,
         nbc,
         row_ptr,
         col_idx,
-        blocks,
+        pointers: ptrs,
+        order,
     })
 }
 
@@ -151,14 +179,62 @@ pub(super) unsafe fn block_sparse_from_sbm(
     rows: usize,
     cols: usize,
 ) -> CResult<BlockSparseMatrix> {
-    let u = uniform_sbm(s, rows, cols, 3)?;
-    let mut blocks = try_vec(u.blocks.len(), [0.0; 9], "SBM blocks")?;
-    for (k, (&bp, a)) in u.blocks.iter().zip(blocks.iter_mut()).enumerate() {
-        a.copy_from_slice(c_slice(bp, 9, &format!("SBM block {k}"))?);
+    let UniformSbm {
+        nbr,
+        nbc,
+        row_ptr,
+        col_idx,
+        pointers,
+        order,
+    } = uniform_sbm(s, rows, cols, 3)?;
+    // One pass over the host's blocks: each is read once, checked and stored (messages are
+    // formatted only on failure).
+    let storage = huge_page_buffer(9 * col_idx.len());
+    BlockSparseMatrix::from_block_fn(nbr, nbc, row_ptr, col_idx, storage, |k| {
+        let p = block_pointer(pointers, order.as_deref(), k);
+        // The checks of c_slice, inline (this runs once per block of W); its message on failure.
+        if p.is_null() || !p.is_aligned() || (p as usize).checked_add(72).is_none() {
+            return Err(match c_slice(p, 9, "SBM block") {
+                Err(e) => CError::new(e.code, format!("{} (block {k})", e.message)),
+                Ok(_) => storage_err(format!("SBM block {k} cannot be read")),
+            });
+        }
+        // SAFETY: p is non-NULL, aligned, and 9 doubles from it fit the address space; that they
+        // are readable is the host's promise, as for every array it hands over.
+        Ok(std::ptr::read(p as *const [f64; 9]))
+    })
+}
+
+/// An empty vector with room for `len` values, whose pages the kernel is asked to back with
+/// transparent huge pages (Linux `MADV_HUGEPAGE`) when it is large: the copy of a large W then
+/// takes a few hundred page faults instead of tens of thousands (page faults were most of the
+/// copy's cost at 10^5 contacts). Empty (the caller reserves) when the reservation fails; the
+/// advice is a hint, ignored where unsupported.
+fn huge_page_buffer(len: usize) -> Vec<f64> {
+    const HUGE_PAGE: usize = 2 << 20;
+    let mut v: Vec<f64> = Vec::new();
+    let bytes = len.saturating_mul(8);
+    if bytes < 4 * HUGE_PAGE || v.try_reserve_exact(len).is_err() {
+        return v;
     }
-    Ok(BlockSparseMatrix::new(
-        u.nbr, u.nbc, u.row_ptr, u.col_idx, blocks,
-    )?)
+    #[cfg(target_os = "linux")]
+    {
+        let start = v.as_ptr() as usize;
+        let aligned = start.next_multiple_of(HUGE_PAGE);
+        let end = (start + bytes) / HUGE_PAGE * HUGE_PAGE;
+        if end > aligned {
+            // SAFETY: [aligned, end) lies inside the allocation just reserved; the advice changes
+            // how the kernel backs the pages, not their contents or ownership.
+            unsafe {
+                libc::madvise(
+                    aligned as *mut libc::c_void,
+                    end - aligned,
+                    libc::MADV_HUGEPAGE,
+                );
+            }
+        }
+    }
+    v
 }
 
 /// Validated general sparse copy of a Siconos SBM with uniform `b x b` blocks (the 2x2 blocks of
@@ -177,14 +253,14 @@ pub(super) unsafe fn csr_from_uniform_sbm(
         )));
     }
     let mut triplets = try_vec(
-        u.blocks.len().saturating_mul(b * b),
+        u.n_blocks().saturating_mul(b * b),
         (0usize, 0usize, 0.0),
         "SBM entries",
     )?;
     let mut k = 0;
     for row in 0..u.nbr {
         let (start, end) = (u.row_ptr[row], u.row_ptr[row + 1]);
-        if start > end || end > u.blocks.len() {
+        if start > end || end > u.n_blocks() {
             return Err(storage_err(format!(
                 "SBM index1_data must not decrease: block row {row} spans {start}..{end}"
             )));
@@ -197,7 +273,8 @@ pub(super) unsafe fn csr_from_uniform_sbm(
                     u.nbc
                 )));
             }
-            let values = c_slice(u.blocks[slot], b * b, &format!("SBM block {slot}"))?;
+            let values = c_slice(u.block(slot), b * b, "SBM block")
+                .map_err(|e| CError::new(e.code, format!("{} (block {slot})", e.message)))?;
             // Column-major blocks.
             for j in 0..b {
                 for i in 0..b {
@@ -282,7 +359,48 @@ pub(super) unsafe fn sbm_get(s: &SparseBlockStructuredMatrix, i: usize, j: usize
 /// A C-allocated SBM copy of a core block-sparse matrix (blocks malloc'd one by one, as
 /// Siconos); nothing is left allocated on failure.
 pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructuredMatrix> {
-    let (nbr, nbc, nb) = (b.n_block_rows(), b.n_block_cols(), b.n_blocks());
+    let (nbr, nbc) = (b.n_block_rows(), b.n_block_cols());
+    sbm_to_c_with(nbr, nbc, b.row_ptr(), b.col_idx(), |slots| {
+        for (slot, v) in slots.iter_mut().zip(b.blocks()) {
+            *slot = CBuf::copy(v, "SBM block")?.into_raw();
+        }
+        Ok(())
+    })
+}
+
+/// Blocks copied to C per release step of [`sbm_into_c`] (4.5 MiB of W).
+const RELEASE_CHUNK: usize = 1 << 16;
+
+/// As [`sbm_to_c`], consuming `b`: its blocks are copied from the last to the first and its
+/// storage shrunk behind the copy every [`RELEASE_CHUNK`] blocks, so that the two copies of W
+/// never coexist (a reader's peak memory stays near one W, not two).
+pub(crate) fn sbm_into_c(b: BlockSparseMatrix) -> CResult<*mut SparseBlockStructuredMatrix> {
+    let (nbr, nbc, row_ptr, col_idx, mut values) = b.into_parts();
+    sbm_to_c_with(nbr, nbc, &row_ptr, &col_idx, |slots| {
+        let mut end = slots.len();
+        while end > 0 {
+            let start = end.saturating_sub(RELEASE_CHUNK);
+            for (k, slot) in slots.iter_mut().enumerate().take(end).skip(start) {
+                *slot = CBuf::copy(&values[9 * k..9 * k + 9], "SBM block")?.into_raw();
+            }
+            values.truncate(9 * start);
+            values.shrink_to_fit();
+            end = start;
+        }
+        Ok(())
+    })
+}
+
+/// The C SBM of the given structure whose block pointers `fill_blocks` sets (the slots start
+/// NULL; on failure every non-NULL one is freed with the rest).
+fn sbm_to_c_with(
+    nbr: usize,
+    nbc: usize,
+    row_ptr: &[usize],
+    col_idx: &[usize],
+    fill_blocks: impl FnOnce(&mut [*mut c_double]) -> CResult<()>,
+) -> CResult<*mut SparseBlockStructuredMatrix> {
+    let nb = col_idx.len();
     let count = |n: usize, what: &str| -> CResult<c_uint> {
         c_uint::try_from(n.saturating_mul(3))
             .map(|_| n as c_uint)
@@ -297,13 +415,12 @@ pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructu
     let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "sparse-block matrix")?;
     let mut s = empty_sbm();
     let filled = (|| -> CResult<()> {
-        s.block = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?.into_raw();
-        for (k, v) in b.blocks().iter().enumerate() {
-            // SAFETY: s.block has nb slots; nbblocks counts the blocks allocated so far.
-            unsafe { *s.block.add(k) = CBuf::copy(v, "SBM block")?.into_raw() };
-            s.nbblocks = k as c_uint + 1;
-        }
+        let mut slots = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?;
+        let filled = fill_blocks(slots.as_mut_slice());
+        s.block = slots.into_raw();
+        // Every slot is a block or NULL: clearing nb of them frees exactly what was made.
         s.nbblocks = nb_u;
+        filled?;
         s.blocknumber0 = nbr_u;
         s.blocknumber1 = nbc_u;
         let mut bs0 = CBuf::<c_uint>::zeroed(nbr, "SBM blocksize0")?;
@@ -316,14 +433,14 @@ pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructu
             *v = 3 * (k as c_uint + 1);
         }
         s.blocksize1 = bs1.into_raw();
-        s.index1_data = CBuf::copy(b.row_ptr(), "SBM index1_data")?.into_raw();
+        s.index1_data = CBuf::copy(row_ptr, "SBM index1_data")?.into_raw();
         s.filled1 = nbr + 1;
-        s.index2_data = CBuf::copy(b.col_idx(), "SBM index2_data")?.into_raw();
+        s.index2_data = CBuf::copy(col_idx, "SBM index2_data")?.into_raw();
         s.filled2 = nb;
         let mut diag = CBuf::<c_uint>::zeroed(nbr, "SBM diagonal_blocks")?;
         for (i, d) in diag.as_mut_slice().iter_mut().enumerate() {
-            *d = (b.row_ptr()[i]..b.row_ptr()[i + 1])
-                .find(|&k| b.col_idx()[k] == i)
+            *d = (row_ptr[i]..row_ptr[i + 1])
+                .find(|&k| col_idx[k] == i)
                 .map_or(c_uint::MAX, |k| k as c_uint);
         }
         s.diagonal_blocks = diag.into_raw();
@@ -337,7 +454,8 @@ pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructu
             Ok(out)
         }
         Err(e) => {
-            // SAFETY: s holds only what was allocated above (nbblocks blocks so far).
+            // SAFETY: s holds only what was allocated above (its nbblocks slots are blocks or
+            // NULL).
             unsafe { sbm_clear_impl(&mut s, true) };
             Err(e)
         }

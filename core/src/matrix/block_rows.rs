@@ -1,18 +1,28 @@
-use super::Delassus;
+use std::sync::Arc;
+
+use super::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::error::Fc3dError;
 use crate::math::linalg::{block_vec_add, contact_of, Block};
 
 /// Block-row view of a square W with `D x D` blocks (`D` the contact dimension, 3 by default),
-/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block and its
-/// non-zero off-diagonal blocks (row-major). All-zero blocks are not stored, whatever the storage
-/// they came from.
+/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block (row-major,
+/// owned) and the coupling blocks of its row.
+///
+/// On a sparse-block W the coupling blocks are W's own arrays, shared (reference-counted), not
+/// copied: preparing the view reads the indices and the diagonal blocks only, so it costs a small
+/// fraction of one sweep and no second copy of W. Rows may then hold their diagonal block among
+/// the others: the sweeps skip it (it is [`BlockRows::diagonal`]). From a dense or CSR W, the
+/// view is built in one pass, row by row, keeping only the blocks with a non-zero entry, so a
+/// scene that couples few contacts costs what it couples.
 #[derive(Debug, Clone)]
 pub struct BlockRows<const D: usize = 3> {
     n_contacts: usize,
     diagonal: Vec<Block<D>>,
-    row_ptr: Vec<usize>,
-    cols: Vec<usize>,
-    blocks: Vec<Block<D>>,
+    n_off_diagonal: usize,
+    row_ptr: Arc<Vec<usize>>,
+    cols: Arc<Vec<usize>>,
+    /// `D * D` values per block, column-major, in row order.
+    values: Arc<Vec<f64>>,
 }
 
 impl<const D: usize> BlockRows<D> {
@@ -25,176 +35,207 @@ impl<const D: usize> BlockRows<D> {
                 w.ncols()
             )));
         }
-        let nc = n / D;
-        let zero: Block<D> = [[0.0; D]; D];
-        let mut diagonal = vec![zero; nc];
-        // (block row, block col, block) collected row by row; duplicates merged below.
-        let mut entries: Vec<(usize, usize, Block<D>)> = Vec::new();
         match w {
-            Delassus::Dense(d) => {
-                for bi in 0..nc {
-                    for bj in 0..nc {
-                        let mut b = zero;
-                        let mut nonzero = false;
-                        for (i, row) in b.iter_mut().enumerate() {
-                            for (j, v) in row.iter_mut().enumerate() {
-                                *v = d.get(D * bi + i, D * bj + j);
-                                nonzero |= *v != 0.0;
-                            }
-                        }
-                        if bi == bj {
-                            diagonal[bi] = b;
-                        } else if nonzero {
-                            entries.push((bi, bj, b));
-                        }
-                    }
-                }
-            }
-            Delassus::SparseBlock(s) => {
-                if D != 3 {
-                    return Err(Fc3dError::InvalidStructure(format!(
-                        "a 3x3 sparse-block W cannot be cut into {D}x{D} contact blocks"
-                    )));
-                }
-                let mut have_diag = vec![false; nc];
-                for (bi, bj, cm) in s.iter_blocks() {
-                    // Column-major 3x3 to row-major D x D (D = 3 here).
-                    let mut b = zero;
-                    for (i, row) in b.iter_mut().enumerate() {
+            Delassus::SparseBlock(s) => Self::from_block_sparse(s),
+            Delassus::Dense(d) => Ok(Self::from_dense(d)),
+            Delassus::Sparse(s) => Ok(Self::from_csr(s)),
+        }
+    }
+
+    /// The view of a sparse-block W, sharing its arrays (no copy of the blocks): one pass over
+    /// the block indices and the diagonal blocks. Duplicate blocks at one place are summed, as
+    /// every other reader of W sums them.
+    pub fn from_block_sparse(s: &BlockSparseMatrix) -> Result<Self, Fc3dError> {
+        if D != 3 {
+            return Err(Fc3dError::InvalidStructure(format!(
+                "a 3x3 sparse-block W cannot be cut into {D}x{D} contact blocks"
+            )));
+        }
+        let nc = s.n_block_rows();
+        let (row_ptr, cols, values) = s.shared_parts();
+        let mut diagonal = vec![[[0.0; D]; D]; nc];
+        let mut n_off_diagonal = 0;
+        for (c, diag) in diagonal.iter_mut().enumerate() {
+            let mut found = false;
+            for k in row_ptr[c]..row_ptr[c + 1] {
+                if cols[k] == c {
+                    found = true;
+                    let b = &values[D * D * k..D * D * (k + 1)];
+                    for (i, row) in diag.iter_mut().enumerate() {
                         for (j, v) in row.iter_mut().enumerate() {
-                            *v = cm[i + 3 * j];
+                            *v += b[i + D * j];
                         }
                     }
-                    if bi == bj {
-                        add_into(&mut diagonal[bi], &b);
-                        have_diag[bi] = true;
-                    } else if b.iter().flatten().any(|&v| v != 0.0) {
-                        entries.push((bi, bj, b));
-                    }
-                }
-                if let Some(c) = have_diag.iter().position(|&h| !h) {
-                    return Err(Fc3dError::MissingDiagonalBlock { contact: c });
+                } else {
+                    n_off_diagonal += 1;
                 }
             }
-            Delassus::Sparse(s) => {
-                let mut map = std::collections::BTreeMap::<(usize, usize), Block<D>>::new();
-                s.for_each_entry(|i, j, v| {
-                    let b = map.entry((i / D, j / D)).or_insert(zero);
-                    b[i % D][j % D] += v;
-                });
-                for ((bi, bj), b) in map {
-                    if bi == bj {
-                        diagonal[bi] = b;
-                    } else if b.iter().flatten().any(|&v| v != 0.0) {
-                        entries.push((bi, bj, b));
-                    }
-                }
+            if !found {
+                return Err(Fc3dError::MissingDiagonalBlock { contact: c });
             }
-        }
-        entries.sort_by_key(|e| (e.0, e.1));
-        let mut row_ptr = vec![0usize; nc + 1];
-        let mut cols = Vec::with_capacity(entries.len());
-        let mut blocks: Vec<Block<D>> = Vec::with_capacity(entries.len());
-        let mut last = None;
-        for (bi, bj, b) in entries {
-            if last == Some((bi, bj)) {
-                add_into(blocks.last_mut().expect("previous block"), &b);
-            } else {
-                cols.push(bj);
-                blocks.push(b);
-                row_ptr[bi + 1] += 1;
-                last = Some((bi, bj));
-            }
-        }
-        for i in 0..nc {
-            row_ptr[i + 1] += row_ptr[i];
         }
         Ok(BlockRows {
             n_contacts: nc,
             diagonal,
+            n_off_diagonal,
             row_ptr,
             cols,
-            blocks,
+            values,
         })
     }
 
-    /// Overwrites the stored blocks with those of `w` when `w` has exactly the block pattern
-    /// these rows were built with (same contacts, same non-zero off-diagonal blocks in the same
-    /// order); allocates nothing. Returns `false` otherwise, and then the rows are left in an
-    /// unspecified state: the caller rebuilds them with [`BlockRows::from_delassus`]. A time
-    /// stepper whose contact set did not change between steps keeps its prepared rows this way.
+    /// Takes the blocks of `w` when `w` has exactly the block pattern these rows were built
+    /// with (same contacts, same coupling blocks in the same order), and returns `true`; returns
+    /// `false`, leaving the rows unspecified, otherwise (the caller rebuilds them with
+    /// [`BlockRows::from_delassus`]). A time stepper whose contact set did not change between
+    /// steps keeps its prepared rows this way. On a sparse-block W nothing is allocated: the
+    /// diagonal blocks are refilled in place and W's arrays shared; a dense or CSR W is cut into
+    /// rows again (one pass) and its pattern compared.
     pub fn refill_from(&mut self, w: &Delassus<'_>) -> bool {
         let nc = self.n_contacts;
         if w.nrows() != D * nc || w.ncols() != D * nc {
             return false;
         }
-        let zero: Block<D> = [[0.0; D]; D];
-        // Next slot to fill in each block row.
-        let mut cursor_ok = true;
         match w {
-            Delassus::Dense(d) => {
-                for bi in 0..nc {
-                    let mut k = self.row_ptr[bi];
-                    for bj in 0..nc {
-                        let mut b = zero;
-                        let mut nonzero = false;
-                        for (i, row) in b.iter_mut().enumerate() {
-                            for (j, v) in row.iter_mut().enumerate() {
-                                *v = d.get(D * bi + i, D * bj + j);
-                                nonzero |= *v != 0.0;
-                            }
-                        }
-                        if bi == bj {
-                            self.diagonal[bi] = b;
-                        } else if nonzero {
-                            if k >= self.row_ptr[bi + 1] || self.cols[k] != bj {
-                                return false;
-                            }
-                            self.blocks[k] = b;
-                            k += 1;
-                        }
-                    }
-                    cursor_ok &= k == self.row_ptr[bi + 1];
-                }
-            }
             Delassus::SparseBlock(s) => {
-                if D != 3 {
+                if D != 3
+                    || s.row_ptr() != self.row_ptr.as_slice()
+                    || s.col_idx() != self.cols.as_slice()
+                {
                     return false;
                 }
-                let (row_ptr, col_idx) = (s.row_ptr(), s.col_idx());
-                for bi in 0..nc {
-                    let mut k = self.row_ptr[bi];
-                    let mut have_diag = false;
-                    let span = row_ptr[bi]..row_ptr[bi + 1];
-                    for (&bj, cm) in col_idx[span.clone()].iter().zip(&s.blocks()[span]) {
-                        let mut b = zero;
-                        for (i, row) in b.iter_mut().enumerate() {
-                            for (j, v) in row.iter_mut().enumerate() {
-                                *v = cm[i + 3 * j];
+                let (row_ptr, cols, values) = s.shared_parts();
+                for (c, diag) in self.diagonal.iter_mut().enumerate() {
+                    *diag = [[0.0; D]; D];
+                    for k in row_ptr[c]..row_ptr[c + 1] {
+                        if cols[k] == c {
+                            let b = &values[D * D * k..D * D * (k + 1)];
+                            for (i, row) in diag.iter_mut().enumerate() {
+                                for (j, v) in row.iter_mut().enumerate() {
+                                    *v += b[i + D * j];
+                                }
                             }
-                        }
-                        if bi == bj {
-                            // A repeated diagonal block is summed by `from_delassus`: leave
-                            // that rare layout to it.
-                            if have_diag {
-                                return false;
-                            }
-                            self.diagonal[bi] = b;
-                            have_diag = true;
-                        } else if b.iter().flatten().any(|&v| v != 0.0) {
-                            if k >= self.row_ptr[bi + 1] || self.cols[k] != bj {
-                                return false;
-                            }
-                            self.blocks[k] = b;
-                            k += 1;
                         }
                     }
-                    cursor_ok &= have_diag && k == self.row_ptr[bi + 1];
+                }
+                self.values = values;
+                true
+            }
+            Delassus::Dense(_) | Delassus::Sparse(_) => match Self::from_delassus(w) {
+                Ok(fresh) if fresh.row_ptr == self.row_ptr && fresh.cols == self.cols => {
+                    *self = fresh;
+                    true
+                }
+                _ => false,
+            },
+        }
+    }
+
+    /// Appends the coupling blocks of block row `bi` gathered in `scratch` (`D * D` column-major
+    /// values per column of `scratch_cols`), dropping all-zero ones, and takes its diagonal out.
+    fn push_row(
+        &mut self,
+        bi: usize,
+        scratch_cols: &[usize],
+        scratch: &[f64],
+        row_ptr: &mut Vec<usize>,
+        cols: &mut Vec<usize>,
+        values: &mut Vec<f64>,
+    ) {
+        for (slot, &bj) in scratch_cols.iter().enumerate() {
+            let b = &scratch[D * D * slot..D * D * (slot + 1)];
+            if bj == bi {
+                for (i, row) in self.diagonal[bi].iter_mut().enumerate() {
+                    for (j, v) in row.iter_mut().enumerate() {
+                        *v = b[i + D * j];
+                    }
+                }
+            } else if b.iter().any(|&v| v != 0.0) {
+                cols.push(bj);
+                values.extend_from_slice(b);
+            }
+        }
+        row_ptr.push(cols.len());
+    }
+
+    fn owned(nc: usize) -> Self {
+        BlockRows {
+            n_contacts: nc,
+            diagonal: vec![[[0.0; D]; D]; nc],
+            n_off_diagonal: 0,
+            row_ptr: Arc::new(Vec::new()),
+            cols: Arc::new(Vec::new()),
+            values: Arc::new(Vec::new()),
+        }
+    }
+
+    fn finish(mut self, row_ptr: Vec<usize>, cols: Vec<usize>, values: Vec<f64>) -> Self {
+        self.n_off_diagonal = cols.len();
+        self.row_ptr = Arc::new(row_ptr);
+        self.cols = Arc::new(cols);
+        self.values = Arc::new(values);
+        self
+    }
+
+    fn from_dense(d: &DenseMatrix<'_>) -> Self {
+        let nc = d.nrows() / D;
+        let mut out = Self::owned(nc);
+        let (mut row_ptr, mut cols, mut values) = (vec![0usize], Vec::new(), Vec::new());
+        let all_cols: Vec<usize> = (0..nc).collect();
+        let mut scratch = vec![0.0; D * D * nc];
+        for bi in 0..nc {
+            for (bj, b) in scratch.chunks_exact_mut(D * D).enumerate() {
+                for j in 0..D {
+                    for i in 0..D {
+                        b[i + D * j] = d.get(D * bi + i, D * bj + j);
+                    }
                 }
             }
-            Delassus::Sparse(_) => return false,
+            out.push_row(
+                bi,
+                &all_cols,
+                &scratch,
+                &mut row_ptr,
+                &mut cols,
+                &mut values,
+            );
         }
-        cursor_ok
+        out.finish(row_ptr, cols, values)
+    }
+
+    fn from_csr(s: &CsrMatrix) -> Self {
+        let nc = s.nrows() / D;
+        let mut out = Self::owned(nc);
+        let (mut row_ptr, mut cols, mut values) = (vec![0usize], Vec::new(), Vec::new());
+        let (rp, ci, vals) = (s.row_ptr(), s.col_idx(), s.values());
+        let mut scratch_cols: Vec<usize> = Vec::new();
+        let mut scratch: Vec<f64> = Vec::new();
+        for bi in 0..nc {
+            let entries = rp[D * bi]..rp[D * bi + D];
+            scratch_cols.clear();
+            scratch_cols.extend(ci[entries.clone()].iter().map(|&j| j / D));
+            scratch_cols.push(bi);
+            scratch_cols.sort_unstable();
+            scratch_cols.dedup();
+            scratch.clear();
+            scratch.resize(D * D * scratch_cols.len(), 0.0);
+            for i in 0..D {
+                for k in rp[D * bi + i]..rp[D * bi + i + 1] {
+                    let (bj, j) = (ci[k] / D, ci[k] % D);
+                    let slot = scratch_cols.binary_search(&bj).expect("gathered above");
+                    scratch[D * D * slot + i + D * j] += vals[k];
+                }
+            }
+            out.push_row(
+                bi,
+                &scratch_cols,
+                &scratch,
+                &mut row_ptr,
+                &mut cols,
+                &mut values,
+            );
+        }
+        out.finish(row_ptr, cols, values)
     }
 
     pub fn n_contacts(&self) -> usize {
@@ -203,7 +244,7 @@ impl<const D: usize> BlockRows<D> {
 
     /// Number of stored off-diagonal blocks.
     pub fn n_off_diagonal(&self) -> usize {
-        self.blocks.len()
+        self.n_off_diagonal
     }
 
     #[inline]
@@ -227,10 +268,14 @@ impl<const D: usize> BlockRows<D> {
         let mut acc = q[D * c];
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             let b = self.cols[k];
-            let row = &self.blocks[k][0];
-            let mut s = row[0] * r[D * b];
+            if b == c {
+                continue;
+            }
+            // Row 0 of the column-major block.
+            let m = &self.values[D * D * k..D * D * (k + 1)];
+            let mut s = m[0] * r[D * b];
             for j in 1..D {
-                s += row[j] * r[D * b + j];
+                s += m[D * j] * r[D * b + j];
             }
             acc += s;
         }
@@ -242,17 +287,94 @@ impl<const D: usize> BlockRows<D> {
     pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> [f64; D] {
         let mut acc = contact_of(q, c);
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let rb = contact_of(r, self.cols[k]);
-            acc = block_vec_add(&self.blocks[k], &rb, &acc);
+            let b = self.cols[k];
+            if b == c {
+                continue;
+            }
+            let rb: [f64; D] = contact_of(r, b);
+            let m = &self.values[D * D * k..D * D * (k + 1)];
+            // Each component summed in the order of `block_vec_add` (same bits as a row-major
+            // block).
+            for (i, a) in acc.iter_mut().enumerate() {
+                for (j, x) in rb.iter().enumerate() {
+                    *a += m[i + D * j] * x;
+                }
+            }
         }
         acc
     }
 }
 
-fn add_into<const D: usize>(a: &mut Block<D>, b: &Block<D>) {
-    for (ra, rb) in a.iter_mut().zip(b) {
-        for (x, y) in ra.iter_mut().zip(rb) {
-            *x += y;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 3 contacts, a chain: 0-1 coupled, 1-2 coupled, 0-2 not; block (0, 1) stored twice.
+    fn chain() -> BlockSparseMatrix {
+        let b = |s: f64| -> [f64; 9] { std::array::from_fn(|k| s + k as f64) };
+        BlockSparseMatrix::new(
+            3,
+            3,
+            vec![0, 3, 6, 8],
+            vec![0, 1, 1, 0, 1, 2, 1, 2],
+            vec![
+                b(10.0),
+                b(1.0),
+                b(0.5),
+                b(2.0),
+                b(20.0),
+                b(3.0),
+                b(4.0),
+                b(30.0),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn sparse_block_rows_share_w_and_agree_with_dense_and_csr() {
+        let s = chain();
+        let rows = BlockRows::<3>::from_block_sparse(&s).unwrap();
+        // The coupling blocks are W's own arrays, not a copy.
+        assert!(Arc::ptr_eq(&rows.values, &s.shared_parts().2));
+        assert_eq!(rows.n_off_diagonal(), 5);
+        let sparse = Delassus::SparseBlock(s);
+        let dense = Delassus::Dense(sparse.to_dense());
+        let csr = Delassus::Sparse(sparse.to_csr());
+        let q: Vec<f64> = (0..9).map(|k| 0.1 * k as f64 - 0.3).collect();
+        let r: Vec<f64> = (0..9).map(|k| 1.0 + 0.25 * k as f64).collect();
+        for w in [&dense, &csr] {
+            let other = BlockRows::<3>::from_delassus(w).unwrap();
+            assert_eq!(other.n_off_diagonal(), 4, "{}", w.storage_name());
+            for c in 0..3 {
+                assert_eq!(rows.diagonal(c), other.diagonal(c));
+                let (a, b) = (rows.local_q(c, &q, &r), other.local_q(c, &q, &r));
+                for i in 0..3 {
+                    approx::assert_relative_eq!(a[i], b[i], max_relative = 1e-15);
+                }
+                approx::assert_relative_eq!(
+                    rows.local_q_normal(c, &q, &r),
+                    other.local_q_normal(c, &q, &r),
+                    max_relative = 1e-15
+                );
+            }
         }
+        // u = W r + q through the view equals the product of W.
+        let mut u = vec![0.0; 9];
+        rows.velocity(&q, &r, &mut u);
+        let mut expected = vec![0.0; 9];
+        sparse.velocity(&r, &q, &mut expected);
+        for i in 0..9 {
+            approx::assert_relative_eq!(u[i], expected[i], max_relative = 1e-15);
+        }
+    }
+
+    #[test]
+    fn a_missing_diagonal_block_is_refused() {
+        let s = BlockSparseMatrix::new(2, 2, vec![0, 1, 2], vec![0, 0], vec![[1.0; 9]; 2]).unwrap();
+        assert!(matches!(
+            BlockRows::<3>::from_block_sparse(&s),
+            Err(Fc3dError::MissingDiagonalBlock { contact: 1 })
+        ));
     }
 }

@@ -1,16 +1,21 @@
+use std::sync::Arc;
+
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::{mat3_from_col_major, Mat3};
 
 /// Square 3x3-block sparse matrix in block-CSR order, blocks stored column-major as in Siconos'
 /// `SparseBlockStructuredMatrix` (restricted to the uniform 3x3 blocks of fc3d).
+///
+/// The arrays are reference-counted: the [`super::BlockRows`] view of a sweep shares them instead
+/// of copying W (a clone is cheap too; [`BlockSparseMatrix::scaled`] copies).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockSparseMatrix {
     n_block_rows: usize,
     n_block_cols: usize,
-    row_ptr: Vec<usize>,
-    col_idx: Vec<usize>,
-    /// 9 values per block, column-major.
-    blocks: Vec<[f64; 9]>,
+    row_ptr: Arc<Vec<usize>>,
+    col_idx: Arc<Vec<usize>>,
+    /// 9 values per block, column-major, blocks one after the other in storage order.
+    values: Arc<Vec<f64>>,
 }
 
 impl BlockSparseMatrix {
@@ -23,53 +28,93 @@ impl BlockSparseMatrix {
         col_idx: Vec<usize>,
         blocks: Vec<[f64; 9]>,
     ) -> Result<Self, Fc3dError> {
-        if row_ptr.len() != n_block_rows + 1 {
-            return Err(Fc3dError::dims(
-                "block row pointers",
-                n_block_rows + 1,
-                row_ptr.len(),
-            ));
-        }
-        if row_ptr[0] != 0 || row_ptr.windows(2).any(|w| w[0] > w[1]) {
-            return Err(Fc3dError::InvalidStructure(
-                "block row pointers must start at 0 and be non-decreasing".into(),
-            ));
-        }
-        let nb = row_ptr[n_block_rows];
-        if col_idx.len() != nb {
-            return Err(Fc3dError::dims("block column indices", nb, col_idx.len()));
-        }
+        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let nb = col_idx.len();
         if blocks.len() != nb {
             return Err(Fc3dError::dims("blocks", nb, blocks.len()));
         }
-        if let Some(k) = col_idx.iter().position(|&c| c >= n_block_cols) {
-            return Err(Fc3dError::InvalidStructure(format!(
-                "block {k} has column {} >= {n_block_cols}",
-                col_idx[k]
-            )));
-        }
         for (k, b) in blocks.iter().enumerate() {
-            check_finite("W", b).map_err(|_| Fc3dError::NonFinite {
-                what: format!("W (block {k})"),
-                index: b.iter().position(|v| !v.is_finite()).unwrap_or(0),
-            })?;
+            check_block(k, b)?;
         }
         Ok(BlockSparseMatrix {
             n_block_rows,
             n_block_cols,
-            row_ptr,
-            col_idx,
-            blocks,
+            row_ptr: Arc::new(row_ptr),
+            col_idx: Arc::new(col_idx),
+            // Same memory, seen as 9 n_blocks values: no copy.
+            values: Arc::new(blocks.into_flattened()),
+        })
+    }
+
+    /// The matrix whose block `k` (storage order, column-major) is `block(k)`, built in one
+    /// streaming pass: each block is checked finite as it is copied into storage allocated once,
+    /// fallibly (no zero-filled buffer first, no second pass). What a host's sparse-block W is
+    /// converted with. `storage` is where the values go (cleared first): a caller may hand a
+    /// buffer it prepared (reserved, or advised to the kernel), else `Vec::new()`.
+    pub fn from_block_fn<E: From<Fc3dError>>(
+        n_block_rows: usize,
+        n_block_cols: usize,
+        row_ptr: Vec<usize>,
+        col_idx: Vec<usize>,
+        storage: Vec<f64>,
+        mut block: impl FnMut(usize) -> Result<[f64; 9], E>,
+    ) -> Result<Self, E> {
+        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let nb = col_idx.len();
+        let mut values = storage;
+        values.clear();
+        values
+            .try_reserve_exact(9 * nb)
+            .map_err(|_| Fc3dError::OutOfMemory {
+                what: "W blocks".into(),
+                bytes: nb.saturating_mul(72),
+            })?;
+        for k in 0..nb {
+            let b = block(k)?;
+            check_block(k, &b)?;
+            values.extend_from_slice(&b);
+        }
+        Ok(BlockSparseMatrix {
+            n_block_rows,
+            n_block_cols,
+            row_ptr: Arc::new(row_ptr),
+            col_idx: Arc::new(col_idx),
+            values: Arc::new(values),
         })
     }
 
     /// `alpha * self`, same block structure.
     pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix {
         let mut m = self.clone();
-        for b in &mut m.blocks {
-            b.iter_mut().for_each(|v| *v *= alpha);
-        }
+        Arc::make_mut(&mut m.values)
+            .iter_mut()
+            .for_each(|v| *v *= alpha);
         m
+    }
+
+    /// `(n_block_rows, n_block_cols, row_ptr, col_idx, values)` (9 column-major values per
+    /// block), without a copy unless the arrays are shared with a view still alive.
+    #[allow(clippy::type_complexity)]
+    pub fn into_parts(self) -> (usize, usize, Vec<usize>, Vec<usize>, Vec<f64>) {
+        let take = |a: Arc<Vec<usize>>| Arc::try_unwrap(a).unwrap_or_else(|a| (*a).clone());
+        let values = Arc::try_unwrap(self.values).unwrap_or_else(|a| (*a).clone());
+        (
+            self.n_block_rows,
+            self.n_block_cols,
+            take(self.row_ptr),
+            take(self.col_idx),
+            values,
+        )
+    }
+
+    /// The shared arrays `(row_ptr, col_idx, values)` (9 column-major values per block), for
+    /// views that must not copy W.
+    pub(crate) fn shared_parts(&self) -> (Arc<Vec<usize>>, Arc<Vec<usize>>, Arc<Vec<f64>>) {
+        (
+            Arc::clone(&self.row_ptr),
+            Arc::clone(&self.col_idx),
+            Arc::clone(&self.values),
+        )
     }
 
     pub fn nrows(&self) -> usize {
@@ -85,7 +130,7 @@ impl BlockSparseMatrix {
         self.n_block_cols
     }
     pub fn n_blocks(&self) -> usize {
-        self.blocks.len()
+        self.col_idx.len()
     }
     pub fn row_ptr(&self) -> &[usize] {
         &self.row_ptr
@@ -95,14 +140,14 @@ impl BlockSparseMatrix {
     }
     /// Column-major 3x3 blocks in storage order.
     pub fn blocks(&self) -> &[[f64; 9]] {
-        &self.blocks
+        self.values.as_chunks::<9>().0
     }
 
     /// Iterates `(block_row, block_col, column-major block)`.
     pub fn iter_blocks(&self) -> impl Iterator<Item = (usize, usize, &[f64; 9])> + '_ {
         (0..self.n_block_rows).flat_map(move |i| {
             (self.row_ptr[i]..self.row_ptr[i + 1])
-                .map(move |k| (i, self.col_idx[k], &self.blocks[k]))
+                .map(move |k| (i, self.col_idx[k], &self.blocks()[k]))
         })
     }
 
@@ -110,7 +155,7 @@ impl BlockSparseMatrix {
         let (bi, bj) = (i / 3, j / 3);
         (self.row_ptr[bi]..self.row_ptr[bi + 1])
             .filter(|&k| self.col_idx[k] == bj)
-            .map(|k| self.blocks[k][(i % 3) + 3 * (j % 3)])
+            .map(|k| self.values[9 * k + (i % 3) + 3 * (j % 3)])
             .sum()
     }
 
@@ -119,7 +164,7 @@ impl BlockSparseMatrix {
         let mut found = None::<Mat3>;
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             if self.col_idx[k] == c {
-                let b = mat3_from_col_major(&self.blocks[k]);
+                let b = mat3_from_col_major(&self.blocks()[k]);
                 found = Some(match found {
                     None => b,
                     Some(a) => {
@@ -138,15 +183,28 @@ impl BlockSparseMatrix {
     }
 
     pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
-        for (bi, bj, b) in self.iter_blocks() {
-            let xs = &x[3 * bj..3 * bj + 3];
-            let ys = &mut y[3 * bi..3 * bi + 3];
-            for (c, &xc) in xs.iter().enumerate() {
-                ys[0] += b[3 * c] * xc;
-                ys[1] += b[3 * c + 1] * xc;
-                ys[2] += b[3 * c + 2] * xc;
+        let blocks = self.blocks();
+        for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(self.n_block_rows) {
+            // The row's sums kept in registers; each entry gets its terms in the same order as
+            // block by block into y.
+            let mut acc = [ys[0], ys[1], ys[2]];
+            for k in self.row_ptr[bi]..self.row_ptr[bi + 1] {
+                let b = &blocks[k];
+                let bj = self.col_idx[k];
+                let xs = &x[3 * bj..3 * bj + 3];
+                for (c, &xc) in xs.iter().enumerate() {
+                    acc[0] += b[3 * c] * xc;
+                    acc[1] += b[3 * c + 1] * xc;
+                    acc[2] += b[3 * c + 2] * xc;
+                }
             }
+            ys.copy_from_slice(&acc);
         }
+    }
+
+    /// Whether block row `c` stores its diagonal block (indices only: no value is read).
+    pub fn has_diagonal_block(&self, c: usize) -> bool {
+        self.col_idx[self.row_ptr[c]..self.row_ptr[c + 1]].contains(&c)
     }
 
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
@@ -158,4 +216,47 @@ impl BlockSparseMatrix {
             }
         }
     }
+}
+
+fn check_structure(
+    n_block_rows: usize,
+    n_block_cols: usize,
+    row_ptr: &[usize],
+    col_idx: &[usize],
+) -> Result<(), Fc3dError> {
+    if row_ptr.len() != n_block_rows + 1 {
+        return Err(Fc3dError::dims(
+            "block row pointers",
+            n_block_rows + 1,
+            row_ptr.len(),
+        ));
+    }
+    if row_ptr[0] != 0 || row_ptr.windows(2).any(|w| w[0] > w[1]) {
+        return Err(Fc3dError::InvalidStructure(
+            "block row pointers must start at 0 and be non-decreasing".into(),
+        ));
+    }
+    let nb = row_ptr[n_block_rows];
+    if col_idx.len() != nb {
+        return Err(Fc3dError::dims("block column indices", nb, col_idx.len()));
+    }
+    if let Some(k) = col_idx.iter().position(|&c| c >= n_block_cols) {
+        return Err(Fc3dError::InvalidStructure(format!(
+            "block {k} has column {} >= {n_block_cols}",
+            col_idx[k]
+        )));
+    }
+    Ok(())
+}
+
+#[inline]
+fn check_block(k: usize, b: &[f64; 9]) -> Result<(), Fc3dError> {
+    // v - v is 0 for a finite v and NaN otherwise: one branch per block, not one per value.
+    if b.iter().fold(0.0, |a, v| a + (v - v)) == 0.0 {
+        return Ok(());
+    }
+    check_finite("W", b).map_err(|_| Fc3dError::NonFinite {
+        what: format!("W (block {k})"),
+        index: b.iter().position(|v| !v.is_finite()).unwrap_or(0),
+    })
 }

@@ -1,0 +1,218 @@
+/* Scale benchmark of fc3d and Siconos Numerics 4.4: one source compiled twice, against fc3d's
+ * compat headers (-lfc3d) or against the installed Siconos (-lsiconos_numerics), as
+ * bench/siconos_compare.c is. scripts/scale-bench.sh builds both and runs them on generated piles.
+ *
+ * Modes (each prints one line of "key value" pairs):
+ *   setup <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]
+ *       Times are CPU seconds of the process (see now_seconds).
+ *       Reads the problem (peak RSS of the read measured alone), then times fc3d_driver calls
+ *       from r = 0 limited to 1 and to 1 + <sweeps> iterations (<reps> each, medians):
+ *       sweep = (t(1 + sweeps) - t(1)) / sweeps, setup = t(1) - sweep: what a call costs on top of
+ *       its sweeps. Peak RSS of the solving part measured alone (VmHWM reset through
+ *       /proc/self/clear_refs after the read). Prints
+ *         contacts C blocks B rss_before_kb R0 peak_read_kb P1 rss_after_read_kb R1
+ *         peak_solve_kb P2 call1_s T1 callN_s TN sweep_s S setup_s U stream_bytes Y
+ *       stream_bytes: what one sweep must read at least (every block, its column index, the block
+ *       row pointers, q, r and mu).
+ *       Then, for each tolerance (loosest first), solves on from where the previous one stopped
+ *       (NSGS restarted from its own iterate follows the same iterates), so the times and
+ *       iterations printed are cumulative from r = 0, one line per tolerance, flushed at once
+ *       (a run stopped by a time limit keeps the lines it printed):
+ *         tol T info I iterations K error E seconds S
+ *   bandwidth <megabytes>
+ *       Streaming read bandwidth of this machine (best of 5 sums over an array of that size):
+ *       bandwidth_gbs G
+ *
+ * solver: a Friction_cst.h id with Siconos' defaults (500: NSGS with local solver 565). */
+#define _POSIX_C_SOURCE 199309L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "SiconosNumerics.h"
+#include "FrictionContactProblem.h"
+#include "SolverOptions.h"
+#include "Friction_cst.h"
+#include "fc3d_Solvers.h"
+#include "NonSmoothDrivers.h"
+#include "NumericsMatrix.h"
+#include "SparseBlockMatrix.h"
+
+/* CPU time of the process (user + system: page faults included). The solves are single-threaded,
+ * so on an idle machine it equals wall time; on a machine shared with other jobs it leaves out
+ * the time the process waited for a core, which wall time would add at random. */
+static double now_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double wall_seconds(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int cmp_double(const void* a, const void* b) {
+  double x = *(const double*)a, y = *(const double*)b;
+  return (x > y) - (x < y);
+}
+
+/* A field of /proc/self/status in kB (VmRSS, VmHWM), -1 if unknown. */
+static long status_kb(const char* field) {
+  FILE* f = fopen("/proc/self/status", "r");
+  if (!f) return -1;
+  char line[256];
+  long value = -1;
+  size_t len = strlen(field);
+  while (fgets(line, sizeof line, f)) {
+    if (strncmp(line, field, len) == 0 && line[len] == ':') {
+      value = strtol(line + len + 1, NULL, 10);
+      break;
+    }
+  }
+  fclose(f);
+  return value;
+}
+
+/* Resets VmHWM to the current RSS (Linux >= 4.0). */
+static void reset_peak(void) {
+  FILE* f = fopen("/proc/self/clear_refs", "w");
+  if (f) {
+    fputs("5", f);
+    fclose(f);
+  }
+}
+
+static FrictionContactProblem* read_problem(const char* path) {
+  FrictionContactProblem* problem = frictionContact_new_from_filename(path);
+  if (!problem || problem->dimension != 3) {
+    fprintf(stderr, "cannot read %s as a 3D problem\n", path);
+    return NULL;
+  }
+  return problem;
+}
+
+static double call(FrictionContactProblem* problem, int solver, double tol, int max_iter, double* r,
+                   double* u, int* info, int* iterations, double* error) {
+  int n = 3 * problem->numberOfContacts;
+  memset(r, 0, (size_t)n * sizeof(double));
+  memset(u, 0, (size_t)n * sizeof(double));
+  SolverOptions* options = solver_options_create(solver);
+  options->dparam[SICONOS_DPARAM_TOL] = tol;
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
+  double t0 = now_seconds();
+  *info = fc3d_driver(problem, r, u, options);
+  double t = now_seconds() - t0;
+  *iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  *error = options->dparam[SICONOS_DPARAM_RESIDU];
+  solver_options_delete(options);
+  free(options);
+  return t;
+}
+
+static double median_call(FrictionContactProblem* problem, int solver, int max_iter, int reps, double* r,
+                          double* u) {
+  double* times = calloc((size_t)reps, sizeof(double));
+  int info, iterations;
+  double error;
+  for (int k = 0; k < reps; k++)
+    /* A tolerance no sweep reaches: every call does exactly max_iter sweeps. */
+    times[k] = call(problem, solver, 1e-300, max_iter, r, u, &info, &iterations, &error);
+  qsort(times, (size_t)reps, sizeof(double), cmp_double);
+  double m = reps % 2 ? times[reps / 2] : 0.5 * (times[reps / 2 - 1] + times[reps / 2]);
+  free(times);
+  return m;
+}
+
+static int mode_setup(int argc, char** argv) {
+  if (argc < 6 || argc == 7) {
+    fprintf(stderr, "usage: %s setup <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]\n", argv[0]);
+    return 2;
+  }
+  int solver = atoi(argv[3]), sweeps = atoi(argv[4]), reps = atoi(argv[5]);
+  long rss_before = status_kb("VmRSS");
+  reset_peak();
+  FrictionContactProblem* problem = read_problem(argv[2]);
+  if (!problem) return 2;
+  long peak_read = status_kb("VmHWM");
+  long rss_after_read = status_kb("VmRSS");
+  int nc = problem->numberOfContacts, n = 3 * nc;
+  double* r = calloc((size_t)n + 1, sizeof(double));
+  double* u = calloc((size_t)n + 1, sizeof(double));
+  /* Touch r and u before the peak is reset: they belong to the host, not to the solve. */
+  memset(r, 0, (size_t)n * sizeof(double));
+  memset(u, 0, (size_t)n * sizeof(double));
+  long blocks = 0;
+  if (problem->M->storageType == NM_SPARSE_BLOCK) blocks = (long)problem->M->matrix1->nbblocks;
+  reset_peak();
+  double t1 = median_call(problem, solver, 1, reps, r, u);
+  long peak_solve = status_kb("VmHWM");
+  double tn = median_call(problem, solver, 1 + sweeps, reps, r, u);
+  double sweep = (tn - t1) / sweeps;
+  double stream_bytes = (double)blocks * (72.0 + 8.0) + (double)nc * (8.0 + 3 * 8.0 * 2 + 8.0);
+  printf("contacts %d blocks %ld rss_before_kb %ld peak_read_kb %ld rss_after_read_kb %ld peak_solve_kb %ld "
+         "call1_s %.6e callN_s %.6e sweep_s %.6e setup_s %.6e stream_bytes %.0f\n",
+         nc, blocks, rss_before, peak_read, rss_after_read, peak_solve, t1, tn, sweep, t1 - sweep, stream_bytes);
+  fflush(stdout);
+  if (argc > 7) {
+    int max_iter = atoi(argv[6]), total_iter = 0;
+    double total = 0.0;
+    memset(r, 0, (size_t)n * sizeof(double));
+    memset(u, 0, (size_t)n * sizeof(double));
+    for (int k = 7; k < argc; k++) {
+      double tol = atof(argv[k]);
+      SolverOptions* options = solver_options_create(solver);
+      options->dparam[SICONOS_DPARAM_TOL] = tol;
+      options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter - total_iter;
+      double t0 = now_seconds();
+      int info = fc3d_driver(problem, r, u, options);
+      total += now_seconds() - t0;
+      total_iter += options->iparam[SICONOS_IPARAM_ITER_DONE];
+      printf("tol %g info %d iterations %d error %.6e seconds %.6e\n", tol, info, total_iter,
+             options->dparam[SICONOS_DPARAM_RESIDU], total);
+      fflush(stdout);
+      solver_options_delete(options);
+      free(options);
+      if (info != 0 || total_iter >= max_iter) break;
+    }
+  }
+  frictionContactProblem_free(problem);
+  free(r);
+  free(u);
+  return 0;
+}
+
+static int mode_bandwidth(int argc, char** argv) {
+  if (argc != 3) return 2;
+  size_t n = (size_t)atol(argv[2]) * 1024 * 1024 / sizeof(double);
+  double* a = malloc(n * sizeof(double));
+  if (!a) return 2;
+  for (size_t i = 0; i < n; i++) a[i] = (double)(i & 7);
+  double best = 1e300, sink = 0.0;
+  for (int rep = 0; rep < 5; rep++) {
+    double t0 = wall_seconds();
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    for (size_t i = 0; i + 3 < n; i += 4) {
+      s0 += a[i];
+      s1 += a[i + 1];
+      s2 += a[i + 2];
+      s3 += a[i + 3];
+    }
+    double t = wall_seconds() - t0;
+    sink += s0 + s1 + s2 + s3;
+    if (t < best) best = t;
+  }
+  printf("bandwidth_gbs %.3f checksum %.0f\n", (double)(n * sizeof(double)) / best / 1e9, sink);
+  free(a);
+  return 0;
+}
+
+int main(int argc, char** argv) {
+  if (argc >= 2 && strcmp(argv[1], "setup") == 0) return mode_setup(argc, argv);
+  if (argc >= 2 && strcmp(argv[1], "bandwidth") == 0) return mode_bandwidth(argc, argv);
+  fprintf(stderr, "usage: %s setup|bandwidth ... (see the source)\n", argv[0]);
+  return 2;
+}
