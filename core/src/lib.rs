@@ -42,7 +42,9 @@ pub use problem::{FrictionProblem, FrictionProblem2d};
 pub use solve::{solve, solve_planar, solve_planar_with_observer, solve_with_observer};
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
-pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
+pub use solvers::nsgs::{
+    ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper, NUM_THREADS_ENV,
+};
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;
 pub use solvers::planar::{PlanarMethod, PlanarNsgsOptions};

@@ -141,6 +141,17 @@ impl<const D: usize> BlockRows<D> {
         }
     }
 
+    /// The stored off-diagonal blocks of contact `c`'s row: `(b, W_cb)` for each contact `b`
+    /// coupled to `c`, in increasing `b` (the contact graph of parallel and island sweeps).
+    #[inline]
+    pub fn row(&self, c: usize) -> impl Iterator<Item = (usize, &Block<D>)> + '_ {
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        self.cols[range.clone()]
+            .iter()
+            .copied()
+            .zip(&self.blocks[range])
+    }
+
     /// The normal component of [`BlockRows::local_q`]: all a frictionless contact needs (one
     /// row of each coupled block instead of `D`).
     #[inline]

@@ -7,10 +7,13 @@
 //! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
 //! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
 
+mod islands;
+mod parallel;
 mod settings;
 mod sweeper;
 
-pub use settings::{ContactOrder, LocalTolerance, NsgsOptions};
+pub use parallel::{resolve_threads, NUM_THREADS_ENV};
+pub use settings::{ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
 pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
 
 use crate::contract::{
@@ -72,6 +75,9 @@ pub(crate) fn nsgs(
         local_tolerance: options.local_tolerance,
         stop_when_stalled: true,
     };
+    if options.decomposition == Decomposition::Islands {
+        return islands::run_islands(problem, &mut sweeper, options, limits, r, u, observer);
+    }
     run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
 }
 

@@ -1,0 +1,194 @@
+//! NSGS by islands ([`Decomposition::Islands`]): the connected components of the contact graph
+//! are independent friction problems. Each is swept in index order (Siconos' order restricted
+//! to the island, so an island's iterates are those of a sequential NSGS on it alone) with its
+//! own stopping test, the relative error (133) of the island, and is no longer swept once it
+//! passes; a contact coupled to no other is solved once and checked. Threads take islands,
+//! largest first. Once every island has stopped, the global error (133) is measured; when it is
+//! above the tolerance (an island's normalisation is smaller than the problem's, so the global
+//! error can exceed the islands' by up to sqrt(3)), the islands run again with a tolerance
+//! tightened by the missing ratio (at most [`ROUNDS`] rounds).
+
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice};
+use super::settings::{Decomposition, NsgsOptions};
+use super::sweeper::{new_reaction, ContactStep, Sweeper};
+use crate::contract::SolverOutcome;
+use crate::contract::{deadline_passed, ErrorSchedule, IterationEvent, Limits, Observer};
+use crate::error::Fc3dError;
+use crate::math::linalg::{block_vec_add, distance_sq_d};
+use crate::matrix::BlockRows;
+use crate::measure::{contact_residual_sq_d, natural_map_error_by_rows};
+use crate::problem::FrictionProblem;
+
+/// Rounds of island solves at most (the first, and tightened ones).
+const ROUNDS: usize = 4;
+
+pub(crate) fn run_islands(
+    problem: &FrictionProblem<'_>,
+    sweeper: &mut Sweeper,
+    options: &NsgsOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    debug_assert_eq!(options.decomposition, Decomposition::Islands);
+    let run = limits.start();
+    sweeper.set_deadline(run.deadline());
+    let (order, start) = ContactGraph::new(sweeper.island_parts().0)?.islands()?;
+    let n_islands = start.len() - 1;
+    let threads = resolve_threads(options.threads).min(n_islands.max(1));
+    let pool = Pool::shared(threads)?;
+    let sweeps: Vec<AtomicUsize> = (0..n_islands).map(|_| AtomicUsize::new(0)).collect();
+    let done: Vec<AtomicBool> = (0..n_islands).map(|_| AtomicBool::new(false)).collect();
+    let (q, mu) = (problem.q(), problem.mu());
+    let tol = run.tolerance;
+    let mut island_tol = tol;
+    let mut error = f64::INFINITY;
+    let mut out_of_time = false;
+    for _round in 0..ROUNDS {
+        let next = AtomicUsize::new(0);
+        let timed_out = AtomicBool::new(false);
+        {
+            let (rows, step, memory, relaxation) = sweeper.island_parts();
+            let reactions = SharedSlice::new(r);
+            let memory = SharedSlice::new(memory);
+            let job = |_thread: usize| {
+                let mut worker = step.worker();
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= n_islands {
+                        break;
+                    }
+                    if done[i].load(Ordering::Relaxed) {
+                        continue;
+                    }
+                    let island = Island {
+                        contacts: &order[start[i]..start[i + 1]],
+                        rows,
+                        q,
+                        mu,
+                    };
+                    let left = run.max_iter - sweeps[i].load(Ordering::Relaxed);
+                    let mut schedule = ErrorSchedule::new(
+                        options.error_evaluation,
+                        island_tol,
+                        options.evaluation_frequency,
+                        left,
+                    );
+                    let mut swept = 0;
+                    let mut finished = left == 0;
+                    for iteration in 1..=left {
+                        let (increment_sq, r_sq) =
+                            island.sweep(step, &mut worker, relaxation, &reactions, &memory);
+                        swept += 1;
+                        // A lone contact was solved exactly: go straight to the full test.
+                        let light = if island.contacts.len() == 1 {
+                            0.0
+                        } else if r_sq > 0.0 {
+                            (increment_sq / r_sq).sqrt()
+                        } else {
+                            increment_sq.sqrt()
+                        };
+                        let test =
+                            schedule.test_light(iteration, light, |_| island.error(&reactions));
+                        if test.converged || test.stalled {
+                            finished = true;
+                            break;
+                        }
+                        if deadline_passed(run.deadline()) {
+                            timed_out.store(true, Ordering::Relaxed);
+                            break;
+                        }
+                    }
+                    sweeps[i].fetch_add(swept, Ordering::Relaxed);
+                    done[i].store(finished, Ordering::Relaxed);
+                }
+            };
+            match &pool {
+                Some(pool) => pool.broadcast(&job),
+                None => job(0),
+            }
+        }
+        out_of_time = timed_out.load(Ordering::Relaxed);
+        error = natural_map_error_by_rows(problem, sweeper.island_parts().0, r, u);
+        let exhausted = sweeps
+            .iter()
+            .all(|s| s.load(Ordering::Relaxed) >= run.max_iter);
+        if error <= tol || out_of_time || exhausted || !(error.is_finite()) {
+            break;
+        }
+        // Every island passed its test yet the whole did not: ask the islands for the missing
+        // ratio (with a margin) and go on from where they are.
+        island_tol *= 0.5 * tol / error;
+        for d in &done {
+            d.store(false, Ordering::Relaxed);
+        }
+    }
+    let iterations = sweeps
+        .iter()
+        .map(|s| s.load(Ordering::Relaxed))
+        .max()
+        .unwrap_or(0);
+    observer(&IterationEvent {
+        iteration: iterations,
+        reaction: r,
+        error,
+    });
+    Ok(SolverOutcome::stopped(iterations, out_of_time))
+}
+
+/// One island: its contacts (index order) and what their local problems need.
+struct Island<'a> {
+    contacts: &'a [usize],
+    rows: &'a BlockRows,
+    q: &'a [f64],
+    mu: &'a [f64],
+}
+
+impl Island<'_> {
+    /// One Gauss-Seidel sweep over the island; returns (squared increment, ||r_island||^2).
+    fn sweep<S: ContactStep<3>>(
+        &self,
+        step: &S,
+        worker: &mut S::Worker,
+        relaxation: Option<f64>,
+        reactions: &SharedSlice<'_>,
+        memory: &SharedSlice<'_>,
+    ) -> (f64, f64) {
+        let (mut increment_sq, mut r_sq) = (0.0, 0.0);
+        for &c in self.contacts {
+            let mut m = memory.get(c);
+            let (rc, old, _) = new_reaction(
+                self.rows, step, worker, relaxation, c, self.q, self.mu, reactions, &mut m, false,
+            );
+            increment_sq += distance_sq_d(&rc, &old);
+            r_sq += distance_sq_d(&rc, &[0.0; 3]);
+            // SAFETY: islands share no contact and each is swept by one thread at a time.
+            unsafe {
+                reactions.set_contact(c, &rc);
+                memory.set(c, m);
+            }
+        }
+        (increment_sq, r_sq)
+    }
+
+    /// The relative natural-map error (133) of the island alone: its residual over
+    /// `max(||q_I||, ||r_I||, ||u_I||)`.
+    fn error(&self, reactions: &SharedSlice<'_>) -> f64 {
+        let (mut res, mut q_sq, mut r_sq, mut u_sq) = (0.0, 0.0, 0.0, 0.0);
+        for &c in self.contacts {
+            let rc: [f64; 3] = reactions.contact(c);
+            let lq = Reactions::<3>::local_q(reactions, self.rows, c, self.q);
+            let uc = block_vec_add(self.rows.diagonal(c), &rc, &lq);
+            res += contact_residual_sq_d(&rc, &uc, self.mu[c]);
+            let qc: [f64; 3] = crate::math::linalg::contact_of(self.q, c);
+            q_sq += distance_sq_d(&qc, &[0.0; 3]);
+            r_sq += distance_sq_d(&rc, &[0.0; 3]);
+            u_sq += distance_sq_d(&uc, &[0.0; 3]);
+        }
+        let scale = q_sq.max(r_sq).max(u_sq).sqrt();
+        res.sqrt() / if scale > 0.0 { scale } else { 1.0 }
+    }
+}
