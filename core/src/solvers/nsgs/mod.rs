@@ -25,12 +25,31 @@ use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 
 impl Family for NsgsOptions {
+    /// Siconos' NSGS first (the default of id 500), then the parallel decompositions.
+    fn presets() -> Vec<Self> {
+        [
+            Decomposition::Sequential,
+            Decomposition::Coloured,
+            Decomposition::Islands,
+        ]
+        .into_iter()
+        .map(|decomposition| NsgsOptions {
+            decomposition,
+            ..Default::default()
+        })
+        .collect()
+    }
+
     fn name(&self) -> &'static str {
-        "NSGS"
+        match self.decomposition {
+            Decomposition::Sequential => "NSGS",
+            Decomposition::Coloured => "NSGS-COLOURED",
+            Decomposition::Islands => "NSGS-ISLANDS",
+        }
     }
 
     fn label(&self) -> String {
-        format!("NSGS/{}", self.local.kind.siconos_id())
+        format!("{}/{}", self.name(), self.local.kind.siconos_id())
     }
 
     fn siconos_id(&self) -> i32 {
