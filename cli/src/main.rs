@@ -30,6 +30,7 @@ use clap::{Args, Parser, Subcommand};
 
 mod bench;
 mod convert;
+mod scene;
 use fc3d_core::{
     solve, Fc3dError, FrictionProblem, LocalSolverKind, NsgsOptions, SolveReport, SolverConfig,
 };
@@ -56,6 +57,8 @@ enum Command {
     /// Convert a problem file between Siconos .dat and FCLIB .hdf5 (by OUT's extension),
     /// losslessly. FCLIB needs fc3d built with the `fclib` feature.
     Convert(convert::ConvertArgs),
+    /// Generate a pile scene (seeded, deterministic) and write it as a Siconos .dat file.
+    Scene(scene::SceneArgs),
 }
 
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -104,9 +107,11 @@ fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
         .ok_or_else(|| format!("unknown local solver '{s}' (one of {})", ids.join(", ")))
 }
 
-/// One problem to solve: a built-in scene or a file.
+/// One problem to solve: a built-in scene, a generated one (`gen:contacts=N,piles=P,seed=S`)
+/// or a file.
 enum Input {
     Scene(fc3d_core::scenes::Scene),
+    Generated(fc3d_core::scenes::PileSpec),
     File { path: PathBuf, from_directory: bool },
 }
 
@@ -130,6 +135,7 @@ fn main() -> ExitCode {
         Some(Command::Solve(args)) => args,
         Some(Command::Bench(args)) => return bench::run(&args),
         Some(Command::Convert(args)) => return convert::run(&args),
+        Some(Command::Scene(args)) => return scene::run(&args),
         None => cli.solve,
     };
     run_solve(&args)
@@ -223,6 +229,13 @@ enum Loaded {
 fn load_input(input: Input) -> Loaded {
     match input {
         Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
+        Input::Generated(spec) => match fc3d_core::scenes::sphere_piles(&spec) {
+            Ok(p) => Loaded::Problem(spec.name(), p),
+            Err(e) => {
+                eprintln!("fc3d: {e}");
+                Loaded::Failed
+            }
+        },
         Input::File {
             path,
             from_directory,
@@ -266,12 +279,23 @@ fn display_name(path: &Path) -> String {
         .unwrap_or_else(|| path.display().to_string())
 }
 
+/// An input named `gen:contacts=N,piles=P,seed=S` is a generated pile scene
+/// ([`fc3d_core::scenes::sphere_piles`]), not a file.
+const GENERATED_PREFIX: &str = "gen:";
+
 /// Files as given, directories replaced by their `*.dat` files sorted by name; paths that cannot
 /// be used are returned as messages (the others are still solved).
 fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
     let mut inputs = Vec::new();
     let mut errors = Vec::new();
     for path in paths {
+        if let Some(spec) = path.to_str().and_then(|p| p.strip_prefix(GENERATED_PREFIX)) {
+            match fc3d_core::scenes::PileSpec::parse(spec) {
+                Ok(spec) => inputs.push(Input::Generated(spec)),
+                Err(e) => errors.push(e.to_string()),
+            }
+            continue;
+        }
         match std::fs::metadata(path) {
             Err(e) => errors.push(format!("{}: {e}", path.display())),
             Ok(meta) if meta.is_dir() => match dat_files_in(path) {

@@ -21,6 +21,9 @@ use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
 
+mod granular;
+pub use granular::{sphere_piles, PileSpec};
+
 /// A named built-in problem.
 #[derive(Debug, Clone)]
 pub struct Scene {
@@ -374,11 +377,11 @@ impl World {
         q
     }
 
-    /// The block `W_cd`. With symmetric mass matrices, `W_dc = W_cd^T` exactly: the blocks
-    /// below the diagonal are mirrored from those above, and the diagonal blocks symmetrized, so
-    /// that rounding cannot make W non-symmetric.
-    fn block_of_w(&self, c: usize, d: usize) -> Option<Mat3> {
-        if self.bodies.iter().any(|b| b.gyroscopic) {
+    /// The block `W_cd`. With symmetric mass matrices (`symmetric`: no gyroscopic body),
+    /// `W_dc = W_cd^T` exactly: the blocks below the diagonal are mirrored from those above, and
+    /// the diagonal blocks symmetrized, so that rounding cannot make W non-symmetric.
+    fn block_of_w(&self, c: usize, d: usize, symmetric: bool) -> Option<Mat3> {
+        if !symmetric {
             return self.block(c, d);
         }
         if c > d {
@@ -391,41 +394,80 @@ impl World {
         Some(b)
     }
 
+    /// For each body, the contacts it takes part in (CSR: `(start, contacts)`), in contact order.
+    fn contacts_by_body(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut start = vec![0usize; self.bodies.len() + 1];
+        for c in 0..self.contacts.len() {
+            for k in self.bodies_of(c) {
+                start[k + 1] += 1;
+            }
+        }
+        for k in 0..self.bodies.len() {
+            start[k + 1] += start[k];
+        }
+        let mut next = start.clone();
+        let mut list = vec![0usize; start[self.bodies.len()]];
+        for c in 0..self.contacts.len() {
+            for k in self.bodies_of(c) {
+                list[next[k]] = c;
+                next[k] += 1;
+            }
+        }
+        (start, list)
+    }
+
+    /// Calls `f(c, d, W_cd)` for every non-zero block, row by row and by increasing column
+    /// within a row. Only the contacts sharing a body with `c` are visited, so assembling costs
+    /// O(contacts x contacts per body), never O(contacts^2).
+    fn for_each_block(&self, mut f: impl FnMut(usize, usize, Mat3)) {
+        let symmetric = !self.bodies.iter().any(|b| b.gyroscopic);
+        let (start, list) = self.contacts_by_body();
+        let mut neighbours = Vec::new();
+        for c in 0..self.contacts.len() {
+            neighbours.clear();
+            for k in self.bodies_of(c) {
+                neighbours.extend_from_slice(&list[start[k]..start[k + 1]]);
+            }
+            neighbours.sort_unstable();
+            neighbours.dedup();
+            for &d in &neighbours {
+                if let Some(b) = self.block_of_w(c, d, symmetric) {
+                    f(c, d, b);
+                }
+            }
+        }
+    }
+
     fn problem(&self, storage: Storage) -> FrictionProblem<'static> {
         let nc = self.contacts.len();
         let w = match storage {
             Storage::Dense => {
                 let n = 3 * nc;
                 let mut data = vec![0.0; n * n];
-                for c in 0..nc {
-                    for d in 0..nc {
-                        if let Some(b) = self.block_of_w(c, d) {
-                            for i in 0..3 {
-                                for j in 0..3 {
-                                    data[(3 * c + i) + (3 * d + j) * n] = b[i][j];
-                                }
-                            }
+                self.for_each_block(|c, d, b| {
+                    for i in 0..3 {
+                        for j in 0..3 {
+                            data[(3 * c + i) + (3 * d + j) * n] = b[i][j];
                         }
                     }
-                }
+                });
                 Delassus::Dense(DenseMatrix::new(n, n, data).expect("square by construction"))
             }
             Storage::SparseBlock => {
-                let mut row_ptr = vec![0usize];
+                let mut row_ptr = vec![0usize; nc + 1];
                 let mut col_idx = Vec::new();
                 let mut blocks = Vec::new();
+                self.for_each_block(|c, d, b| {
+                    row_ptr[c + 1] += 1;
+                    col_idx.push(d);
+                    // Column-major, as Siconos stores its blocks.
+                    blocks.push([
+                        b[0][0], b[1][0], b[2][0], b[0][1], b[1][1], b[2][1], b[0][2], b[1][2],
+                        b[2][2],
+                    ]);
+                });
                 for c in 0..nc {
-                    for d in 0..nc {
-                        if let Some(b) = self.block_of_w(c, d) {
-                            col_idx.push(d);
-                            // Column-major, as Siconos stores its blocks.
-                            blocks.push([
-                                b[0][0], b[1][0], b[2][0], b[0][1], b[1][1], b[2][1], b[0][2],
-                                b[1][2], b[2][2],
-                            ]);
-                        }
-                    }
-                    row_ptr.push(col_idx.len());
+                    row_ptr[c + 1] += row_ptr[c];
                 }
                 Delassus::SparseBlock(
                     BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
