@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use fc3d_core::io::read_problem_file;
+use fc3d_core::scenes::{sphere_piles, PileSpec};
 use fc3d_core::{
     natural_map_error, solve, BlockSparseMatrix, Decomposition, Delassus, ErrorEvaluation,
     FrictionProblem, NsgsOptions, SolveReport, SolverConfig,
@@ -75,6 +76,15 @@ fn problems() -> Vec<(&'static str, FrictionProblem<'static>)> {
         ("Confeti-ex13", load("Confeti-ex13-Fc3D-SBM.dat")),
         ("NESpheres_30_1 (dense)", load("NESpheres_30_1.dat")),
         (
+            "generated, 6000 contacts in 3 piles",
+            sphere_piles(&PileSpec {
+                contacts: 6000,
+                piles: 3,
+                seed: 7,
+            })
+            .expect("scene"),
+        ),
+        (
             "three piles",
             piles(&[
                 load("Capsules-i101-404.dat"),
@@ -90,7 +100,13 @@ fn results_are_bitwise_identical_for_1_to_4_threads() {
     for (name, p) in problems() {
         for decomposition in [Decomposition::Coloured, Decomposition::Islands] {
             // A fixed number of sweeps (tolerance 0) and a run to the tolerance.
-            for (tol, max_iter) in [(0.0, 40), (1e-6, 5000)] {
+            // NSGS stalls near 1e-3 on the generated piles (see the README): a looser run there.
+            let to_tol = if name.starts_with("generated") {
+                (1e-3, 300)
+            } else {
+                (1e-6, 5000)
+            };
+            for (tol, max_iter) in [(0.0, 40), to_tol] {
                 let (first, r1) = run(&p, decomposition, 1, tol, max_iter);
                 for threads in 2..=4 {
                     let (report, r) = run(&p, decomposition, threads, tol, max_iter);
@@ -109,10 +125,11 @@ fn results_are_bitwise_identical_for_1_to_4_threads() {
 
 #[test]
 fn parallel_runs_reach_the_tolerance_and_report_the_measured_error() {
-    // RockPile_tob1 is left out: NSGS stalls near 2e-3 on it in any order.
+    // RockPile_tob1 and the generated piles are left out: NSGS stalls near 1e-3 on them in any
+    // order.
     for (name, p) in problems()
         .into_iter()
-        .filter(|(n, _)| !n.starts_with("RockPile"))
+        .filter(|(n, _)| !n.starts_with("RockPile") && !n.starts_with("generated"))
     {
         for decomposition in [
             Decomposition::Sequential,

@@ -36,7 +36,7 @@ pub(crate) fn run_islands(
     debug_assert_eq!(options.decomposition, Decomposition::Islands);
     let run = limits.start();
     sweeper.set_deadline(run.deadline());
-    let (order, start) = ContactGraph::new(sweeper.island_parts().0)?.islands()?;
+    let (order, start) = ContactGraph::new(sweeper.island_parts().0, 1)?.islands()?;
     let n_islands = start.len() - 1;
     let threads = resolve_threads(options.threads).min(n_islands.max(1));
     let pool = Pool::shared(threads)?;

@@ -58,6 +58,10 @@ impl<'a> SharedSlice<'a> {
         }
     }
 
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
     #[inline]
     pub fn get(&self, i: usize) -> f64 {
         assert!(i < self.len);
@@ -141,41 +145,55 @@ impl<const D: usize> Reactions<D> for SharedSlice<'_> {
     }
 }
 
-/// The undirected contact graph: `b` and `c` are adjacent when `W_bc` or `W_cb` is stored.
+/// The undirected graph of units of contacts: contacts `unit * size .. (unit + 1) * size`
+/// form one unit, and two units are adjacent when W couples a contact of one to a contact of the
+/// other (`W_bc` or `W_cb` stored). With units of one contact it is the contact graph.
 pub(crate) struct ContactGraph {
     ptr: Vec<usize>,
     adjacent: Vec<usize>,
 }
 
 impl ContactGraph {
-    pub fn new<const D: usize>(rows: &BlockRows<D>) -> Result<Self, Fc3dError> {
+    pub fn new<const D: usize>(rows: &BlockRows<D>, size: usize) -> Result<Self, Fc3dError> {
         let nc = rows.n_contacts();
-        let mut degree = try_vec(nc + 1, 0usize, "contact graph")?;
-        for c in 0..nc {
-            for (b, _) in rows.row(c) {
-                degree[c + 1] += 1;
-                degree[b + 1] += 1;
+        let n = nc.div_ceil(size);
+        // The units each unit's rows reach (sorted, without repeats), then both directions.
+        let mut forward_ptr = try_vec(n + 1, 0usize, "contact graph")?;
+        let mut forward = Vec::new();
+        let mut reached = Vec::new();
+        for unit in 0..n {
+            reached.clear();
+            for c in unit * size..((unit + 1) * size).min(nc) {
+                reached.extend(rows.row(c).map(|(b, _)| b / size).filter(|&v| v != unit));
+            }
+            reached.sort_unstable();
+            reached.dedup();
+            forward.extend_from_slice(&reached);
+            forward_ptr[unit + 1] = forward.len();
+        }
+        let mut ptr = try_vec(n + 1, 0usize, "contact graph")?;
+        for unit in 0..n {
+            for &v in &forward[forward_ptr[unit]..forward_ptr[unit + 1]] {
+                ptr[unit + 1] += 1;
+                ptr[v + 1] += 1;
             }
         }
-        for c in 0..nc {
-            degree[c + 1] += degree[c];
+        for unit in 0..n {
+            ptr[unit + 1] += ptr[unit];
         }
-        let mut adjacent = try_vec(degree[nc], 0usize, "contact graph")?;
-        let mut fill = degree.clone();
-        for c in 0..nc {
-            for (b, _) in rows.row(c) {
-                adjacent[fill[c]] = b;
-                fill[c] += 1;
-                adjacent[fill[b]] = c;
-                fill[b] += 1;
+        let mut adjacent = try_vec(ptr[n], 0usize, "contact graph")?;
+        let mut fill = ptr.clone();
+        for unit in 0..n {
+            for &v in &forward[forward_ptr[unit]..forward_ptr[unit + 1]] {
+                adjacent[fill[unit]] = v;
+                fill[unit] += 1;
+                adjacent[fill[v]] = unit;
+                fill[v] += 1;
             }
         }
-        // A symmetric W stores both blocks: each list then holds its neighbours twice, which
-        // only costs a little time in the colouring.
-        Ok(ContactGraph {
-            ptr: degree,
-            adjacent,
-        })
+        // A structurally symmetric W lists each neighbour twice, which only costs a little time
+        // in the colouring and the island search.
+        Ok(ContactGraph { ptr, adjacent })
     }
 
     fn n(&self) -> usize {
@@ -186,7 +204,7 @@ impl ContactGraph {
         &self.adjacent[self.ptr[c]..self.ptr[c + 1]]
     }
 
-    /// Greedy colouring in index order (smallest colour no neighbour has): the contacts grouped
+    /// Greedy colouring in index order (smallest colour no neighbour has): the units grouped
     /// by colour, each group in index order, and where each colour starts.
     pub fn colour(&self) -> Result<(Vec<usize>, Vec<usize>), Fc3dError> {
         let nc = self.n();
@@ -225,7 +243,7 @@ impl ContactGraph {
         Ok((order, start))
     }
 
-    /// Connected components: the contacts grouped by island, each island in index order, the
+    /// Connected components: the units grouped by island, each island in index order, the
     /// islands ordered by decreasing size (ties by smallest contact), and where each starts.
     pub fn islands(&self) -> Result<(Vec<usize>, Vec<usize>), Fc3dError> {
         let nc = self.n();

@@ -36,11 +36,12 @@ pub enum Decomposition {
     /// One thread, contacts in the order of [`ContactOrder`] (default; Siconos 4.4's iteration).
     #[default]
     Sequential,
-    /// Multicoloured Gauss-Seidel: the contacts are coloured greedily (index order, smallest free
-    /// colour) so that no two contacts of a colour are coupled through W (in either direction);
-    /// a sweep visits the colours in turn, the contacts of one colour in parallel. Each contact
-    /// sees the newest reactions of all its neighbours, as in any Gauss-Seidel sweep; only the
-    /// order differs from index order.
+    /// Block-multicoloured Gauss-Seidel: the contacts are cut in units of 128 consecutive
+    /// contacts, and the units coloured greedily (index order, smallest free colour) so that no
+    /// two units of a colour are coupled through W (in either direction); a sweep visits the
+    /// colours in turn, the units of one colour in parallel, each unit in index order. Every
+    /// contact sees the newest reactions of all its neighbours, as in any Gauss-Seidel sweep;
+    /// only the order differs from index order.
     Coloured,
     /// Connected components of the contact graph (through W's off-diagonal blocks) solved as
     /// independent problems, in parallel: each island is swept in index order with its own

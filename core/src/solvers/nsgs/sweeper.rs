@@ -231,41 +231,38 @@ pub struct GaussSeidel<const D: usize, S: ContactStep<D>> {
     coloured: Option<ColouredPlan>,
 }
 
-/// A coloured sweep's schedule: contacts grouped by colour, cut in fixed chunks (so that the
-/// sweep's increment is summed in the same order whatever the number of threads).
+/// A coloured sweep's schedule: the contacts cut in units of [`UNIT`] consecutive contacts,
+/// the units coloured so that no two units of a colour are coupled. Colour after colour, the
+/// threads take the colour's units one at a time and sweep each in index order: a Gauss-Seidel
+/// order close to index order, with each unit's contacts and reactions contiguous in memory.
+/// Units and colours do not depend on the number of threads, and each unit's squared increment
+/// has its own slot, summed in unit order: the sweep is the same for any number of threads.
 struct ColouredPlan {
+    /// Units grouped by colour.
     order: Vec<usize>,
     colour_start: Vec<usize>,
-    /// Index of each colour's first chunk in `chunk_sums`.
-    chunk_start: Vec<usize>,
-    chunk_sums: Vec<f64>,
-    /// Next chunk to take, per colour (threads take chunks as they finish the previous one).
-    next_chunk: Vec<AtomicUsize>,
+    unit_sums: Vec<f64>,
+    /// Next unit to take, per colour.
+    next_unit: Vec<AtomicUsize>,
     barrier: SpinBarrier,
     pool: Option<Arc<Pool>>,
 }
 
-/// Contacts a thread takes at a time in a coloured sweep.
-const CHUNK: usize = 64;
+/// Consecutive contacts swept by one thread as a unit in a coloured sweep.
+const UNIT: usize = 128;
 
 impl ColouredPlan {
     fn new<const D: usize>(rows: &BlockRows<D>, threads: usize) -> Result<Self, Fc3dError> {
-        let (order, colour_start) = ContactGraph::new(rows)?.colour()?;
+        let (order, colour_start) = ContactGraph::new(rows, UNIT)?.colour()?;
         let n_colours = colour_start.len() - 1;
-        let mut chunk_start = vec![0usize; n_colours + 1];
-        for k in 0..n_colours {
-            let len = colour_start[k + 1] - colour_start[k];
-            chunk_start[k + 1] = chunk_start[k] + len.div_ceil(CHUNK);
-        }
-        let chunk_sums = try_vec(chunk_start[n_colours], 0.0, "sweep increments")?;
+        let unit_sums = try_vec(order.len(), 0.0, "sweep increments")?;
         let pool = Pool::shared(threads)?;
         let threads = pool.as_ref().map_or(1, |p| p.threads());
         Ok(ColouredPlan {
             order,
             colour_start,
-            chunk_start,
-            chunk_sums,
-            next_chunk: (0..n_colours).map(|_| AtomicUsize::new(0)).collect(),
+            unit_sums,
+            next_unit: (0..n_colours).map(|_| AtomicUsize::new(0)).collect(),
             barrier: SpinBarrier::new(threads),
             pool,
         })
@@ -473,10 +470,9 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
         d_sq
     }
 
-    /// A multicoloured sweep: colour after colour, the contacts of a colour (coupled to none
-    /// of each other) solved by all threads, each taking chunks of [`CHUNK`] contacts; a barrier
-    /// between colours. Every contact's update depends only on `r` at the start of its colour,
-    /// so the result is the same for any number of threads.
+    /// A multicoloured sweep (see [`ColouredPlan`]). Every unit's update depends only on `r` at
+    /// the start of its colour and on its own contacts, so the result is the same for any
+    /// number of threads.
     fn coloured_sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
         let GaussSeidel {
             rows,
@@ -487,43 +483,36 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             ..
         } = self;
         let coloured = coloured.as_mut().expect("a coloured plan");
-        for next in &coloured.next_chunk {
+        for next in &coloured.next_unit {
             next.store(0, Ordering::Relaxed);
         }
         let ColouredPlan {
             order,
             colour_start,
-            chunk_start,
-            chunk_sums,
-            next_chunk,
+            unit_sums,
+            next_unit,
             barrier,
             pool,
         } = &mut *coloured;
         let n_colours = colour_start.len() - 1;
+        let nc = rows.n_contacts();
         let (rows, step, relaxation) = (&*rows, &*step, plan.relaxation);
         let reactions = SharedSlice::new(r);
         let memory = SharedSlice::new(memory);
-        let sums = SharedSlice::new(chunk_sums);
-        let (order, colour_start, chunk_start, next_chunk, barrier) = (
-            &*order,
-            &*colour_start,
-            &*chunk_start,
-            &*next_chunk,
-            &*barrier,
-        );
+        let sums = SharedSlice::new(unit_sums);
+        let (order, colour_start, next_unit, barrier) =
+            (&*order, &*colour_start, &*next_unit, &*barrier);
         let job = |_thread: usize| {
             let mut worker = step.worker();
             for k in 0..n_colours {
-                let contacts = &order[colour_start[k]..colour_start[k + 1]];
-                let n_chunks = chunk_start[k + 1] - chunk_start[k];
+                let units = &order[colour_start[k]..colour_start[k + 1]];
                 loop {
-                    let chunk = next_chunk[k].fetch_add(1, Ordering::Relaxed);
-                    if chunk >= n_chunks {
+                    let taken = next_unit[k].fetch_add(1, Ordering::Relaxed);
+                    let Some(&unit) = units.get(taken) else {
                         break;
-                    }
-                    let end = ((chunk + 1) * CHUNK).min(contacts.len());
+                    };
                     let mut sum = 0.0;
-                    for &c in &contacts[chunk * CHUNK..end] {
+                    for c in unit * UNIT..((unit + 1) * UNIT).min(nc) {
                         let mut m = memory.get(c);
                         let (rc, old, _) = new_reaction(
                             rows,
@@ -538,16 +527,16 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
                             false,
                         );
                         sum += distance_sq_d(&rc, &old);
-                        // SAFETY: contact c belongs to this chunk only, and no contact of
-                        // this colour reads another of the colour; the barrier below orders
-                        // these writes before the next colour's reads.
+                        // SAFETY: contact c belongs to this unit, swept by this thread only,
+                        // and no unit of this colour reads another's contacts; the barrier
+                        // below orders these writes before the next colour's reads.
                         unsafe {
                             reactions.set_contact(c, &rc);
                             memory.set(c, m);
                         }
                     }
-                    // SAFETY: chunk taken by this thread only.
-                    unsafe { sums.set(chunk_start[k] + chunk, sum) };
+                    // SAFETY: unit taken by this thread only.
+                    unsafe { sums.set(unit, sum) };
                 }
                 barrier.wait();
             }
@@ -556,8 +545,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             Some(pool) => pool.broadcast(&job),
             None => job(0),
         }
-        let n = chunk_start[n_colours];
-        (0..n).map(|i| sums.get(i)).sum()
+        (0..sums.len()).map(|i| sums.get(i)).sum()
     }
 
     pub(crate) fn any_frozen(&self) -> bool {
