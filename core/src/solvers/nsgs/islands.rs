@@ -3,12 +3,14 @@
 //! to the island, so an island's iterates are those of a sequential NSGS on it alone) with its
 //! own stopping test, the relative error (133) of the island, and is no longer swept once it
 //! passes; a contact coupled to no other is solved once and checked. Threads take islands,
-//! largest first. Once every island has stopped, the global error (133) is measured; when it is
+//! largest first, for [`VISIT`] sweeps at a time, so that under a time budget every island
+//! progresses. Once every island has stopped, the global error (133) is measured; when it is
 //! above the tolerance (an island's normalisation is smaller than the problem's, so the global
 //! error can exceed the islands' by up to sqrt(3)), the islands run again with a tolerance
 //! tightened by the missing ratio (at most [`ROUNDS`] rounds).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice};
 use super::settings::{Decomposition, NsgsOptions};
@@ -23,6 +25,20 @@ use crate::problem::FrictionProblem;
 
 /// Rounds of island solves at most (the first, and tightened ones).
 const ROUNDS: usize = 4;
+
+/// Sweeps an island gets per visit: islands take turns, so that under a time budget every
+/// island progresses (the results do not depend on it).
+const VISIT: usize = 16;
+
+/// An island's run: its stopping test and where it stands.
+struct IslandRun {
+    schedule: ErrorSchedule,
+    /// Sweeps counted by `schedule` (since the last tightening).
+    tested: usize,
+    /// Sweeps done in all.
+    sweeps: usize,
+    done: bool,
+}
 
 pub(crate) fn run_islands(
     problem: &FrictionProblem<'_>,
@@ -40,28 +56,40 @@ pub(crate) fn run_islands(
     let n_islands = start.len() - 1;
     let threads = resolve_threads(options.threads).min(n_islands.max(1));
     let pool = Pool::shared(threads)?;
-    let sweeps: Vec<AtomicUsize> = (0..n_islands).map(|_| AtomicUsize::new(0)).collect();
-    let done: Vec<AtomicBool> = (0..n_islands).map(|_| AtomicBool::new(false)).collect();
     let (q, mu) = (problem.q(), problem.mu());
     let tol = run.tolerance;
+    let new_run = |island_tol: f64, sweeps: usize| IslandRun {
+        schedule: ErrorSchedule::new(
+            options.error_evaluation,
+            island_tol,
+            options.evaluation_frequency,
+            run.max_iter - sweeps,
+        ),
+        tested: 0,
+        sweeps,
+        done: sweeps >= run.max_iter,
+    };
+    let islands: Vec<Mutex<IslandRun>> = (0..n_islands)
+        .map(|_| Mutex::new(new_run(tol, 0)))
+        .collect();
     let mut island_tol = tol;
-    let mut error = f64::INFINITY;
-    let mut out_of_time = false;
-    for _round in 0..ROUNDS {
+    let mut rounds = 1;
+    let timed_out = AtomicBool::new(false);
+    let error = loop {
         let next = AtomicUsize::new(0);
-        let timed_out = AtomicBool::new(false);
+        let (rows, step, memory, relaxation) = sweeper.island_parts();
         {
-            let (rows, step, memory, relaxation) = sweeper.island_parts();
             let reactions = SharedSlice::new(r);
             let memory = SharedSlice::new(memory);
             let job = |_thread: usize| {
                 let mut worker = step.worker();
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
-                    if i >= n_islands {
+                    if i >= n_islands || timed_out.load(Ordering::Relaxed) {
                         break;
                     }
-                    if done[i].load(Ordering::Relaxed) {
+                    let mut state = islands[i].lock().unwrap_or_else(|e| e.into_inner());
+                    if state.done {
                         continue;
                     }
                     let island = Island {
@@ -70,19 +98,11 @@ pub(crate) fn run_islands(
                         q,
                         mu,
                     };
-                    let left = run.max_iter - sweeps[i].load(Ordering::Relaxed);
-                    let mut schedule = ErrorSchedule::new(
-                        options.error_evaluation,
-                        island_tol,
-                        options.evaluation_frequency,
-                        left,
-                    );
-                    let mut swept = 0;
-                    let mut finished = left == 0;
-                    for iteration in 1..=left {
+                    for _ in 0..VISIT {
                         let (increment_sq, r_sq) =
                             island.sweep(step, &mut worker, relaxation, &reactions, &memory);
-                        swept += 1;
+                        state.sweeps += 1;
+                        state.tested += 1;
                         // A lone contact was solved exactly: go straight to the full test.
                         let light = if island.contacts.len() == 1 {
                             0.0
@@ -91,10 +111,12 @@ pub(crate) fn run_islands(
                         } else {
                             increment_sq.sqrt()
                         };
-                        let test =
-                            schedule.test_light(iteration, light, |_| island.error(&reactions));
-                        if test.converged || test.stalled {
-                            finished = true;
+                        let tested = state.tested;
+                        let test = state
+                            .schedule
+                            .test_light(tested, light, |_| island.error(&reactions));
+                        if test.converged || test.stalled || state.sweeps >= run.max_iter {
+                            state.done = true;
                             break;
                         }
                         if deadline_passed(run.deadline()) {
@@ -102,8 +124,6 @@ pub(crate) fn run_islands(
                             break;
                         }
                     }
-                    sweeps[i].fetch_add(swept, Ordering::Relaxed);
-                    done[i].store(finished, Ordering::Relaxed);
                 }
             };
             match &pool {
@@ -111,24 +131,34 @@ pub(crate) fn run_islands(
                 None => job(0),
             }
         }
-        out_of_time = timed_out.load(Ordering::Relaxed);
-        error = natural_map_error_by_rows(problem, sweeper.island_parts().0, r, u);
-        let exhausted = sweeps
+        let all_done = islands
             .iter()
-            .all(|s| s.load(Ordering::Relaxed) >= run.max_iter);
-        if error <= tol || out_of_time || exhausted || !(error.is_finite()) {
-            break;
+            .all(|s| s.lock().unwrap_or_else(|e| e.into_inner()).done);
+        if timed_out.load(Ordering::Relaxed) {
+            break natural_map_error_by_rows(problem, rows, r, u);
+        }
+        if !all_done {
+            continue;
+        }
+        let error = natural_map_error_by_rows(problem, rows, r, u);
+        let exhausted = islands
+            .iter()
+            .all(|s| s.lock().unwrap_or_else(|e| e.into_inner()).sweeps >= run.max_iter);
+        if error <= tol || exhausted || !error.is_finite() || rounds == ROUNDS {
+            break error;
         }
         // Every island passed its test yet the whole did not: ask the islands for the missing
         // ratio (with a margin) and go on from where they are.
+        rounds += 1;
         island_tol *= 0.5 * tol / error;
-        for d in &done {
-            d.store(false, Ordering::Relaxed);
+        for state in &islands {
+            let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
+            *state = new_run(island_tol, state.sweeps);
         }
-    }
-    let iterations = sweeps
+    };
+    let iterations = islands
         .iter()
-        .map(|s| s.load(Ordering::Relaxed))
+        .map(|s| s.lock().unwrap_or_else(|e| e.into_inner()).sweeps)
         .max()
         .unwrap_or(0);
     observer(&IterationEvent {
@@ -136,7 +166,10 @@ pub(crate) fn run_islands(
         reaction: r,
         error,
     });
-    Ok(SolverOutcome::stopped(iterations, out_of_time))
+    Ok(SolverOutcome::stopped(
+        iterations,
+        timed_out.load(Ordering::Relaxed),
+    ))
 }
 
 /// One island: its contacts (index order) and what their local problems need.
