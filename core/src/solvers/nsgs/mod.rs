@@ -25,26 +25,36 @@ use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 
 impl Family for NsgsOptions {
-    /// Siconos' NSGS first (the default of id 500), then the parallel decompositions.
+    /// Siconos' NSGS first (the default of id 500), then the parallel decompositions, each also
+    /// with the full error (133) tested after every sweep (`-FULL`: on problems where Siconos'
+    /// cheap increment test stops far later than the error passes the tolerance).
     fn presets() -> Vec<Self> {
-        [
-            Decomposition::Sequential,
-            Decomposition::Coloured,
-            Decomposition::Islands,
-        ]
-        .into_iter()
-        .map(|decomposition| NsgsOptions {
-            decomposition,
-            ..Default::default()
-        })
-        .collect()
+        let mut presets = Vec::new();
+        for error_evaluation in [ErrorEvaluation::LightWithFullFinal, ErrorEvaluation::Full] {
+            for decomposition in [
+                Decomposition::Sequential,
+                Decomposition::Coloured,
+                Decomposition::Islands,
+            ] {
+                presets.push(NsgsOptions {
+                    decomposition,
+                    error_evaluation,
+                    ..Default::default()
+                });
+            }
+        }
+        presets
     }
 
     fn name(&self) -> &'static str {
-        match self.decomposition {
-            Decomposition::Sequential => "NSGS",
-            Decomposition::Coloured => "NSGS-COLOURED",
-            Decomposition::Islands => "NSGS-ISLANDS",
+        let full = self.error_evaluation == ErrorEvaluation::Full;
+        match (self.decomposition, full) {
+            (Decomposition::Sequential, false) => "NSGS",
+            (Decomposition::Coloured, false) => "NSGS-COLOURED",
+            (Decomposition::Islands, false) => "NSGS-ISLANDS",
+            (Decomposition::Sequential, true) => "NSGS-FULL",
+            (Decomposition::Coloured, true) => "NSGS-COLOURED-FULL",
+            (Decomposition::Islands, true) => "NSGS-ISLANDS-FULL",
         }
     }
 
