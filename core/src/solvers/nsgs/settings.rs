@@ -45,7 +45,8 @@ pub enum Decomposition {
     Coloured,
     /// Connected components of the contact graph (through W's off-diagonal blocks) solved as
     /// independent problems, in parallel: each island is swept in index order with its own
-    /// stopping test (error (133) of the island) and stops being swept once converged; a contact
+    /// stopping test (its residual against its share `||q|| sqrt(n_I / n)` of the tolerance)
+    /// and stops being swept once converged; a contact
     /// coupled to no other is solved once and checked. The reported error is the global one.
     /// Adaptive local tolerances are not applied (the local solver's own tolerance is used).
     Islands,
