@@ -88,7 +88,7 @@ fn problems() -> Vec<(&'static str, FrictionProblem<'static>)> {
             "three piles",
             piles(&[
                 load("Capsules-i101-404.dat"),
-                load("Confeti-ex03-Fc3D-SBM.dat"),
+                load("Capsules-i103-990.dat"),
                 load("Capsules-i100-1090.dat"),
             ]),
         ),

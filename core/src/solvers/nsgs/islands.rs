@@ -4,9 +4,10 @@
 //! own stopping test, its share of the error (133) (see [`Island::error`]), and is no longer
 //! swept once it passes; a contact coupled to no other is solved once and checked. Threads take
 //! islands, largest first, for [`VISIT`] sweeps at a time, so that under a time budget every
-//! island progresses. Once every island has stopped, the global error (133) is measured and
-//! reported; should it be above the tolerance (a light test passed wrongly), the islands run
-//! again with a tolerance tightened by the missing ratio (at most [`ROUNDS`] rounds).
+//! island progresses. After every round of visits the global error (133) is measured: the run
+//! stops when it passes (it is the error reported), and its normalisation sets the islands'
+//! shares. Should every island stop while the global error is above the tolerance, the islands
+//! run again with a tolerance tightened by the missing ratio (at most [`ROUNDS`] times).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
@@ -19,7 +20,7 @@ use crate::contract::{deadline_passed, ErrorSchedule, IterationEvent, Limits, Ob
 use crate::error::Fc3dError;
 use crate::math::linalg::{block_vec_add, distance_sq_d};
 use crate::matrix::BlockRows;
-use crate::measure::{contact_residual_sq_d, natural_map_error_by_rows};
+use crate::measure::{contact_residual_sq_d, natural_map_error_by_rows, relative_scale};
 use crate::problem::FrictionProblem;
 
 /// Rounds of island solves at most (the first, and tightened ones).
@@ -62,6 +63,8 @@ pub(crate) fn run_islands(
         n if n > 0.0 && n.is_finite() => n,
         _ => 1.0,
     };
+    // Normalisation of the error (133) at the last global measurement (||q|| before the first).
+    let mut scale = norm_q;
     let new_run = |island_tol: f64, sweeps: usize| IslandRun {
         schedule: ErrorSchedule::new(
             options.error_evaluation,
@@ -99,7 +102,7 @@ pub(crate) fn run_islands(
                     let contacts = &order[start[i]..start[i + 1]];
                     let island = Island {
                         contacts,
-                        scale: norm_q * (contacts.len() as f64 / nc).sqrt(),
+                        scale: scale * (contacts.len() as f64 / nc).sqrt(),
                         rows,
                         q,
                         mu,
@@ -137,29 +140,31 @@ pub(crate) fn run_islands(
                 None => job(0),
             }
         }
-        let all_done = islands
-            .iter()
-            .all(|s| s.lock().unwrap_or_else(|e| e.into_inner()).done);
-        if timed_out.load(Ordering::Relaxed) {
-            break natural_map_error_by_rows(problem, rows, r, u);
-        }
-        if !all_done {
-            continue;
-        }
+        // The global error after every round of visits: the run stops on it, and its
+        // normalisation sets the islands' shares for the next round.
         let error = natural_map_error_by_rows(problem, rows, r, u);
-        let exhausted = islands
-            .iter()
-            .all(|s| s.lock().unwrap_or_else(|e| e.into_inner()).sweeps >= run.max_iter);
-        if error <= tol || exhausted || !error.is_finite() || rounds == ROUNDS {
+        scale = relative_scale(norm_q, r, u);
+        if timed_out.load(Ordering::Relaxed) || error <= tol || !error.is_finite() {
             break error;
         }
-        // Every island passed its test yet the whole did not: ask the islands for the missing
-        // ratio (with a margin) and go on from where they are.
-        rounds += 1;
-        island_tol *= 0.5 * tol / error;
+        let (mut all_done, mut exhausted) = (true, true);
         for state in &islands {
-            let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
-            *state = new_run(island_tol, state.sweeps);
+            let state = state.lock().unwrap_or_else(|e| e.into_inner());
+            all_done &= state.done;
+            exhausted &= state.sweeps >= run.max_iter;
+        }
+        if exhausted || (all_done && rounds == ROUNDS) {
+            break error;
+        }
+        if all_done {
+            // Every island passed its test yet the whole did not: ask the islands for the
+            // missing ratio (with a margin) and go on from where they are.
+            rounds += 1;
+            island_tol *= 0.5 * tol / error;
+            for state in &islands {
+                let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
+                *state = new_run(island_tol, state.sweeps);
+            }
         }
     };
     let iterations = islands
@@ -216,12 +221,12 @@ impl Island<'_> {
     }
 
     /// The island's share of the error (133): its natural-map residual over
-    /// `s_I = ||q|| sqrt(n_I / n)`, with `||q||` the whole problem's, so that
-    /// `sum_I s_I^2 = ||q||^2`. When every island's share is below the tolerance, so is the
-    /// global error, whose normalisation `max(||q||, ||r||, ||u||)` is at least `||q||`; an
-    /// island with small forces is not asked for a relative accuracy the global error does not
-    /// need (its own relative error (133) would: on the Capsules problems that took 10-100
-    /// times the sweeps). Splitting by load instead measured no better.
+    /// `s_I = S sqrt(n_I / n)`, with `S = max(||q||, ||r||, ||u||)` of the whole problem at the
+    /// last global measurement, so that `sum_I s_I^2 = S^2`: when every island's share is below
+    /// the tolerance, so is the global error (up to the change of S). An island with small
+    /// forces is not asked for a relative accuracy the global error does not need (its own
+    /// relative error (133) would: on the Capsules problems that took 10-100 times the sweeps);
+    /// splitting by load instead measured no better.
     fn error(&self, reactions: &SharedSlice<'_>) -> f64 {
         let mut res = 0.0;
         for &c in self.contacts {
