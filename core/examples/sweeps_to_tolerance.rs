@@ -27,10 +27,12 @@ fn main() {
             NsgsOptions::with_local(kind),
         ));
     }
-    let mut fc3d_variant = NsgsOptions::default();
-    fc3d_variant.local = LocalSolverOptions {
-        variant: fc3d_core::AlgorithmVariant::Fc3d,
-        ..LocalSolverOptions::default()
+    let fc3d_variant = NsgsOptions {
+        local: LocalSolverOptions {
+            variant: fc3d_core::AlgorithmVariant::Fc3d,
+            ..LocalSolverOptions::default()
+        },
+        ..Default::default()
     };
     configs.push(("565 fc3d variant".into(), fc3d_variant));
     for omega in [1.2, 1.4, 1.6] {
