@@ -36,7 +36,7 @@ pub enum Decomposition {
     /// One thread, contacts in the order of [`ContactOrder`] (default; Siconos 4.4's iteration).
     #[default]
     Sequential,
-    /// Block-multicoloured Gauss-Seidel: the contacts are cut in units of 128 consecutive
+    /// Block-multicoloured Gauss-Seidel: the contacts are cut in units of 512 consecutive
     /// contacts, and the units coloured greedily (index order, smallest free colour) so that no
     /// two units of a colour are coupled through W (in either direction); a sweep visits the
     /// colours in turn, the units of one colour in parallel, each unit in index order. Every

@@ -249,7 +249,7 @@ struct ColouredPlan {
 }
 
 /// Consecutive contacts swept by one thread as a unit in a coloured sweep.
-const UNIT: usize = 128;
+const UNIT: usize = 512;
 
 impl ColouredPlan {
     fn new<const D: usize>(rows: &BlockRows<D>, threads: usize) -> Result<Self, Fc3dError> {
