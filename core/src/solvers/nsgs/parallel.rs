@@ -297,6 +297,20 @@ pub(crate) struct SpinBarrier {
     arrived: AtomicUsize,
     generation: AtomicUsize,
     n: usize,
+    /// Set when a thread of the broadcast panicked: the others stop waiting (and panic in
+    /// turn) instead of waiting forever for it.
+    poisoned: std::sync::atomic::AtomicBool,
+}
+
+/// Poisons its barrier if the thread holding it unwinds.
+pub(crate) struct PoisonOnPanic<'a>(pub &'a SpinBarrier);
+
+impl Drop for PoisonOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.poisoned.store(true, Ordering::Release);
+        }
+    }
 }
 
 impl SpinBarrier {
@@ -305,6 +319,7 @@ impl SpinBarrier {
             arrived: AtomicUsize::new(0),
             generation: AtomicUsize::new(0),
             n,
+            poisoned: std::sync::atomic::AtomicBool::new(false),
         }
     }
 
@@ -320,6 +335,9 @@ impl SpinBarrier {
         }
         let mut spins = 0u32;
         while self.generation.load(Ordering::Acquire) == generation {
+            if self.poisoned.load(Ordering::Acquire) {
+                panic!("another sweep thread panicked");
+            }
             if spins < 2000 {
                 std::hint::spin_loop();
                 spins += 1;

@@ -15,7 +15,9 @@ use crate::problem::FrictionProblem;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice, SpinBarrier};
+use super::parallel::{
+    resolve_threads, ContactGraph, PoisonOnPanic, Pool, Reactions, SharedSlice, SpinBarrier,
+};
 use super::settings::{ContactOrder, Decomposition, NsgsOptions};
 use crate::contract::ErrorEvaluation;
 use crate::error::try_vec;
@@ -503,6 +505,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
         let (order, colour_start, next_unit, barrier) =
             (&*order, &*colour_start, &*next_unit, &*barrier);
         let job = |_thread: usize| {
+            let _poison = PoisonOnPanic(barrier);
             let mut worker = step.worker();
             for k in 0..n_colours {
                 let units = &order[colour_start[k]..colour_start[k + 1]];
