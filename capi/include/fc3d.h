@@ -35,6 +35,27 @@
 // `iparam[FC3D_IPARAM_VARIANT]`: fc3d's refined one-contact iteration.
 #define FC3D_VARIANT_FC3D 1
 
+// Index in NSGS's (500) `iparam` choosing how sweeps split the contacts for threads, an index
+// Siconos' NSGS leaves unused: `FC3D_NSGS_SEQUENTIAL` (0, default: Siconos 4.4's order and
+// sweep counts), `FC3D_NSGS_COLOURED` (multicoloured Gauss-Seidel, contacts of one colour
+// solved in parallel) or `FC3D_NSGS_ISLANDS` (connected components solved independently, in
+// parallel, each with its own stopping test). Results are bitwise identical for any number of
+// threads; the sweep order, and so the sweep counts, differ from Siconos'.
+#define FC3D_IPARAM_NSGS_DECOMPOSITION 15
+
+// Index in NSGS's (500) `iparam` of the threads of a coloured or islands run: 0 (default) takes
+// the environment variable `FC3D_NUM_THREADS`, else the machine's available parallelism.
+#define FC3D_IPARAM_NSGS_THREADS 16
+
+// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: one thread, Siconos' order (default).
+#define FC3D_NSGS_SEQUENTIAL 0
+
+// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: multicoloured parallel sweeps.
+#define FC3D_NSGS_COLOURED 1
+
+// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: islands solved independently, in parallel.
+#define FC3D_NSGS_ISLANDS 2
+
 // Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
 #define OPTIONS_PARAM_SIZE 20
 

@@ -74,6 +74,22 @@ pub const FC3D_IPARAM_VARIANT: c_int = 19;
 pub const FC3D_VARIANT_SICONOS: c_int = 0;
 /// `iparam[FC3D_IPARAM_VARIANT]`: fc3d's refined one-contact iteration.
 pub const FC3D_VARIANT_FC3D: c_int = 1;
+/// Index in NSGS's (500) `iparam` choosing how sweeps split the contacts for threads, an index
+/// Siconos' NSGS leaves unused: `FC3D_NSGS_SEQUENTIAL` (0, default: Siconos 4.4's order and
+/// sweep counts), `FC3D_NSGS_COLOURED` (multicoloured Gauss-Seidel, contacts of one colour
+/// solved in parallel) or `FC3D_NSGS_ISLANDS` (connected components solved independently, in
+/// parallel, each with its own stopping test). Results are bitwise identical for any number of
+/// threads; the sweep order, and so the sweep counts, differ from Siconos'.
+pub const FC3D_IPARAM_NSGS_DECOMPOSITION: c_int = 15;
+/// Index in NSGS's (500) `iparam` of the threads of a coloured or islands run: 0 (default) takes
+/// the environment variable `FC3D_NUM_THREADS`, else the machine's available parallelism.
+pub const FC3D_IPARAM_NSGS_THREADS: c_int = 16;
+/// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: one thread, Siconos' order (default).
+pub const FC3D_NSGS_SEQUENTIAL: c_int = 0;
+/// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: multicoloured parallel sweeps.
+pub const FC3D_NSGS_COLOURED: c_int = 1;
+/// `iparam[FC3D_IPARAM_NSGS_DECOMPOSITION]`: islands solved independently, in parallel.
+pub const FC3D_NSGS_ISLANDS: c_int = 2;
 /// Length of iparam and dparam (Siconos' OPTIONS_PARAM_SIZE).
 pub const OPTIONS_PARAM_SIZE: c_int = 20;
 /// fc3d's value of a local solver's `iparam[9]` (rho strategy) for Dumont's rule

@@ -52,7 +52,9 @@ pub use solve::{
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use solvers::auto::{AutoOptions, ProblemFeatures};
-pub use solvers::nsgs::{ContactOrder, LocalTolerance, NsgsOptions, Sweeper};
+pub use solvers::nsgs::{
+    ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper, NUM_THREADS_ENV,
+};
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;
 pub use solvers::planar::{PlanarMethod, PlanarNsgsOptions};

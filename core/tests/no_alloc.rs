@@ -306,6 +306,25 @@ fn solve_allocations_do_not_grow_with_iterations() {
         let many = solve_allocations(p, options, 200);
         assert_eq!(one, many, "{name}, all sweep options: {one} vs {many}");
     }
+    // The parallel decompositions on two threads (the pool, kept for the process, is started
+    // by a first solve): the calling thread allocates nothing per sweep.
+    for (name, p) in cases {
+        for decomposition in [
+            fc3d_core::Decomposition::Coloured,
+            fc3d_core::Decomposition::Islands,
+        ] {
+            let options = SolverConfig::new(NsgsOptions {
+                decomposition,
+                threads: 2,
+                relaxation: Some(1.2),
+                ..NsgsOptions::default()
+            });
+            solve_allocations(p, options, 1);
+            let one = solve_allocations(p, options, 1);
+            let many = solve_allocations(p, options, 200);
+            assert_eq!(one, many, "{name}, {decomposition:?}: {one} vs {many}");
+        }
+    }
 }
 
 /// Allocations of a whole solve with `config` (tolerance 0, so every iteration runs).

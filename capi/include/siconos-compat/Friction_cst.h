@@ -155,6 +155,11 @@ enum SICONOS_FRICTION_3D_NSGS_IPARAM
   SICONOS_FRICTION_3D_NSGS_FREEZING_CONTACT = 19,
   SICONOS_FRICTION_3D_NSGS_FILTER_LOCAL_SOLUTION = 14
 };
+/* fc3d adds two NSGS slots Siconos leaves unused (fc3d.h): FC3D_IPARAM_NSGS_DECOMPOSITION (15:
+   FC3D_NSGS_SEQUENTIAL 0, Siconos' order, the default; FC3D_NSGS_COLOURED 1, parallel coloured
+   sweeps; FC3D_NSGS_ISLANDS 2, connected components solved independently) and
+   FC3D_IPARAM_NSGS_THREADS (16: 0 takes FC3D_NUM_THREADS, else the available cores). Results are
+   bitwise identical for any number of threads. */
 
 /* NSGS (500) dparam indices. */
 enum SICONOS_FRICTION_3D_NSGS_DPARAM

@@ -82,6 +82,7 @@ const SETTING_SLOTS: &[(&str, &str)] = &[
     ("time_budget", "dparam[19]"),
     ("nsgs.relaxation", "dparam[8]"),
     ("nsgs.local_tolerance.ratio", "dparam[2]"),
+    ("nsgs.decomposition", "iparam[15]"),
     ("local.tolerance", "internal solver's dparam[0]"),
     ("local.rho", "internal solver's dparam[3]"),
     ("local.regularization", "internal solver's dparam[3]"),

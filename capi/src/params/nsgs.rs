@@ -1,8 +1,9 @@
 //! NSGS (500): iparam[7] error evaluation (0 full, 1 light, 2 light with full final,
 //! `FC3D_ERROR_EVALUATION_DUMONT`), iparam[2] local tolerance strategy with its ratio dparam[2],
 //! iparam[3] rescaling, iparam[4] relaxation with omega dparam[8], iparam[5]/[6] shuffling and
-//! its seed, iparam[8] evaluation frequency, iparam[19] freezing; internal solver 0 is the local
-//! solver.
+//! its seed, iparam[8] evaluation frequency, iparam[19] freezing, fc3d's iparam[15]
+//! decomposition (sequential, coloured, islands) and iparam[16] threads; internal solver 0 is
+//! the local solver.
 
 use super::{
     invalid, local, Params, DPARAM_INTERNAL_ERROR_RATIO, IPARAM_ERROR_EVALUATION,
@@ -10,13 +11,19 @@ use super::{
 };
 use crate::types::SolverOptions;
 use crate::{CResult, FC3D_ERROR_EVALUATION_DUMONT};
-use fc3d_core::{ContactOrder, ErrorEvaluation, LocalTolerance, NsgsOptions, Rescaling};
+use fc3d_core::{
+    ContactOrder, Decomposition, ErrorEvaluation, LocalTolerance, NsgsOptions, Rescaling,
+};
 
 const IPARAM_RELAXATION: usize = 4;
 const IPARAM_SHUFFLE: usize = 5;
 const IPARAM_SHUFFLE_SEED: usize = 6;
 const IPARAM_FREEZING_CONTACT: usize = 19;
 const DPARAM_RELAXATION_VALUE: usize = 8;
+/// fc3d's decomposition slot (`FC3D_IPARAM_NSGS_DECOMPOSITION`), unused by Siconos' NSGS.
+const IPARAM_DECOMPOSITION: usize = crate::FC3D_IPARAM_NSGS_DECOMPOSITION as usize;
+/// fc3d's thread-count slot (`FC3D_IPARAM_NSGS_THREADS`), unused by Siconos' NSGS.
+const IPARAM_THREADS: usize = crate::FC3D_IPARAM_NSGS_THREADS as usize;
 
 pub(super) unsafe fn read(
     p: &Params<'_>,
@@ -68,6 +75,17 @@ pub(super) unsafe fn read(
         0 => None,
         k => Some(k),
     };
+    let decomposition = match p.iparam[IPARAM_DECOMPOSITION] {
+        crate::FC3D_NSGS_SEQUENTIAL => Decomposition::Sequential,
+        crate::FC3D_NSGS_COLOURED => Decomposition::Coloured,
+        crate::FC3D_NSGS_ISLANDS => Decomposition::Islands,
+        other => {
+            return Err(invalid(format!(
+                "decomposition (iparam[{IPARAM_DECOMPOSITION}]) = {other} is not 0 (sequential), 1 (coloured) or 2 (islands)"
+            )))
+        }
+    };
+    let threads = p.count(IPARAM_THREADS, "threads")?;
     let local = match internal {
         Some(i) => local::read(i)?,
         None => NsgsOptions::default().local,
@@ -80,6 +98,8 @@ pub(super) unsafe fn read(
         relaxation,
         order,
         freezing,
+        decomposition,
+        threads,
     })
 }
 

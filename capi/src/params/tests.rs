@@ -240,3 +240,41 @@ fn siconos_internal_solvers_of_the_fixed_points() {
         crate::alloc::c_free(o);
     }
 }
+
+/// NSGS's decomposition and threads slots (fc3d's, unused by Siconos): read into the core's
+/// options, unknown codes refused with their slot; the sequential default needs no slot set.
+#[test]
+fn nsgs_decomposition_and_threads_slots() {
+    use fc3d_core::Decomposition;
+    let o = create_options(500).expect("created");
+    let decomposition = crate::FC3D_IPARAM_NSGS_DECOMPOSITION as usize;
+    let threads = crate::FC3D_IPARAM_NSGS_THREADS as usize;
+    unsafe {
+        let read = |o: *mut SolverOptions| match config_from_c(&*o).expect("read").method {
+            Method::Nsgs(n) => (n.decomposition, n.threads),
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(read(o), (Decomposition::Sequential, 0));
+        for (code, expected) in [
+            (crate::FC3D_NSGS_COLOURED, Decomposition::Coloured),
+            (crate::FC3D_NSGS_ISLANDS, Decomposition::Islands),
+        ] {
+            *(*o).iparam.add(decomposition) = code;
+            *(*o).iparam.add(threads) = 3;
+            assert_eq!(read(o), (expected, 3));
+        }
+        *(*o).iparam.add(decomposition) = 7;
+        let e = config_from_c(&*o).expect_err("unknown decomposition");
+        assert!(e.message.contains("iparam[15]"), "{}", e.message);
+        *(*o).iparam.add(decomposition) = crate::FC3D_NSGS_COLOURED;
+        *(*o).iparam.add(threads) = -1;
+        assert!(config_from_c(&*o).is_err());
+        *(*o).iparam.add(threads) = 0;
+        // Freezing needs the sequential order: refused, naming the decomposition slot.
+        *(*o).iparam.add(19) = 2;
+        let e = config_from_c(&*o).expect_err("freezing with colours");
+        assert!(e.message.contains("iparam[15]"), "{}", e.message);
+        delete_contents(o);
+        crate::alloc::c_free(o);
+    }
+}

@@ -143,8 +143,17 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
             )
         })?;
     match (method, local) {
-        (Method::Nsgs(_), None) => Ok(SolverSpec::nsgs(LocalSolverKind::NewtonHybrid)),
-        (Method::Nsgs(_), Some(l)) => Ok(SolverSpec::nsgs(parse_local(l)?)),
+        // The preset's sweep options (its decomposition) with the local solver asked for.
+        (Method::Nsgs(o), local) => Ok(SolverSpec {
+            method: Method::Nsgs(NsgsOptions {
+                local: NsgsOptions::with_local(match local {
+                    Some(l) => parse_local(l)?,
+                    None => LocalSolverKind::NewtonHybrid,
+                })
+                .local,
+                ..o
+            }),
+        }),
         (method, None) => Ok(SolverSpec { method }),
         (_, Some(_)) => Err(format!(
             "solver '{solver}' takes no local solver (in '{s}')"

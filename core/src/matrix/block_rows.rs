@@ -261,10 +261,27 @@ impl<const D: usize> BlockRows<D> {
         }
     }
 
+    /// The contacts coupled to contact `c` through a stored block of its row (increasing, the
+    /// contact graph of parallel and island sweeps; a repeated block repeats its contact).
+    #[inline]
+    pub fn coupled(&self, c: usize) -> impl Iterator<Item = usize> + '_ {
+        self.cols[self.row_ptr[c]..self.row_ptr[c + 1]]
+            .iter()
+            .copied()
+            .filter(move |&b| b != c)
+    }
+
     /// The normal component of [`BlockRows::local_q`]: all a frictionless contact needs (one
     /// row of each coupled block instead of `D`).
     #[inline]
     pub fn local_q_normal(&self, c: usize, q: &[f64], r: &[f64]) -> f64 {
+        self.local_q_normal_by(c, q, |i| r[i])
+    }
+
+    /// [`BlockRows::local_q_normal`] with the reaction read entry by entry through `r_at`
+    /// (reactions shared between sweeping threads).
+    #[inline]
+    pub fn local_q_normal_by(&self, c: usize, q: &[f64], r_at: impl Fn(usize) -> f64) -> f64 {
         let mut acc = q[D * c];
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             let b = self.cols[k];
@@ -273,9 +290,9 @@ impl<const D: usize> BlockRows<D> {
             }
             // Row 0 of the column-major block.
             let m = &self.values[D * D * k..D * D * (k + 1)];
-            let mut s = m[0] * r[D * b];
+            let mut s = m[0] * r_at(D * b);
             for j in 1..D {
-                s += m[D * j] * r[D * b + j];
+                s += m[D * j] * r_at(D * b + j);
             }
             acc += s;
         }
@@ -285,13 +302,20 @@ impl<const D: usize> BlockRows<D> {
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
     #[inline]
     pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> [f64; D] {
+        self.local_q_by(c, q, |b| contact_of(r, b))
+    }
+
+    /// [`BlockRows::local_q`] with each contact's reaction read through `r_of` (reactions
+    /// shared between sweeping threads).
+    #[inline]
+    pub fn local_q_by(&self, c: usize, q: &[f64], r_of: impl Fn(usize) -> [f64; D]) -> [f64; D] {
         let mut acc = contact_of(q, c);
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             let b = self.cols[k];
             if b == c {
                 continue;
             }
-            let rb: [f64; D] = contact_of(r, b);
+            let rb: [f64; D] = r_of(b);
             let m = &self.values[D * D * k..D * D * (k + 1)];
             // Each component summed in the order of `block_vec_add` (same bits as a row-major
             // block).

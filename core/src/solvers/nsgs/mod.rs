@@ -7,10 +7,13 @@
 //! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
 //! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
 
+mod islands;
+mod parallel;
 mod settings;
 mod sweeper;
 
-pub use settings::{ContactOrder, LocalTolerance, NsgsOptions};
+pub use parallel::{resolve_threads, NUM_THREADS_ENV};
+pub use settings::{ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
 pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
 
 use crate::contract::{
@@ -22,12 +25,41 @@ use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
 impl Family for NsgsOptions {
+    /// Siconos' NSGS first (the default of id 500), then the parallel decompositions, each also
+    /// with the full error (133) tested after every sweep (`-FULL`: on problems where Siconos'
+    /// cheap increment test stops far later than the error passes the tolerance).
+    fn presets() -> Vec<Self> {
+        let mut presets = Vec::new();
+        for error_evaluation in [ErrorEvaluation::LightWithFullFinal, ErrorEvaluation::Full] {
+            for decomposition in [
+                Decomposition::Sequential,
+                Decomposition::Coloured,
+                Decomposition::Islands,
+            ] {
+                presets.push(NsgsOptions {
+                    decomposition,
+                    error_evaluation,
+                    ..Default::default()
+                });
+            }
+        }
+        presets
+    }
+
     fn name(&self) -> &'static str {
-        "NSGS"
+        let full = self.error_evaluation == ErrorEvaluation::Full;
+        match (self.decomposition, full) {
+            (Decomposition::Sequential, false) => "NSGS",
+            (Decomposition::Coloured, false) => "NSGS-COLOURED",
+            (Decomposition::Islands, false) => "NSGS-ISLANDS",
+            (Decomposition::Sequential, true) => "NSGS-FULL",
+            (Decomposition::Coloured, true) => "NSGS-COLOURED-FULL",
+            (Decomposition::Islands, true) => "NSGS-ISLANDS-FULL",
+        }
     }
 
     fn label(&self) -> String {
-        format!("NSGS/{}", self.local.kind.siconos_id())
+        format!("{}/{}", self.name(), self.local.kind.siconos_id())
     }
 
     fn siconos_id(&self) -> i32 {
@@ -96,7 +128,11 @@ pub(crate) fn nsgs_on_rows(
         local_tolerance: options.local_tolerance,
         stop_when_stalled: true,
     };
-    let outcome = run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer);
+    let outcome = if options.decomposition == Decomposition::Islands {
+        islands::run_islands(problem, &mut sweeper, options, limits, r, u, observer)
+    } else {
+        run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
+    };
     (outcome, Some(sweeper.into_rows()))
 }
 

@@ -27,6 +27,31 @@ pub enum ContactOrder {
     ShuffledEachSweep { seed: u64 },
 }
 
+/// How a sweep splits the contacts for threads (and islands). Every choice but
+/// [`Decomposition::Sequential`] visits the contacts in another Gauss-Seidel order than Siconos',
+/// so its sweep counts differ from Siconos'; the results are bitwise identical for any number of
+/// threads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Decomposition {
+    /// One thread, contacts in the order of [`ContactOrder`] (default; Siconos 4.4's iteration).
+    #[default]
+    Sequential,
+    /// Block-multicoloured Gauss-Seidel: the contacts are cut in units of 512 consecutive
+    /// contacts, and the units coloured greedily (index order, smallest free colour) so that no
+    /// two units of a colour are coupled through W (in either direction); a sweep visits the
+    /// colours in turn, the units of one colour in parallel, each unit in index order. Every
+    /// contact sees the newest reactions of all its neighbours, as in any Gauss-Seidel sweep;
+    /// only the order differs from index order.
+    Coloured,
+    /// Connected components of the contact graph (through W's off-diagonal blocks) solved as
+    /// independent problems, in parallel: each island is swept in index order with its own
+    /// stopping test (its residual against its share `||q|| sqrt(n_I / n)` of the tolerance)
+    /// and stops being swept once converged; a contact
+    /// coupled to no other is solved once and checked. The reported error is the global one.
+    /// Adaptive local tolerances are not applied (the local solver's own tolerance is used).
+    Islands,
+}
+
 /// Settings of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500). Its limits default to
 /// 1000 sweeps and a tolerance of 1e-4. Under a time budget NSGS stops after the sweep that
 /// spends it and returns the best iterate it measured.
@@ -51,6 +76,15 @@ pub struct NsgsOptions {
     /// skipped for this many following sweeps (default `None`: never frozen). Convergence is
     /// always confirmed on all contacts.
     pub freezing: Option<usize>,
+    /// How contacts are split for threads (default [`Decomposition::Sequential`]).
+    /// [`Decomposition::Coloured`] and [`Decomposition::Islands`] take the natural order and no
+    /// freezing, and do not run Dumont's criterion.
+    pub decomposition: Decomposition,
+    /// Threads of a [`Decomposition::Coloured`] or [`Decomposition::Islands`] run (ignored by
+    /// [`Decomposition::Sequential`]): 0 (default) takes the environment variable
+    /// `FC3D_NUM_THREADS` when it holds a positive integer, else the machine's available
+    /// parallelism. The results do not depend on it.
+    pub threads: usize,
 }
 
 impl Default for NsgsOptions {
@@ -63,6 +97,8 @@ impl Default for NsgsOptions {
             relaxation: None,
             order: ContactOrder::Natural,
             freezing: None,
+            decomposition: Decomposition::Sequential,
+            threads: 0,
         }
     }
 }
@@ -85,6 +121,15 @@ impl NsgsOptions {
                 omega,
                 "in (0, 2)",
             )?;
+        }
+        if self.decomposition != Decomposition::Sequential {
+            let name = "nsgs.decomposition";
+            let value = format!("{:?}", self.decomposition);
+            let why = "sequential with a shuffled order, freezing or Dumont's criterion";
+            let supported = self.order == ContactOrder::Natural
+                && self.freezing.is_none_or(|k| k == 0)
+                && self.error_evaluation != ErrorEvaluation::DumontCriterion;
+            require_setting(supported, name, value, why)?;
         }
         match self.local_tolerance {
             LocalTolerance::Given => Ok(()),

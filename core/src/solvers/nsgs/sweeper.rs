@@ -7,13 +7,20 @@ use std::time::Instant;
 
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
-use crate::math::linalg::{block_vec_add, contact_of, distance_sq_d, Block};
+use crate::math::linalg::{block_vec_add, distance_sq_d, Block};
 use crate::matrix::BlockRows;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
-use super::settings::{ContactOrder, NsgsOptions};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use super::parallel::{
+    resolve_threads, ContactGraph, PoisonOnPanic, Pool, Reactions, SharedSlice, SpinBarrier,
+};
+use super::settings::{ContactOrder, Decomposition, NsgsOptions};
 use crate::contract::ErrorEvaluation;
+use crate::error::try_vec;
 
 /// A small, portable pseudo-random generator (SplitMix64): the same seed gives the same contact
 /// orders on every platform and run, which makes shuffled runs reproducible bit for bit.
@@ -50,11 +57,29 @@ impl SplitMix64 {
     }
 }
 
-/// The one-contact step a sweep applies to each contact of dimension `D`.
-pub trait ContactStep<const D: usize> {
+/// The one-contact step a sweep applies to each contact of dimension `D`. Its configuration is
+/// shared by the threads of a parallel sweep; each thread solves with its own [`Self::Worker`].
+pub trait ContactStep<const D: usize>: Sync {
+    /// What one thread needs of its own to solve contacts (a local solver instance).
+    type Worker;
+
+    /// A worker with the current configuration (tolerance, deadline).
+    fn worker(&self) -> Self::Worker;
+
     /// The reaction of contact `c` for its local problem FC(`w`, `q`, `mu`), starting from and
-    /// written into `r`. A step that cannot produce a finite answer leaves `r` as it was.
-    fn solve(&mut self, c: usize, w: &Block<D>, q: &[f64; D], mu: f64, r: &mut [f64; D]);
+    /// written into `r`; `memory` is the contact's own state kept from sweep to sweep (1 before
+    /// the first visit). A step that cannot produce a finite answer leaves `r` as it was.
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &self,
+        worker: &mut Self::Worker,
+        c: usize,
+        w: &Block<D>,
+        q: &[f64; D],
+        mu: f64,
+        memory: &mut f64,
+        r: &mut [f64; D],
+    );
 
     /// A new tolerance for iterative steps (adaptive local tolerance); exact steps ignore it.
     fn set_tolerance(&mut self, _tolerance: f64) {}
@@ -78,52 +103,61 @@ pub trait ContactStep<const D: usize> {
 /// on `W_cc` only, so they are computed once per problem).
 pub struct LocalStep {
     options: LocalSolverOptions,
-    solver: AnyLocalSolver,
     rho: Vec<(f64, f64)>,
-    /// Each contact's local-solver state carried from sweep to sweep (553's step length).
-    memory: Vec<f64>,
     deadline: Option<Instant>,
 }
 
 impl LocalStep {
     fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
         let solver = AnyLocalSolver::new(options);
-        let rho = (0..rows.n_contacts())
-            .map(|c| solver.rho(rows.diagonal(c)))
-            .collect();
+        let mut rho = crate::error::try_vec(rows.n_contacts(), (0.0, 0.0), "local penalties")?;
+        for (c, rc) in rho.iter_mut().enumerate() {
+            *rc = solver.rho(rows.diagonal(c));
+        }
         Ok(LocalStep {
             options: *options,
-            solver,
             rho,
-            memory: crate::error::try_vec(rows.n_contacts(), 1.0, "local solver states")?,
             deadline: None,
         })
     }
 }
 
 impl ContactStep<3> for LocalStep {
+    type Worker = AnyLocalSolver;
+
+    fn worker(&self) -> AnyLocalSolver {
+        let mut solver = AnyLocalSolver::new(&self.options);
+        solver.set_deadline(self.deadline);
+        solver
+    }
+
     #[inline]
-    fn solve(&mut self, c: usize, w: &Block<3>, q: &[f64; 3], mu: f64, r: &mut [f64; 3]) {
+    fn solve(
+        &self,
+        solver: &mut AnyLocalSolver,
+        c: usize,
+        w: &Block<3>,
+        q: &[f64; 3],
+        mu: f64,
+        memory: &mut f64,
+        r: &mut [f64; 3],
+    ) {
         let p = LocalProblem { w, q: *q, mu };
         let old = *r;
-        self.solver
-            .solve_in_sweep(&p, self.rho[c], &mut self.memory[c], r);
+        solver.solve_in_sweep(&p, self.rho[c], memory, r);
         if !r.iter().all(|v| v.is_finite()) {
             *r = old;
         }
     }
 
     fn set_tolerance(&mut self, tolerance: f64) {
-        if tolerance != self.options.tolerance && tolerance.is_finite() && tolerance >= 0.0 {
+        if tolerance.is_finite() && tolerance >= 0.0 {
             self.options.tolerance = tolerance;
-            self.solver = AnyLocalSolver::new(&self.options);
-            self.solver.set_deadline(self.deadline);
         }
     }
 
     fn set_deadline(&mut self, deadline: Option<Instant>) {
         self.deadline = deadline;
-        self.solver.set_deadline(deadline);
     }
 }
 
@@ -198,10 +232,54 @@ impl SweepPlan {
 /// One Gauss-Seidel sweep's state for contacts of dimension `D`, prepared once per problem: the
 /// block-row view of W, the one-contact step `S` and the sweep options. A sweep allocates
 /// nothing.
-pub struct GaussSeidel<const D: usize, S> {
+pub struct GaussSeidel<const D: usize, S: ContactStep<D>> {
     rows: BlockRows<D>,
     step: S,
+    /// The calling thread's worker (sequential sweeps and thread 0 of a coloured one).
+    worker: S::Worker,
+    /// Each contact's step state carried from sweep to sweep (553's step length).
+    memory: Vec<f64>,
     plan: SweepPlan,
+    /// The colouring and threads of a [`Decomposition::Coloured`] sweep.
+    coloured: Option<ColouredPlan>,
+}
+
+/// A coloured sweep's schedule: the contacts cut in units of [`UNIT`] consecutive contacts,
+/// the units coloured so that no two units of a colour are coupled. Colour after colour, the
+/// threads take the colour's units one at a time and sweep each in index order: a Gauss-Seidel
+/// order close to index order, with each unit's contacts and reactions contiguous in memory.
+/// Units and colours do not depend on the number of threads, and each unit's squared increment
+/// has its own slot, summed in unit order: the sweep is the same for any number of threads.
+struct ColouredPlan {
+    /// Units grouped by colour.
+    order: Vec<usize>,
+    colour_start: Vec<usize>,
+    unit_sums: Vec<f64>,
+    /// Next unit to take, per colour.
+    next_unit: Vec<AtomicUsize>,
+    barrier: SpinBarrier,
+    pool: Option<Arc<Pool>>,
+}
+
+/// Consecutive contacts swept by one thread as a unit in a coloured sweep.
+const UNIT: usize = 512;
+
+impl ColouredPlan {
+    fn new<const D: usize>(rows: &BlockRows<D>, threads: usize) -> Result<Self, Fc3dError> {
+        let (order, colour_start) = ContactGraph::new(rows, UNIT)?.colour()?;
+        let n_colours = colour_start.len() - 1;
+        let unit_sums = try_vec(order.len(), 0.0, "sweep increments")?;
+        let pool = Pool::shared(threads)?;
+        let threads = pool.as_ref().map_or(1, |p| p.threads());
+        Ok(ColouredPlan {
+            order,
+            colour_start,
+            unit_sums,
+            next_unit: (0..n_colours).map(|_| AtomicUsize::new(0)).collect(),
+            barrier: SpinBarrier::new(threads),
+            pool,
+        })
+    }
 }
 
 /// The 3D sweep with a local solver (public so that benchmarks and hosts that drive their own
@@ -216,7 +294,7 @@ impl Sweeper {
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
         let step = LocalStep::new(&rows, local)?;
-        Ok(GaussSeidel::from_parts(
+        GaussSeidel::from_parts(
             rows,
             step,
             &SweepOptions {
@@ -226,12 +304,12 @@ impl Sweeper {
                 track_solved_velocity: false,
             },
             0.0,
-        ))
+        )
     }
 
-    /// A sweeper with the sweep options of `options` (order, relaxation, freezing, and the
-    /// bookkeeping Dumont's criterion needs); `tolerance` is the run's, against which freezing
-    /// judges a contact still. Rejects options out of range.
+    /// A sweeper with the sweep options of `options` (order, relaxation, freezing, the
+    /// bookkeeping Dumont's criterion needs, a coloured decomposition); `tolerance` is the
+    /// run's, against which freezing judges a contact still. Rejects options out of range.
     pub fn with_options(
         problem: &FrictionProblem<'_>,
         options: &NsgsOptions,
@@ -250,26 +328,117 @@ impl Sweeper {
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
         let step = LocalStep::new(&rows, &options.local)?;
-        Ok(GaussSeidel::from_parts(
-            rows,
-            step,
-            &options.into(),
-            tolerance,
-        ))
+        let mut sweeper = GaussSeidel::from_parts(rows, step, &options.into(), tolerance)?;
+        if options.decomposition == Decomposition::Coloured {
+            sweeper.colour(resolve_threads(options.threads))?;
+        }
+        Ok(sweeper)
     }
+}
+
+/// The new reaction of contact `c` against the reactions `r` (not written), its old reaction,
+/// and its local q when `keep_local_q` (or when computed anyway).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + ?Sized>(
+    rows: &BlockRows<D>,
+    step: &S,
+    worker: &mut S::Worker,
+    relaxation: Option<f64>,
+    c: usize,
+    q: &[f64],
+    mu: &[f64],
+    r: &R,
+    memory: &mut f64,
+    keep_local_q: bool,
+) -> ([f64; D], [f64; D], Option<[f64; D]>) {
+    let w = rows.diagonal(c);
+    let old: [f64; D] = r.contact(c);
+    let wnn = w[0][0];
+    let frictionless = step.normal_only(c, mu[c]) && wnn > 0.0 && wnn.is_finite();
+    let need_local_q = !frictionless || keep_local_q;
+    let local_q = need_local_q.then(|| r.local_q(rows, c, q));
+    // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
+    // quotient that overflows (a subnormal W_NN) is left to the one-contact step.
+    let scalar = if frictionless {
+        let qn = match local_q {
+            Some(lq) => lq[0],
+            None => r.local_q_normal(rows, c, q),
+        };
+        Some((-qn / wnn).max(0.0)).filter(|rn| rn.is_finite())
+    } else {
+        None
+    };
+    let mut local_q = local_q;
+    let mut rc = match scalar {
+        Some(rn) => {
+            let mut rc = [0.0; D];
+            rc[0] = rn;
+            rc
+        }
+        None => {
+            let lq = *local_q.get_or_insert_with(|| r.local_q(rows, c, q));
+            let mut rc = old;
+            step.solve(worker, c, w, &lq, mu[c], memory, &mut rc);
+            rc
+        }
+    };
+    if let Some(omega) = relaxation {
+        for (x, o) in rc.iter_mut().zip(&old) {
+            *x = omega * *x + (1.0 - omega) * o;
+        }
+        if omega > 1.0 {
+            // Over-relaxation can leave the cone; the iterate must stay admissible.
+            rc = step.project(c, &rc, mu[c]);
+        }
+    }
+    (rc, old, local_q)
 }
 
 impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
     /// A sweeper over the block rows `rows` with the one-contact step `step`; `tolerance` is the
     /// run's, against which freezing judges a contact still.
-    pub fn from_parts(rows: BlockRows<D>, step: S, options: &SweepOptions, tolerance: f64) -> Self {
+    pub fn from_parts(
+        rows: BlockRows<D>,
+        step: S,
+        options: &SweepOptions,
+        tolerance: f64,
+    ) -> Result<Self, Fc3dError> {
         let plan = SweepPlan::new(options, rows.n_contacts(), D, tolerance);
-        GaussSeidel { rows, step, plan }
+        let memory = try_vec(rows.n_contacts(), 1.0, "local solver states")?;
+        Ok(GaussSeidel {
+            worker: step.worker(),
+            rows,
+            step,
+            memory,
+            plan,
+            coloured: None,
+        })
+    }
+
+    /// Switches to multicoloured sweeps on `threads` threads (see [`Decomposition::Coloured`]).
+    pub(crate) fn colour(&mut self, threads: usize) -> Result<(), Fc3dError> {
+        self.coloured = Some(ColouredPlan::new(&self.rows, threads)?);
+        Ok(())
+    }
+
+    /// What an island sweep needs: the block rows, the step, each contact's step state and
+    /// the relaxation factor.
+    pub(crate) fn island_parts(&mut self) -> (&BlockRows<D>, &S, &mut [f64], Option<f64>) {
+        (
+            &self.rows,
+            &self.step,
+            &mut self.memory,
+            self.plan.relaxation,
+        )
     }
 
     /// One sweep over all contacts, updating `r` in place; returns
     /// `sum_c ||r_c^new - r_c^old||^2`.
     pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
+        if self.coloured.is_some() {
+            return self.coloured_sweep(q, mu, r);
+        }
         if let Some(rng) = self.plan.reshuffle.as_mut() {
             rng.shuffle(&mut self.plan.order);
         }
@@ -296,45 +465,19 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
                 return 0.0;
             }
         }
-        let w = self.rows.diagonal(c);
-        let old: [f64; D] = contact_of(r, c);
-        let wnn = w[0][0];
-        let frictionless = self.step.normal_only(c, mu[c]) && wnn > 0.0 && wnn.is_finite();
-        let need_local_q = !frictionless || !self.plan.u_solved.is_empty();
-        let local_q = need_local_q.then(|| self.rows.local_q(c, q, r));
-        // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
-        // quotient that overflows (a subnormal W_NN) is left to the one-contact step.
-        let scalar = if frictionless {
-            let qn = match local_q {
-                Some(lq) => lq[0],
-                None => self.rows.local_q_normal(c, q, r),
-            };
-            Some((-qn / wnn).max(0.0)).filter(|rn| rn.is_finite())
-        } else {
-            None
-        };
-        let mut rc = match scalar {
-            Some(rn) => {
-                let mut rc = [0.0; D];
-                rc[0] = rn;
-                rc
-            }
-            None => {
-                let lq = local_q.unwrap_or_else(|| self.rows.local_q(c, q, r));
-                let mut rc = old;
-                self.step.solve(c, w, &lq, mu[c], &mut rc);
-                rc
-            }
-        };
-        if let Some(omega) = self.plan.relaxation {
-            for (x, o) in rc.iter_mut().zip(&old) {
-                *x = omega * *x + (1.0 - omega) * o;
-            }
-            if omega > 1.0 {
-                // Over-relaxation can leave the cone; the iterate must stay admissible.
-                rc = self.step.project(c, &rc, mu[c]);
-            }
-        }
+        let track = !self.plan.u_solved.is_empty();
+        let (rc, old, local_q) = new_reaction(
+            &self.rows,
+            &self.step,
+            &mut self.worker,
+            self.plan.relaxation,
+            c,
+            q,
+            mu,
+            &*r,
+            &mut self.memory[c],
+            track,
+        );
         let d_sq = distance_sq_d(&rc, &old);
         if let Some((sweeps, tol)) = self.plan.freezing {
             let r_sq = distance_sq_d(&rc, &[0.0; D]);
@@ -343,8 +486,8 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             }
         }
         r[D * c..D * c + D].copy_from_slice(&rc);
-        if let Some(lq) = local_q.filter(|_| !self.plan.u_solved.is_empty()) {
-            let uc = block_vec_add(w, &rc, &lq);
+        if let Some(lq) = local_q.filter(|_| track) {
+            let uc = block_vec_add(self.rows.diagonal(c), &rc, &lq);
             self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
         }
         d_sq
@@ -353,6 +496,85 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
     /// Gives the block rows back (to be kept for the next problem with the same pattern).
     pub(crate) fn into_rows(self) -> BlockRows<D> {
         self.rows
+    }
+
+    /// A multicoloured sweep (see [`ColouredPlan`]). Every unit's update depends only on `r` at
+    /// the start of its colour and on its own contacts, so the result is the same for any
+    /// number of threads.
+    fn coloured_sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
+        let GaussSeidel {
+            rows,
+            step,
+            memory,
+            plan,
+            coloured,
+            ..
+        } = self;
+        let coloured = coloured.as_mut().expect("a coloured plan");
+        for next in &coloured.next_unit {
+            next.store(0, Ordering::Relaxed);
+        }
+        let ColouredPlan {
+            order,
+            colour_start,
+            unit_sums,
+            next_unit,
+            barrier,
+            pool,
+        } = &mut *coloured;
+        let n_colours = colour_start.len() - 1;
+        let nc = rows.n_contacts();
+        let (rows, step, relaxation) = (&*rows, &*step, plan.relaxation);
+        let reactions = SharedSlice::new(r);
+        let memory = SharedSlice::new(memory);
+        let sums = SharedSlice::new(unit_sums);
+        let (order, colour_start, next_unit, barrier) =
+            (&*order, &*colour_start, &*next_unit, &*barrier);
+        let job = |_thread: usize| {
+            let _poison = PoisonOnPanic(barrier);
+            let mut worker = step.worker();
+            for k in 0..n_colours {
+                let units = &order[colour_start[k]..colour_start[k + 1]];
+                loop {
+                    let taken = next_unit[k].fetch_add(1, Ordering::Relaxed);
+                    let Some(&unit) = units.get(taken) else {
+                        break;
+                    };
+                    let mut sum = 0.0;
+                    for c in unit * UNIT..((unit + 1) * UNIT).min(nc) {
+                        let mut m = memory.get(c);
+                        let (rc, old, _) = new_reaction(
+                            rows,
+                            step,
+                            &mut worker,
+                            relaxation,
+                            c,
+                            q,
+                            mu,
+                            &reactions,
+                            &mut m,
+                            false,
+                        );
+                        sum += distance_sq_d(&rc, &old);
+                        // SAFETY: contact c belongs to this unit, swept by this thread only,
+                        // and no unit of this colour reads another's contacts; the barrier
+                        // below orders these writes before the next colour's reads.
+                        unsafe {
+                            reactions.set_contact(c, &rc);
+                            memory.set(c, m);
+                        }
+                    }
+                    // SAFETY: unit taken by this thread only.
+                    unsafe { sums.set(unit, sum) };
+                }
+                barrier.wait();
+            }
+        };
+        match pool {
+            Some(pool) => pool.broadcast(&job),
+            None => job(0),
+        }
+        (0..sums.len()).map(|i| sums.get(i)).sum()
     }
 
     pub(crate) fn any_frozen(&self) -> bool {
@@ -367,12 +589,14 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
     /// Sets the one-contact step's tolerance (adaptive local tolerance strategies).
     pub(crate) fn set_local_tolerance(&mut self, tolerance: f64) {
         self.step.set_tolerance(tolerance);
+        self.worker = self.step.worker();
     }
 
     /// The instant after which the local solves stop iterating, so that one sweep ends soon
     /// after the budget whatever the local iteration limits.
     pub fn set_deadline(&mut self, deadline: Option<Instant>) {
         self.step.set_deadline(deadline);
+        self.worker = self.step.worker();
     }
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared

@@ -16,8 +16,21 @@ use super::PlanarNsgsOptions;
 pub struct PlanarStep;
 
 impl ContactStep<2> for PlanarStep {
+    type Worker = ();
+
+    fn worker(&self) {}
+
     #[inline]
-    fn solve(&mut self, _c: usize, w: &Block<2>, q: &[f64; 2], mu: f64, r: &mut [f64; 2]) {
+    fn solve(
+        &self,
+        _worker: &mut (),
+        _c: usize,
+        w: &Block<2>,
+        q: &[f64; 2],
+        mu: f64,
+        _memory: &mut f64,
+        r: &mut [f64; 2],
+    ) {
         if let Some(s) = solve_planar_contact(w, q, mu) {
             *r = s.r;
         }
@@ -36,7 +49,7 @@ pub(crate) fn nsgs(
     options.validate()?;
     let rows = BlockRows::<2>::from_delassus(problem.w())?;
     let mut sweeper =
-        GaussSeidel::from_parts(rows, PlanarStep, &options.sweep_options(), limits.tolerance);
+        GaussSeidel::from_parts(rows, PlanarStep, &options.sweep_options(), limits.tolerance)?;
     let schedule = SweepSchedule {
         error_evaluation: options.error_evaluation,
         evaluation_frequency: options.evaluation_frequency,

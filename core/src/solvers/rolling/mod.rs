@@ -158,7 +158,6 @@ pub struct RollingStep<'p> {
     local: RollingLocalSolver,
     filter: bool,
     mu_r: &'p [f64],
-    rho: Vec<f64>,
     deadline: Option<Instant>,
 }
 
@@ -168,15 +167,30 @@ impl<'p> RollingStep<'p> {
             local: options.local,
             filter: options.filter_local_solution,
             mu_r,
-            rho: crate::error::try_vec(mu_r.len(), 1.0, "local step lengths")?,
             deadline: None,
         })
     }
 }
 
 impl<const D: usize> ContactStep<D> for RollingStep<'_> {
+    /// The local solvers keep no state of their own: a contact's step length lives in the
+    /// sweep's per-contact memory.
+    type Worker = ();
+
+    fn worker(&self) {}
+
+    /// `memory` is the contact's step length (local solver 3002), carried from sweep to sweep.
     #[inline]
-    fn solve(&mut self, c: usize, w: &Block<D>, q: &[f64; D], mu: f64, r: &mut [f64; D]) {
+    fn solve(
+        &self,
+        _worker: &mut (),
+        c: usize,
+        w: &Block<D>,
+        q: &[f64; D],
+        mu: f64,
+        memory: &mut f64,
+        r: &mut [f64; D],
+    ) {
         let p = RollingLocalProblem {
             w,
             q: *q,
@@ -190,7 +204,7 @@ impl<const D: usize> ContactStep<D> for RollingStep<'_> {
                 0.0
             }
             RollingLocalSolver::ProjectionWithLocalIteration(it) => {
-                it.solve(&p, &mut self.rho[c], r, self.deadline)
+                it.solve(&p, memory, r, self.deadline)
             }
         };
         let rejected = self.filter && !(local_error <= 1.0);
@@ -247,7 +261,7 @@ fn nsgs<const D: usize>(
     let rows = BlockRows::<D>::from_delassus(problem.w())?;
     let step = RollingStep::new(options, problem.mu_r())?;
     let mut sweeper =
-        GaussSeidel::from_parts(rows, step, &options.sweep_options(), limits.tolerance);
+        GaussSeidel::from_parts(rows, step, &options.sweep_options(), limits.tolerance)?;
     let schedule = SweepSchedule {
         error_evaluation: options.error_evaluation,
         evaluation_frequency: options.evaluation_frequency,
