@@ -280,29 +280,9 @@ pub fn solve_planar_with_observer(
     } else {
         crate::solvers::planar::run(&config.method, problem, &config.limits(), r, u, observer)?
     };
-    let mut error = match outcome.final_error {
-        Some(e) => e,
-        None => natural_map_error(problem, r, u),
-    };
-    if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
-        r.iter_mut().for_each(|v| *v = 0.0);
-        error = natural_map_error(problem, r, u);
-    }
-    let status = if error <= config.tolerance {
-        SolveStatus::Converged
-    } else if outcome.out_of_time {
-        SolveStatus::TimeBudgetExhausted
-    } else {
-        SolveStatus::MaxIterationsReached
-    };
-    Ok(SolveReport {
-        status,
-        iterations: outcome.iterations,
-        error,
-        dumont_criterion: None,
-        final_rho: None,
-        stages: None,
-    })
+    Ok(report_measured(outcome, config.tolerance, r, u, |r, u| {
+        natural_map_error(problem, r, u)
+    }))
 }
 
 /// Solves the rolling `problem` (contacts of dimension 5, or 3 for Siconos' `rolling_fc2d`) from
@@ -336,27 +316,41 @@ pub fn solve_rolling_with_observer<const D: usize>(
     } else {
         crate::solvers::rolling::run(&config.method, problem, &config.limits(), r, u, observer)?
     };
+    Ok(report_measured(outcome, config.tolerance, r, u, |r, u| {
+        rolling_error(problem, r, u)
+    }))
+}
+
+/// The report of a 2D or rolling run: the error the run measured last, or `error_of` measured
+/// now; a non-finite result is replaced by r = 0 (whose error is then reported).
+fn report_measured(
+    outcome: SolverOutcome,
+    tolerance: f64,
+    r: &mut [f64],
+    u: &mut [f64],
+    error_of: impl Fn(&[f64], &mut [f64]) -> f64,
+) -> SolveReport {
     let mut error = match outcome.final_error {
         Some(e) => e,
-        None => rolling_error(problem, r, u),
+        None => error_of(r, u),
     };
     if !error.is_finite() || !r.iter().chain(u.iter()).all(|v| v.is_finite()) {
         r.iter_mut().for_each(|v| *v = 0.0);
-        error = rolling_error(problem, r, u);
+        error = error_of(r, u);
     }
-    let status = if error <= config.tolerance {
+    let status = if error <= tolerance {
         SolveStatus::Converged
     } else if outcome.out_of_time {
         SolveStatus::TimeBudgetExhausted
     } else {
         SolveStatus::MaxIterationsReached
     };
-    Ok(SolveReport {
+    SolveReport {
         status,
         iterations: outcome.iterations,
         error,
         dumont_criterion: outcome.dumont_criterion,
         final_rho: None,
         stages: outcome.stages,
-    })
+    }
 }
