@@ -31,7 +31,9 @@ pub mod solve;
 pub mod solvers;
 pub mod workspace;
 
-pub use config::{Method, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
+pub use config::{
+    Method, MethodChoice, MethodConfig, PlanarConfig, Rescaling, RollingConfig, SolverConfig,
+};
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };

@@ -3,11 +3,13 @@
 //! family's Siconos defaults; [`Method`] holds what is specific to the family.
 
 mod method;
+mod method_config;
 mod planar;
 mod rescaling;
 mod rolling;
 
 pub use method::Method;
+pub use method_config::{MethodChoice, MethodConfig};
 pub use planar::PlanarConfig;
 pub use rescaling::{scalar_factors, Rescaling};
 pub use rolling::RollingConfig;
