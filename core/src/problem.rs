@@ -137,13 +137,13 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
         FrictionProblem::validated(w, Cow::Owned(self.q.to_vec()), Cow::Owned(self.mu.to_vec()))
     }
 
-    /// An owned copy that no longer borrows any host array.
     /// W, q and mu, taken apart without a copy (what a converter that releases the problem as it
     /// goes needs).
     pub fn into_parts(self) -> (Delassus<'a>, Cow<'a, [f64]>, Cow<'a, [f64]>) {
         (self.w, self.q, self.mu)
     }
 
+    /// An owned copy that no longer borrows any host array.
     pub fn into_owned(self) -> FrictionProblem<'static, D> {
         let w = match self.w {
             Delassus::Dense(d) => Delassus::Dense(d.into_owned()),
