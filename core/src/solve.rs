@@ -4,8 +4,7 @@
 
 use crate::config::{scalar_factors, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
-use crate::error::{check_finite, Fc3dError};
-use crate::math::linalg::norm;
+use crate::error::{check_finite, try_vec, Fc3dError};
 use crate::matrix::Delassus;
 use crate::measure::{natural_map_error, rolling_error};
 use crate::problem::{FrictionProblem, FrictionProblem2d, RollingProblem};
@@ -197,55 +196,104 @@ fn finish(
     }
 }
 
-/// Whether `r` is (nearly) a ray of no solution: its direction `d = r / ||r||` satisfies
-/// `W d = 0` up to the size of the error (`||W d|| <= min(RAY_NULL error, RAY_NULL_CAP)
-/// max|W_ii|`: W r stays bounded while r grows) and q pushes along it (`q·d <= -RAY_PUSH ||q||`). Then `u = W r + q`
-/// hardly depends on how far r goes along d, and the relative error `|residual| / ||r||` falls
-/// below any tolerance as `||r||` grows, although no r solves the problem (along d, `u = q`, and
-/// complementarity would need `q·d >= 0`). A solution of a stiff problem (small W, large r) is
-/// not flagged: its `W r` balances q, so `||W d||` is of the order of `max|W_ii|`.
+/// Whether `r` is (nearly) a ray of no solution on one island of the problem (a connected
+/// component of the contact graph through W's nonzero entries: an independent problem, and the
+/// whole problem has no solution when one of them has none). On island I with contacts C_I, the
+/// direction `d = r_I / ||r_I||` satisfies `W_I d = 0` up to the size of the error (`||W_I d|| <=
+/// min(RAY_NULL error, RAY_NULL_CAP) max_{C_I}|W_ii|`: W r stays bounded while r grows) and q
+/// pushes along it (`q_I·d <= -RAY_PUSH ||q_I||`, and `< 0`). Then `u = W r + q` hardly depends
+/// on how far r goes along d, and the relative error `|residual| / ||r||` falls below any
+/// tolerance as `||r||` grows, although no r solves the problem (along d, `u_I = q_I`, and
+/// complementarity would need `q_I·d >= 0`). A solution of a stiff problem (small W, large r)
+/// is not flagged: its `W r` balances q, so `||W_I d||` is of the order of the island's
+/// diagonal. Island by island, not on the whole W, because independent parts may differ in
+/// scale by orders of magnitude (piles of different stiffness side by side): measured against
+/// the largest diagonal entry of the whole W, the large reaction of a soft part looked like a
+/// ray (a Capsules problem beside Confeti-ex03 was reported unbounded at an error of 1.2e-7).
+/// On a connected W it is the same test as on the whole problem.
 fn grows_where_no_solution_is(
     problem: &FrictionProblem<'_>,
     r: &[f64],
     u: &[f64],
     error: f64,
 ) -> bool {
-    // ||r|| scaled by its largest entry: a reaction beyond 1e154 (a ray followed with a growing
-    // step) has no finite sum of squares.
-    let largest = r.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-    if !(largest > 0.0 && largest.is_finite()) {
+    let n = problem.n_contacts();
+    let (q, w) = (problem.q(), problem.w());
+    // 56 bytes a contact, after the run (less than W's diagonal blocks alone). Should even that
+    // be unavailable, the result is judged by its error alone.
+    let (Ok(mut parent), Ok(mut sums)) = (
+        try_vec(n, 0usize, "islands of W"),
+        try_vec(n, [0.0_f64; 6], "ray test"),
+    ) else {
         return false;
+    };
+    // Islands by union-find over the contacts (path halving, union by index).
+    parent.iter_mut().enumerate().for_each(|(c, p)| *p = c);
+    let root = |parent: &mut Vec<usize>, mut c: usize| {
+        while parent[c] != c {
+            parent[c] = parent[parent[c]];
+            c = parent[c];
+        }
+        c
+    };
+    w.for_each_entry(|i, j, v| {
+        if v != 0.0 {
+            let (a, b) = (root(&mut parent, i / 3), root(&mut parent, j / 3));
+            if a != b {
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    });
+    for c in 0..n {
+        parent[c] = root(&mut parent, c);
     }
-    // d = r / ||r|| = (r / largest) / s.
-    let s = r.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt();
-    let q = problem.q();
-    let nq = norm(q);
-    // ||W d|| and q·d, divided by ||r|| term by term (no overflow).
-    let w_d = u
-        .iter()
-        .zip(q)
-        .map(|(ui, qi)| ((ui - qi) / largest / s).powi(2))
-        .sum::<f64>()
-        .sqrt();
-    let q_d: f64 = q
-        .iter()
-        .zip(r)
-        .map(|(qi, ri)| qi * (ri / largest / s))
-        .sum();
-    let w_scale = (0..problem.n_contacts())
-        .filter_map(|c| problem.w().diagonal_block(c))
-        .flat_map(|b| [b[0][0].abs(), b[1][1].abs(), b[2][2].abs()])
-        .fold(0.0_f64, f64::max);
+    let island = parent;
+    // Per island, at the index of its root contact: ||r_I||^2, ||q_I||^2, q_I·r_I, ||W_I r_I||^2
+    // (r and W r divided by the island's largest |r| entry, so that a reaction beyond 1e154, a
+    // ray followed with a growing step, gives finite sums), the island's largest diagonal entry
+    // and its largest |r| entry.
+    const LARGEST: usize = 5;
+    for (c, rc) in r.chunks_exact(3).enumerate() {
+        let l = &mut sums[island[c]][LARGEST];
+        *l = rc.iter().fold(*l, |m, v| m.max(v.abs()));
+    }
+    for c in 0..n {
+        let s = &mut sums[island[c]];
+        let l = s[LARGEST];
+        if !(l > 0.0 && l.is_finite()) {
+            continue;
+        }
+        for k in 3 * c..3 * c + 3 {
+            s[0] += (r[k] / l).powi(2);
+            s[1] += q[k] * q[k];
+            s[2] += q[k] * (r[k] / l);
+            // W r = u - q.
+            s[3] += ((u[k] - q[k]) / l).powi(2);
+        }
+        if let Some(b) = w.diagonal_block(c) {
+            s[4] = s[4]
+                .max(b[0][0].abs())
+                .max(b[1][1].abs())
+                .max(b[2][2].abs());
+        }
+    }
     let null = (RAY_NULL * error.max(f64::EPSILON)).min(RAY_NULL_CAP);
-    w_d <= null * w_scale && q_d <= -RAY_PUSH * nq
+    sums.iter().any(|&[rr, qq, qr, wr, diag, _]| {
+        if !(rr > 0.0) {
+            return false;
+        }
+        // d = (r_I / largest_I) / sqrt(rr).
+        let (q_d, w_d) = (qr / rr.sqrt(), (wr / rr).sqrt());
+        q_d < 0.0 && q_d <= -RAY_PUSH * qq.sqrt() && w_d <= null * diag
+    })
 }
 
-/// `||W d|| <= RAY_NULL error max|W_ii|`: W d vanishes like the error...
+/// `||W_I d|| <= RAY_NULL error max|W_ii|` (island I): W d vanishes like the error...
 const RAY_NULL: f64 = 100.0;
-/// ... and is at most this fraction of W's diagonal whatever the tolerance (an error of order
+/// ... and is at most this fraction of the island's diagonal whatever the tolerance (an error of order
 /// one proves nothing about d).
 const RAY_NULL_CAP: f64 = 1e-3;
-/// `q·d <= -RAY_PUSH ||q||`: q pushes along d.
+/// `q_I·d <= -RAY_PUSH ||q_I||`: q pushes along d.
 const RAY_PUSH: f64 = 1e-3;
 
 /// Solves the 2D `problem` with a Siconos `fc2d` solver from the initial guess in `r` (NSGS uses
