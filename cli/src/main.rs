@@ -231,11 +231,11 @@ fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
         .ok_or_else(|| format!("unknown local solver '{s}' (one of {})", ids.join(", ")))
 }
 
-/// One problem to solve: a built-in scene, a generated one (`gen:contacts=N,piles=P,seed=S`)
-/// or a file.
+/// One problem to solve: a built-in scene, a generated one
+/// (`gen:contacts=N,piles=P,seed=S[,shape=boxes]`) or a file.
 enum Input {
     Scene(fc3d_core::scenes::Scene),
-    Generated(fc3d_core::scenes::PileSpec),
+    Generated(fc3d_core::scenes::GeneratedScene),
     File { path: PathBuf, from_directory: bool },
 }
 
@@ -400,7 +400,7 @@ enum Loaded {
 fn load_input(input: Input) -> Loaded {
     match input {
         Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
-        Input::Generated(spec) => match fc3d_core::scenes::sphere_piles(&spec) {
+        Input::Generated(spec) => match spec.generate() {
             Ok(p) => Loaded::Problem(spec.name(), p),
             Err(e) => {
                 eprintln!("fc3d: {e}");
@@ -483,7 +483,8 @@ fn display_name(path: &Path) -> String {
 }
 
 /// An input named `gen:contacts=N,piles=P,seed=S` is a generated pile scene
-/// ([`fc3d_core::scenes::sphere_piles`]), not a file.
+/// ([`fc3d_core::scenes::sphere_piles`], or [`fc3d_core::scenes::box_piles`] with
+/// `,shape=boxes`), not a file.
 const GENERATED_PREFIX: &str = "gen:";
 
 /// Files as given, directories replaced by their `*.dat` files sorted by name; paths that cannot
@@ -493,7 +494,7 @@ fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
     let mut errors = Vec::new();
     for path in paths {
         if let Some(spec) = path.to_str().and_then(|p| p.strip_prefix(GENERATED_PREFIX)) {
-            match fc3d_core::scenes::PileSpec::parse(spec) {
+            match fc3d_core::scenes::GeneratedScene::parse(spec) {
                 Ok(spec) => inputs.push(Input::Generated(spec)),
                 Err(e) => errors.push(e.to_string()),
             }
@@ -662,14 +663,24 @@ mod tests {
         let (inputs, errors) = expand_paths(&[
             PathBuf::from("gen:contacts=10,piles=2"),
             PathBuf::from("gen:piles=2"),
+            PathBuf::from("gen:contacts=30,shape=boxes"),
+            PathBuf::from("gen:contacts=30,shape=cones"),
         ]);
-        assert_eq!((inputs.len(), errors.len()), (1, 1), "{errors:?}");
-        match load_input(inputs.into_iter().next().unwrap()) {
+        assert_eq!((inputs.len(), errors.len()), (2, 2), "{errors:?}");
+        let mut loaded = inputs.into_iter().map(load_input);
+        match loaded.next().unwrap() {
             Loaded::Problem(name, p) => {
                 assert_eq!(name, "piles-c10-p2-s1");
                 assert_eq!(p.n_contacts(), 10);
             }
             _ => panic!("a generated scene loads"),
+        }
+        match loaded.next().unwrap() {
+            Loaded::Problem(name, p) => {
+                assert_eq!(name, "boxes-c30-p1-s1");
+                assert_eq!(p.n_contacts(), 30);
+            }
+            _ => panic!("a generated box scene loads"),
         }
     }
 
@@ -678,37 +689,41 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("fc3d-scene-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let out = dir.join("p.dat");
-        let cli = Cli::try_parse_from(
-            [
-                "fc3d",
-                "scene",
-                "--contacts",
-                "50",
-                "--piles",
-                "2",
-                "--seed",
-                "3",
-                "-o",
-            ]
-            .into_iter()
-            .map(String::from)
-            .chain([out.display().to_string()]),
-        )
-        .unwrap();
-        let Some(Command::Scene(args)) = cli.command else {
-            panic!("expected the scene subcommand");
-        };
-        assert_eq!(scene::run(&args), ExitCode::SUCCESS);
-        let read = read_problem(&out).unwrap();
         let spec = fc3d_core::scenes::PileSpec {
             contacts: 50,
             piles: 2,
             seed: 3,
         };
-        let made = fc3d_core::scenes::sphere_piles(&spec).unwrap();
-        assert_eq!(read.w(), made.w());
-        assert_eq!(read.q(), made.q());
-        assert_eq!(read.mu(), made.mu());
+        for (shape, made) in [
+            (None, fc3d_core::scenes::sphere_piles(&spec).unwrap()),
+            (Some("boxes"), fc3d_core::scenes::box_piles(&spec).unwrap()),
+        ] {
+            let cli = Cli::try_parse_from(
+                [
+                    "fc3d",
+                    "scene",
+                    "--contacts",
+                    "50",
+                    "--piles",
+                    "2",
+                    "--seed",
+                    "3",
+                ]
+                .into_iter()
+                .chain(shape.map(|s| ["--shape", s]).into_iter().flatten())
+                .map(String::from)
+                .chain(["-o".to_string(), out.display().to_string()]),
+            )
+            .unwrap();
+            let Some(Command::Scene(args)) = cli.command else {
+                panic!("expected the scene subcommand");
+            };
+            assert_eq!(scene::run(&args), ExitCode::SUCCESS);
+            let read = read_problem(&out).unwrap();
+            assert_eq!(read.w(), made.w(), "{shape:?}");
+            assert_eq!(read.q(), made.q());
+            assert_eq!(read.mu(), made.mu());
+        }
         std::fs::remove_dir_all(&dir).ok();
     }
 

@@ -1,11 +1,13 @@
-//! `fc3d scene --contacts N [--piles P] [--seed S] -o OUT`: generates a pile scene
-//! ([`fc3d_core::scenes::sphere_piles`]: spheres in square pyramids on the ground, one time step
-//! of rigid-body dynamics, sparse-block W) and writes it as a Siconos `.dat` file (or FCLIB
+//! `fc3d scene --contacts N [--piles P] [--seed S] [--shape boxes] -o OUT`: generates a pile
+//! scene ([`fc3d_core::scenes::sphere_piles`]: spheres in square pyramids on the ground, or
+//! [`fc3d_core::scenes::box_piles`]: stepped pyramids of boxes with 4 contact points per face
+//! contact; one time step of rigid-body dynamics, sparse-block W) and writes it as a Siconos `.dat` file (or FCLIB
 //! `.hdf5` when fc3d is built with the `fclib` feature), by OUT's extension. The same arguments
 //! give the same file, byte for byte.
 //!
-//! Any command that reads problems also takes the scene without a file: `gen:contacts=N,piles=P,seed=S`
-//! in place of a path (e.g. `fc3d bench gen:contacts=10000,piles=2`).
+//! Any command that reads problems also takes the scene without a file:
+//! `gen:contacts=N,piles=P,seed=S[,shape=boxes]` in place of a path (e.g. `fc3d bench
+//! gen:contacts=10000,piles=2`; spheres unless `shape=boxes`).
 //!
 //! Exit status: 0 when OUT was written, 1 when it could not be, 2 on a command-line error.
 
@@ -15,7 +17,7 @@ use std::time::Instant;
 
 use clap::Args;
 use fc3d_core::io::{write_problem_file, FclibInfo};
-use fc3d_core::scenes::{sphere_piles, PileSpec};
+use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
 
 #[derive(Args, Debug, Clone, PartialEq)]
 pub struct SceneArgs {
@@ -28,9 +30,16 @@ pub struct SceneArgs {
     /// Seed of the pseudo-random jitter, masses and velocities.
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
+    /// What the piles are made of: spheres, or boxes (4 contact points per face contact).
+    #[arg(long, value_name = "SHAPE", default_value = "spheres", value_parser = parse_shape)]
+    pub shape: PileShape,
     /// The file to write (replaced if it exists): .dat, or .hdf5 / .h5 for FCLIB.
     #[arg(short, long, value_name = "OUT")]
     pub output: PathBuf,
+}
+
+fn parse_shape(s: &str) -> Result<PileShape, String> {
+    PileShape::from_name(s).map_err(|e| e.to_string())
 }
 
 pub fn run(args: &SceneArgs) -> ExitCode {
@@ -39,8 +48,12 @@ pub fn run(args: &SceneArgs) -> ExitCode {
         piles: args.piles,
         seed: args.seed,
     };
+    let scene = GeneratedScene {
+        pile: spec,
+        shape: args.shape,
+    };
     let start = Instant::now();
-    let problem = match sphere_piles(&spec) {
+    let problem = match scene.generate() {
         Ok(p) => p,
         Err(e) => {
             eprintln!("fc3d: {e}");
@@ -49,10 +62,17 @@ pub fn run(args: &SceneArgs) -> ExitCode {
     };
     let generated = start.elapsed();
     let info = FclibInfo {
-        title: Some(spec.name()),
+        title: Some(scene.name()),
         description: Some(format!(
-            "fc3d scene --contacts {} --piles {} --seed {}",
-            spec.contacts, spec.piles, spec.seed
+            "fc3d scene --contacts {} --piles {} --seed {}{}",
+            spec.contacts,
+            spec.piles,
+            spec.seed,
+            if scene.shape == PileShape::Boxes {
+                " --shape boxes"
+            } else {
+                ""
+            }
         )),
         math_info: None,
         number_of_degrees_of_freedom: None,

@@ -2,7 +2,10 @@
 //! tight tolerance with Siconos' default local solver, and the answer is checked independently
 //! (complementarity on every contact from `u = W r + q` recomputed entry by entry).
 
-use fc3d_core::scenes::{sphere_piles, PileSpec};
+mod common;
+use common::honesty::check_report;
+
+use fc3d_core::scenes::{box_piles, sphere_piles, PileSpec};
 use fc3d_core::{solve, NsgsOptions, SolverConfig};
 
 #[test]
@@ -48,6 +51,46 @@ fn a_small_pile_scene_solves_with_nsgs() {
     }
     assert!(touching > 0 && open + touching == p.n_contacts());
     eprintln!("touching {touching} (sliding {sliding}), open {open}");
+}
+
+/// A box scene of a few hundred contacts (4 points per face contact: W rank-deficient) is a real
+/// problem too: NSGS reaches 1e-6, the error (133) recomputed independently, and the reactions
+/// satisfy Coulomb's law with the ground and the boxes carrying the piles' weight.
+#[test]
+fn a_small_box_scene_solves_with_nsgs() {
+    let spec = PileSpec {
+        contacts: 400,
+        piles: 2,
+        seed: 5,
+    };
+    let p = box_piles(&spec).unwrap();
+    assert_eq!(p.n_contacts(), 400);
+    let tol = 1e-6;
+    let config = SolverConfig::new(NsgsOptions::default())
+        .with_tolerance(tol)
+        .with_max_iter(100_000);
+    let mut r = vec![0.0; p.size()];
+    let mut u = vec![0.0; p.size()];
+    let report = solve(&p, &config, &mut r, &mut u).unwrap();
+    eprintln!("{report:?}");
+    assert!(report.converged(), "{report:?}");
+    check_report("box scene", &p, tol, &report, &r, &u);
+    let (mut touching, mut sliding) = (0, 0);
+    let scale = p.q().iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    for c in 0..p.n_contacts() {
+        let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
+        assert!(rc[0] >= -1e-12 && rc[1].hypot(rc[2]) <= p.mu()[c] * rc[0] * (1.0 + 1e-6) + 1e-12);
+        assert!(uc[0] >= -1e-4 * scale, "contact {c} penetrates: {}", uc[0]);
+        if rc[0] > 1e-9 {
+            touching += 1;
+            sliding += usize::from(uc[1].hypot(uc[2]) > 1e-4 * scale);
+        }
+    }
+    eprintln!(
+        "touching {touching} (sliding {sliding}) of {}",
+        p.n_contacts()
+    );
+    assert!(touching > p.n_contacts() / 2);
 }
 
 /// A dense W whose blocks are mostly zero is solved through its sparse-block form: every family

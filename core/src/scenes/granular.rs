@@ -42,37 +42,10 @@ pub struct PileSpec {
 impl PileSpec {
     /// Parses `contacts=N,piles=P,seed=S` (any order; `piles` defaults to 1, `seed` to 1).
     pub fn parse(text: &str) -> Result<PileSpec, Fc3dError> {
-        let mut spec = PileSpec {
-            contacts: 0,
-            piles: 1,
-            seed: 1,
-        };
-        let bad = |why: String| Fc3dError::InvalidOption(format!("scene spec '{text}': {why}"));
-        for part in text.split(',').filter(|p| !p.trim().is_empty()) {
-            let (key, value) = part
-                .split_once('=')
-                .ok_or_else(|| bad(format!("'{part}' is not key=value")))?;
-            let number: u64 = value
-                .trim()
-                .replace('_', "")
-                .parse()
-                .map_err(|_| bad(format!("'{value}' is not a non-negative integer")))?;
-            match key.trim() {
-                "contacts" => spec.contacts = number as usize,
-                "piles" => spec.piles = number as usize,
-                "seed" => spec.seed = number,
-                other => {
-                    return Err(bad(format!(
-                        "unknown key '{other}' (contacts, piles, seed)"
-                    )))
-                }
-            }
-        }
-        spec.check()?;
-        Ok(spec)
+        parse_spec(text, false).map(|scene| scene.pile)
     }
 
-    fn check(&self) -> Result<(), Fc3dError> {
+    pub(super) fn check(&self) -> Result<(), Fc3dError> {
         if self.piles == 0 || self.contacts < self.piles {
             return Err(Fc3dError::InvalidOption(format!(
                 "a pile scene needs at least one pile and one contact per pile, got {} contacts \
@@ -89,8 +62,107 @@ impl PileSpec {
     }
 }
 
+/// The bodies a generated scene is made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PileShape {
+    /// Square pyramids of spheres ([`sphere_piles`], the default).
+    #[default]
+    Spheres,
+    /// Stepped pyramids of boxes, 4 contact points per face contact
+    /// ([`super::boxes::box_piles`]).
+    Boxes,
+}
+
+impl PileShape {
+    /// The shape named `spheres` or `boxes`.
+    pub fn from_name(name: &str) -> Result<PileShape, Fc3dError> {
+        match name.trim() {
+            "spheres" => Ok(PileShape::Spheres),
+            "boxes" => Ok(PileShape::Boxes),
+            other => Err(Fc3dError::InvalidOption(format!(
+                "unknown shape '{other}' (spheres, boxes)"
+            ))),
+        }
+    }
+}
+
+/// A generated scene: the piles and what they are made of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GeneratedScene {
+    pub pile: PileSpec,
+    pub shape: PileShape,
+}
+
+impl GeneratedScene {
+    /// Parses `contacts=N,piles=P,seed=S,shape=spheres|boxes` (any order; `piles` defaults to 1,
+    /// `seed` to 1, `shape` to spheres).
+    pub fn parse(text: &str) -> Result<GeneratedScene, Fc3dError> {
+        parse_spec(text, true)
+    }
+
+    /// A short name for tables and files: `piles-c100000-p4-s1` (spheres),
+    /// `boxes-c100000-p4-s1`.
+    pub fn name(&self) -> String {
+        match self.shape {
+            PileShape::Spheres => self.pile.name(),
+            PileShape::Boxes => format!(
+                "boxes-c{}-p{}-s{}",
+                self.pile.contacts, self.pile.piles, self.pile.seed
+            ),
+        }
+    }
+
+    /// Generates the scene (sparse-block W).
+    pub fn generate(&self) -> Result<FrictionProblem<'static>, Fc3dError> {
+        match self.shape {
+            PileShape::Spheres => sphere_piles(&self.pile),
+            PileShape::Boxes => super::boxes::box_piles(&self.pile),
+        }
+    }
+}
+
+/// The keys of a scene spec; `shape` only where a shape can be chosen.
+fn parse_spec(text: &str, with_shape: bool) -> Result<GeneratedScene, Fc3dError> {
+    let mut pile = PileSpec {
+        contacts: 0,
+        piles: 1,
+        seed: 1,
+    };
+    let mut shape = PileShape::Spheres;
+    let bad = |why: String| Fc3dError::InvalidOption(format!("scene spec '{text}': {why}"));
+    for part in text.split(',').filter(|p| !p.trim().is_empty()) {
+        let (key, value) = part
+            .split_once('=')
+            .ok_or_else(|| bad(format!("'{part}' is not key=value")))?;
+        if with_shape && key.trim() == "shape" {
+            shape = PileShape::from_name(value).map_err(|e| bad(e.to_string()))?;
+            continue;
+        }
+        let number: u64 = value
+            .trim()
+            .replace('_', "")
+            .parse()
+            .map_err(|_| bad(format!("'{value}' is not a non-negative integer")))?;
+        match key.trim() {
+            "contacts" => pile.contacts = number as usize,
+            "piles" => pile.piles = number as usize,
+            "seed" => pile.seed = number,
+            other => {
+                let keys = if with_shape {
+                    "contacts, piles, seed, shape"
+                } else {
+                    "contacts, piles, seed"
+                };
+                return Err(bad(format!("unknown key '{other}' ({keys})")));
+            }
+        }
+    }
+    pile.check()?;
+    Ok(GeneratedScene { pile, shape })
+}
+
 /// SplitMix64: a tiny, well-mixed generator whose sequence is fixed by its definition.
-struct Random(u64);
+pub(super) struct Random(pub(super) u64);
 
 impl Random {
     fn next_u64(&mut self) -> u64 {
@@ -102,7 +174,7 @@ impl Random {
     }
 
     /// Uniform in [-1, 1).
-    fn symmetric(&mut self) -> f64 {
+    pub(super) fn symmetric(&mut self) -> f64 {
         // 53 random bits to [0, 1), exactly representable.
         let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         2.0 * unit - 1.0
@@ -249,7 +321,7 @@ fn build_pile(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::matrix::Delassus;
 
@@ -261,7 +333,8 @@ mod tests {
         }
     }
 
-    fn bits(p: &FrictionProblem<'_>) -> Vec<u64> {
+    /// Every bit of W (structure and values), q and mu.
+    pub(crate) fn bits(p: &FrictionProblem<'_>) -> Vec<u64> {
         let Delassus::SparseBlock(w) = p.w() else {
             panic!("sparse-block W expected");
         };
@@ -314,8 +387,13 @@ mod tests {
 
     #[test]
     fn blocks_are_exactly_the_pairs_sharing_a_body() {
-        let s = spec(600, 2, 3);
-        let world = pile_world(&s).unwrap();
+        let world = pile_world(&spec(600, 2, 3)).unwrap();
+        blocks_are_exactly_the_shared_bodies(&world, 300);
+    }
+
+    /// W's stored blocks are exactly the pairs of contacts sharing a body, each stored once, and
+    /// no contact before `split` shares a body with one after it (separate piles).
+    pub(crate) fn blocks_are_exactly_the_shared_bodies(world: &World, split: usize) {
         let p = world.problem(crate::scenes::Storage::SparseBlock);
         let Delassus::SparseBlock(w) = p.w() else {
             panic!("sparse-block W expected");
@@ -333,7 +411,7 @@ mod tests {
                     .bodies_of(c)
                     .any(|k| world.bodies_of(d).any(|l| l == k));
                 assert_eq!(stored[c * nc + d], shared, "block ({c}, {d})");
-                coupled_piles += usize::from(shared && (c < 300) != (d < 300));
+                coupled_piles += usize::from(shared && (c < split) != (d < split));
             }
         }
         assert_eq!(coupled_piles, 0, "separate piles share no body");
@@ -343,8 +421,12 @@ mod tests {
     fn w_is_symmetric_positive_semidefinite() {
         let p = sphere_piles(&spec(400, 2, 5)).unwrap();
         assert_eq!(p.w().relative_asymmetry(), 0.0);
-        // Cholesky of W + shift I succeeds for a shift far below W's scale only if W has no
-        // eigenvalue below -shift.
+        positive_semidefinite(&p);
+    }
+
+    /// Cholesky of W + shift I succeeds for a shift far below W's scale only if W has no
+    /// eigenvalue below -shift.
+    pub(crate) fn positive_semidefinite(p: &FrictionProblem<'_>) {
         let dense = p.w().to_dense();
         let n = dense.nrows();
         let scale = (0..n).map(|i| dense.get(i, i)).fold(0.0, f64::max);
@@ -366,5 +448,28 @@ mod tests {
                 l[i * n + j] = v / djj;
             }
         }
+    }
+
+    #[test]
+    fn scene_specs_parse_with_their_shape() {
+        let s = GeneratedScene::parse("contacts=100,shape=boxes,piles=2").unwrap();
+        assert_eq!(s.pile, spec(100, 2, 1));
+        assert_eq!(s.shape, PileShape::Boxes);
+        assert_eq!(s.name(), "boxes-c100-p2-s1");
+        let d = GeneratedScene::parse("contacts=100").unwrap();
+        assert_eq!(d.shape, PileShape::Spheres);
+        assert_eq!(d.name(), "piles-c100-p1-s1");
+        assert!(GeneratedScene::parse("contacts=100,shape=cones").is_err());
+        // A plain pile spec has no shape.
+        assert!(PileSpec::parse("contacts=100,shape=boxes").is_err());
+        assert_eq!(
+            bits(
+                &GeneratedScene::parse("contacts=50,shape=boxes")
+                    .unwrap()
+                    .generate()
+                    .unwrap()
+            ),
+            bits(&crate::scenes::box_piles(&spec(50, 1, 1)).unwrap())
+        );
     }
 }

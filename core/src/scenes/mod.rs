@@ -23,8 +23,10 @@ use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
 
+mod boxes;
 mod granular;
-pub use granular::{sphere_piles, PileSpec};
+pub use boxes::box_piles;
+pub use granular::{sphere_piles, GeneratedScene, PileShape, PileSpec};
 
 /// A named built-in problem.
 #[derive(Debug, Clone)]
