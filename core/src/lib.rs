@@ -34,6 +34,7 @@ pub mod workspace;
 pub use config::{
     Method, MethodChoice, MethodConfig, PlanarConfig, Rescaling, RollingConfig, SolverConfig,
 };
+pub use contract::Fill;
 pub use contract::{
     ErrorEvaluation, InnerTolerance, IterationEvent, Limits, Observer, SolveReport, SolveStatus,
 };

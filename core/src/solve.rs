@@ -193,6 +193,7 @@ fn finish(
             .final_rho
             .filter(|_| config.rescaling == Rescaling::None),
         stages: outcome.stages,
+        fill: outcome.fill,
     }
 }
 
@@ -400,5 +401,6 @@ fn report_measured(
         dumont_criterion: outcome.dumont_criterion,
         final_rho: None,
         stages: outcome.stages,
+        fill: outcome.fill,
     }
 }

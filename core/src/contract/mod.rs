@@ -18,7 +18,7 @@ pub use limits::{deadline_passed, past_deadline};
 pub(crate) use limits::{BestIterate, Run};
 pub use outer::InnerTolerance;
 pub(crate) use outer::OuterLoop;
-pub use report::{SolveReport, SolveStatus};
+pub use report::{Fill, SolveReport, SolveStatus};
 pub use schedule::ErrorEvaluation;
 pub(crate) use schedule::{ErrorSchedule, Measure};
 pub use stages::{Stage, StageEnd, StageKind, StageLog, MAX_STAGES};
@@ -59,6 +59,8 @@ pub(crate) struct SolverOutcome {
     pub final_rho: Option<f64>,
     /// The stages a composite solver (AUTO) took.
     pub stages: Option<StageLog>,
+    /// The fill of the factorization a factorizing family made.
+    pub fill: Option<Fill>,
 }
 
 impl SolverOutcome {
@@ -73,6 +75,7 @@ impl SolverOutcome {
             diverged: false,
             final_rho: None,
             stages: None,
+            fill: None,
         }
     }
 
@@ -87,6 +90,11 @@ impl SolverOutcome {
     /// The same outcome with the step size the run ends with.
     pub fn with_final_rho(self, final_rho: Option<f64>) -> Self {
         SolverOutcome { final_rho, ..self }
+    }
+
+    /// The same outcome with the fill of the factorization the run made.
+    pub fn with_fill(self, fill: Option<Fill>) -> Self {
+        SolverOutcome { fill, ..self }
     }
 
     /// The same outcome with the final error the family measured on the returned `(r, u)`.

@@ -68,6 +68,38 @@ pub struct SolveReport {
     /// The stages AUTO (`Method::Auto`, `FC3D_AUTO`) took, in order; `None` for the other
     /// solvers.
     pub stages: Option<super::StageLog>,
+    /// The size of the sparse LU factors, for the families that factorize a matrix: NSN (the
+    /// Newton matrix, also inside PROX and AUTO), ADMM and rolling ADMM (`W + rho I`). `None` for
+    /// the others (they factorize nothing; 2D Lemke and enumeration work on a dense LCP matrix).
+    pub fill: Option<Fill>,
+}
+
+/// The fill of a sparse LU factorization `P A Q = L U`: how many entries the factors hold
+/// against the factorized matrix. Counted structurally on the first factorization of the solve
+/// from the pattern and the permutations chosen (fill-reducing column order, partial pivoting):
+/// see [`crate::math::lu_fill`]. Within AUTO, the largest of its stages' fills.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Fill {
+    /// Stored entries of the factorized matrix `A` (its pattern, structural zeros included).
+    pub matrix_nnz: usize,
+    /// `nnz(L) + nnz(U)`, L's unit diagonal not counted: equal to `matrix_nnz` when elimination
+    /// creates no new entry.
+    pub factor_nnz: usize,
+}
+
+impl Fill {
+    /// `factor_nnz / matrix_nnz` (1 without fill).
+    pub fn ratio(&self) -> f64 {
+        self.factor_nnz as f64 / self.matrix_nnz.max(1) as f64
+    }
+
+    /// The larger of two fills (by factor size).
+    pub fn largest(a: Option<Fill>, b: Option<Fill>) -> Option<Fill> {
+        match (a, b) {
+            (Some(x), Some(y)) => Some(if y.factor_nnz > x.factor_nnz { y } else { x }),
+            (x, y) => x.or(y),
+        }
+    }
 }
 
 impl SolveReport {

@@ -4,5 +4,6 @@
 
 pub mod cone;
 pub mod linalg;
+pub mod lu_fill;
 pub mod rolling;
 pub mod step;

@@ -14,7 +14,7 @@
 use std::time::{Duration, Instant};
 
 use crate::contract::{
-    BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
+    BestIterate, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
     StageKind, StageLog,
 };
 use crate::error::Fc3dError;
@@ -484,6 +484,8 @@ fn auto(
     let eg_options = ViOptions::new(ViSolver::ExtraGradient);
     let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
     let mut newton: Option<NewtonSolver> = None;
+    // The largest factorization of the stages that factorize (PROX and ADMM build their own).
+    let mut fill = None;
 
     'plan: for planned in plan {
         if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
@@ -561,6 +563,7 @@ fn auto(
                     };
                     let l = stage_limits(tolerance, chunk, run.deadline());
                     let o = family.run(problem, &l, r, u, &mut shifted)?;
+                    fill = Fill::largest(fill, o.fill);
                     (o.iterations, o.final_error)
                 }
             };
@@ -597,8 +600,10 @@ fn auto(
     // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
     // family's last step): it is the final error unless an earlier iterate was better.
     let restored = best.restore_if_better(r, error);
+    let fill = Fill::largest(fill, newton.as_ref().and_then(NewtonSolver::fill));
     Ok(SolverOutcome {
         stages: Some(log),
+        fill,
         ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
             .with_final_error((!restored && error.is_finite()).then_some(error))
     })

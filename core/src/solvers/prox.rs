@@ -271,7 +271,8 @@ fn prox(
             error,
         });
         if error <= run.tolerance {
-            return Ok(SolverOutcome::stopped(iterations, false));
+            return Ok(SolverOutcome::stopped(iterations, false)
+                .with_fill(newton.as_ref().and_then(NewtonSolver::fill)));
         }
         if !error.is_finite() {
             break;
@@ -292,7 +293,8 @@ fn prox(
         }
     }
     best.restore_if_better(r, error);
-    Ok(SolverOutcome::stopped(iterations, out_of_time))
+    Ok(SolverOutcome::stopped(iterations, out_of_time)
+        .with_fill(newton.as_ref().and_then(NewtonSolver::fill)))
 }
 
 #[cfg(test)]

@@ -36,10 +36,13 @@ use faer::{Conj, MatMut, Par};
 
 use std::time::Instant;
 
-use crate::contract::{deadline_passed, Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{
+    deadline_passed, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome,
+};
 use crate::error::Fc3dError;
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{bounded, contact_of, distance_sq, norm};
+use crate::math::lu_fill::lu_factor_nnz;
 use crate::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
 use crate::matrix::Delassus;
 use crate::measure::{natural_map_error_of, relative_rolling_error};
@@ -88,6 +91,8 @@ struct ShiftedSystem {
     factor_scratch: MemBuffer,
     solve_scratch: MemBuffer,
     factored: bool,
+    /// `nnz(L) + nnz(U)` of the first successful factorization.
+    factor_nnz: Option<usize>,
 }
 
 impl ShiftedSystem {
@@ -129,6 +134,7 @@ impl ShiftedSystem {
             factor_scratch,
             solve_scratch,
             factored: false,
+            factor_nnz: None,
         })
     }
 
@@ -150,7 +156,26 @@ impl ShiftedSystem {
                 Default::default(),
             )
             .is_ok();
+        if self.factored && self.factor_nnz.is_none() {
+            let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
+            let pattern = self.matrix.symbolic();
+            self.factor_nnz = lu_factor_nnz(
+                pattern.nrows(),
+                pattern.col_ptr(),
+                pattern.row_idx(),
+                lu.row_perm().arrays().1,
+                lu.col_perm().arrays().0,
+            );
+        }
         self.factored
+    }
+
+    /// The fill of the first factorization, once one succeeded.
+    fn fill(&self) -> Option<Fill> {
+        self.factor_nnz.map(|factor_nnz| Fill {
+            matrix_nnz: self.matrix.val().len(),
+            factor_nnz,
+        })
     }
 
     /// `x <- (W + shift I)^{-1} x`.
@@ -323,7 +348,8 @@ impl<const D: usize> AdmmProblem for RollingProblem<'_, D> {
     }
 }
 
-/// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`.
+/// Runs ADMM from the reaction in `r`; on return `r = z` and `u = W r + q`, and the outcome has
+/// the fill of `W + rho I`'s first factorization.
 pub(crate) fn admm<P: AdmmProblem>(
     problem: &P,
     options: &AdmmOptions,
@@ -331,6 +357,21 @@ pub(crate) fn admm<P: AdmmProblem>(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
+) -> Result<SolverOutcome, Fc3dError> {
+    let mut fill = None;
+    let outcome = admm_iterations(problem, options, limits, r, u, observer, &mut fill)?;
+    Ok(outcome.with_fill(fill))
+}
+
+/// [`admm`]'s iterations; `fill` is set once `W + rho I` was factored.
+fn admm_iterations<P: AdmmProblem>(
+    problem: &P,
+    options: &AdmmOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+    fill: &mut Option<Fill>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let n = problem.w().nrows();
@@ -373,6 +414,7 @@ pub(crate) fn admm<P: AdmmProblem>(
             "ADMM: W + rho I is singular for rho = {rho}"
         )));
     }
+    *fill = system.fill();
 
     // Siconos' iteration (its "symmetric" ADMM, the one its default options run): the iterate
     // is the solution x of the linear step, the De Saxcé term is taken at u = W x + q, and x is

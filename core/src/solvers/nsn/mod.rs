@@ -126,6 +126,11 @@ impl NewtonSolver {
         Ok((solver, false))
     }
 
+    /// The fill of the Newton matrix's factorization (the first one that succeeded).
+    pub fn fill(&self) -> Option<crate::contract::Fill> {
+        self.matrix.factor_fill()
+    }
+
     /// `u <- (W + shift I) r + q`.
     fn velocity(&self, q: &[f64], shift: f64, r: &[f64], u: &mut [f64]) {
         u.copy_from_slice(q);
@@ -426,5 +431,5 @@ pub(crate) fn nsn_on(
 ) -> SolverOutcome {
     let run = limits.start();
     let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
-    SolverOutcome::stopped(out.iterations, out.out_of_time)
+    SolverOutcome::stopped(out.iterations, out.out_of_time).with_fill(solver.fill())
 }

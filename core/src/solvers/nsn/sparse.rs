@@ -4,12 +4,16 @@
 //! iteration refills the values through a slot map and refactors numerically.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+#[cfg(test)]
+use faer::sparse::linalg::lu::LuRef;
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
+use crate::contract::Fill;
 use crate::error::Fc3dError;
 use crate::math::linalg::Mat3;
+use crate::math::lu_fill::lu_factor_nnz;
 use crate::matrix::BlockSparseMatrix;
 
 pub(crate) struct NewtonMatrix {
@@ -24,6 +28,9 @@ pub(crate) struct NewtonMatrix {
     symbolic: SymbolicLu<usize>,
     numeric: NumericLu<usize, f64>,
     workspace: MemBuffer,
+    /// `nnz(L) + nnz(U)` of the first successful factorization (counted once: the row pivots
+    /// of later ones may differ, the count costs about one more factorization).
+    factor_nnz: Option<usize>,
 }
 
 impl NewtonMatrix {
@@ -96,6 +103,7 @@ impl NewtonMatrix {
             symbolic,
             numeric: NumericLu::new(),
             workspace,
+            factor_nnz: None,
         })
     }
 
@@ -136,6 +144,14 @@ impl NewtonMatrix {
         }
     }
 
+    /// The fill of the first factorization, once one succeeded.
+    pub fn factor_fill(&self) -> Option<Fill> {
+        self.factor_nnz.map(|factor_nnz| Fill {
+            matrix_nnz: self.values.len(),
+            factor_nnz,
+        })
+    }
+
     /// Factors the current values and solves `J x = rhs` in place. Returns false (rhs then
     /// unspecified) when the factorization fails or the solution is not finite.
     pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
@@ -156,6 +172,15 @@ impl NewtonMatrix {
             Err(_) => return false,
         };
         let n = self.n;
+        if self.factor_nnz.is_none() {
+            self.factor_nnz = lu_factor_nnz(
+                n,
+                self.pattern.col_ptr(),
+                self.pattern.row_idx(),
+                lu.row_perm().arrays().1,
+                lu.col_perm().arrays().0,
+            );
+        }
         lu.solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(rhs, n, 1),
@@ -210,5 +235,107 @@ mod tests {
         m.fill(&w, &[zero], &[zero], 0.0, 0.0);
         let mut rhs = vec![1.0, 1.0, 1.0];
         assert!(!m.solve(&mut rhs));
+    }
+
+    /// The fill reported for a box scene's Newton matrix is the fill of the permuted matrix
+    /// faer factored: the permutations are those of `P J Q = L U` (a dense elimination of
+    /// `P J Q` without pivoting keeps |L| <= 1, as partial pivoting does), its numerically
+    /// nonzero factor entries are as many as counted structurally, and a block-diagonal W
+    /// (isolated contacts) has no fill at all: 9 entries a contact in J, L and U.
+    #[test]
+    fn reported_fill_is_that_of_the_factors() {
+        use crate::scenes::{box_piles, sphere_piles, PileSpec};
+        let spec = PileSpec {
+            contacts: 120,
+            piles: 1,
+            seed: 3,
+        };
+        let p = box_piles(&spec).unwrap();
+        let w = p.w().to_block_sparse().unwrap();
+        let nc = w.n_block_rows();
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        assert_eq!(m.factor_fill(), None);
+        // J = A + B W with generic diagonal blocks.
+        let a: Vec<Mat3> = (0..nc)
+            .map(|c| {
+                let x = 0.1 * (c % 7) as f64;
+                [[1.0 + x, 0.2, 0.0], [0.1, 0.5, 0.3 - x], [0.0, x, 0.7]]
+            })
+            .collect();
+        let b: Vec<Mat3> = (0..nc)
+            .map(|c| {
+                let x = 0.05 * (c % 5) as f64;
+                [[0.5, x, 0.1], [0.2, 1.0, 0.0], [x, 0.3, 0.8]]
+            })
+            .collect();
+        m.fill(&w, &a, &b, 0.0, 1e-3);
+        let mut rhs = vec![1.0; 3 * nc];
+        assert!(m.solve(&mut rhs));
+        let fill = m.factor_fill().unwrap();
+        assert_eq!(fill.matrix_nnz, 9 * w.n_blocks());
+        // The permutations faer used, and P J Q densely.
+        let lu = LuRef::new_unchecked(&m.symbolic, &m.numeric);
+        let (rows, _) = lu.row_perm().arrays();
+        let (cols, _) = lu.col_perm().arrays();
+        let n = 3 * nc;
+        let mut dense = vec![vec![0.0; n]; n];
+        let (cp, ri) = (m.pattern.col_ptr(), m.pattern.row_idx());
+        for j in 0..n {
+            for k in cp[j]..cp[j + 1] {
+                dense[ri[k]][j] = m.values[k];
+            }
+        }
+        let mut pjq: Vec<Vec<f64>> = (0..n)
+            .map(|i| (0..n).map(|j| dense[rows[i]][cols[j]]).collect())
+            .collect();
+        let scale = pjq.iter().flatten().fold(0.0_f64, |s, v| s.max(v.abs()));
+        for k in 0..n {
+            let pivot = pjq[k][k];
+            assert!(pivot != 0.0, "zero pivot {k}");
+            for i in k + 1..n {
+                let l = pjq[i][k] / pivot;
+                assert!(
+                    l.abs() <= 1.0 + 1e-12,
+                    "|L[{i}][{k}]| = {l}: not faer's pivots"
+                );
+                pjq[i][k] = l;
+                if l != 0.0 {
+                    for j in k + 1..n {
+                        pjq[i][j] -= l * pjq[k][j];
+                    }
+                }
+            }
+        }
+        let numeric_nnz = pjq
+            .iter()
+            .flatten()
+            .filter(|v| v.abs() > 1e-13 * scale)
+            .count();
+        eprintln!(
+            "box scene, {nc} contacts: nnz(J) {}, nnz(L) + nnz(U) {} (numerically nonzero {numeric_nnz}), ratio {:.2}",
+            fill.matrix_nnz,
+            fill.factor_nnz,
+            fill.ratio()
+        );
+        assert!(numeric_nnz <= fill.factor_nnz);
+        assert!(numeric_nnz as f64 >= 0.95 * fill.factor_nnz as f64);
+        assert!(fill.factor_nnz > fill.matrix_nnz, "a box pile fills in");
+
+        // Isolated contacts: no fill.
+        let isolated = sphere_piles(&PileSpec {
+            contacts: 6,
+            piles: 6,
+            seed: 1,
+        })
+        .unwrap();
+        let w = isolated.w().to_block_sparse().unwrap();
+        assert_eq!(w.n_blocks(), 6);
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        m.fill(&w, &a[..6], &b[..6], 0.0, 0.0);
+        let mut rhs = vec![1.0; 18];
+        assert!(m.solve(&mut rhs));
+        let fill = m.factor_fill().unwrap();
+        assert_eq!((fill.matrix_nnz, fill.factor_nnz), (54, 54));
+        assert_eq!(fill.ratio(), 1.0);
     }
 }
