@@ -131,6 +131,7 @@ unsafe fn driver_impl(
             report.error,
             config.tolerance
         );
+        print_fill(&report);
         if let Some(log) = &report.stages {
             for (k, s) in log.stages().enumerate() {
                 eprintln!(
@@ -145,6 +146,18 @@ unsafe fn driver_impl(
         }
     }
     Ok(report.status.info_code())
+}
+
+/// The verbose line of a factorizing solver's fill (`SolveReport::fill`).
+pub(crate) fn print_fill(report: &SolveReport) {
+    if let Some(f) = report.fill {
+        eprintln!(
+            "fc3d: sparse LU fill: nnz(A) {}, nnz(L)+nnz(U) {} ({:.2}x)",
+            f.matrix_nnz,
+            f.factor_nnz,
+            f.ratio()
+        );
+    }
 }
 
 /// `fc2d_driver`'s work: the 2D problem and options read, solved, written back.

@@ -537,6 +537,7 @@ unsafe fn solve_into(
             report.iterations,
             report.error
         );
+        super::driver::print_fill(&report);
     }
     Ok(report.status.info_code())
 }

@@ -400,6 +400,7 @@ unsafe fn rolling_driver_impl<const D: usize>(
             report.error,
             config.tolerance
         );
+        super::driver::print_fill(&report);
     }
     Ok(report.status.info_code())
 }

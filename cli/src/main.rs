@@ -340,7 +340,8 @@ fn run_solve(args: &SolveArgs) -> ExitCode {
                 // Rows are printed as they come (a long run shows progress) with the widths
                 // the table has settled on; the header comes first.
                 let stages = row.report.stages.map(|log| stage_line(&row.problem, &log));
-                for line in table.push(row).into_iter().chain(stages) {
+                let fill = row.report.fill.map(|f| fill_line(&row.problem, &f));
+                for line in table.push(row).into_iter().chain(stages).chain(fill) {
                     if !out(line) {
                         return ExitCode::SUCCESS;
                     }
@@ -384,6 +385,17 @@ fn stage_line(problem: &str, log: &fc3d_core::StageLog) -> String {
         "#   AUTO on {problem} (rule {}): {}",
         log.rule,
         stages.join(" > ")
+    )
+}
+
+/// The fill of a factorizing solver as a comment line:
+/// `#   fill on NAME: nnz(A) 15840, nnz(L)+nnz(U) 29784 (1.88x)`.
+fn fill_line(problem: &str, fill: &fc3d_core::Fill) -> String {
+    format!(
+        "#   fill on {problem}: nnz(A) {}, nnz(L)+nnz(U) {} ({:.2}x)",
+        fill.matrix_nnz,
+        fill.factor_nnz,
+        fill.ratio()
     )
 }
 
@@ -725,6 +737,18 @@ mod tests {
             assert_eq!(read.mu(), made.mu());
         }
         std::fs::remove_dir_all(&dir).ok();
+    }
+
+    #[test]
+    fn fill_lines_name_both_sizes_and_the_ratio() {
+        let fill = fc3d_core::Fill {
+            matrix_nnz: 15840,
+            factor_nnz: 29784,
+        };
+        assert_eq!(
+            fill_line("boxes-c120-p1-s3", &fill),
+            "#   fill on boxes-c120-p1-s3: nnz(A) 15840, nnz(L)+nnz(U) 29784 (1.88x)"
+        );
     }
 
     #[test]
