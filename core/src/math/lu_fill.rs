@@ -3,7 +3,8 @@
 //! faer does not expose the size of its supernodal factors, so the count is structural (every
 //! entry that elimination can make nonzero, no numerical cancellation assumed), by the symbolic
 //! part of Gilbert and Peierls' left-looking LU: column `j` of `L` and `U` is the set reached
-//! from the pattern of `(P A Q)[:, j]` through the columns of `L` already known.
+//! from the pattern of `(P A Q)[:, j]` through the columns of `L` already known, with symmetric
+//! pruning of those columns.
 
 /// `nnz(L) + nnz(U)` of `P A Q = L U` with `L` unit lower triangular, its unit diagonal not
 /// counted (so a factorization without fill has as many entries as `A`'s pattern). `A` is
@@ -23,14 +24,18 @@ pub fn lu_factor_nnz(
     l_ptr.try_reserve_exact(n + 1).ok()?;
     l_ptr.push(0);
     let mut l_rows: Vec<usize> = Vec::new();
-    let mut seen: Vec<usize> = Vec::new();
-    seen.try_reserve_exact(n).ok()?;
-    seen.resize(n, usize::MAX);
+    // Symmetric pruning (Eisenstat and Liu): once L[j, k] and U[k, j] are both nonzero, the
+    // rows of L[:, k] below j are reached through column j as well, so a search through k only
+    // needs its rows up to j: `searched[k]` of them, kept first (all while not pruned).
+    let mut searched = try_filled(n, usize::MAX)?;
+    let mut seen = try_filled(n, usize::MAX)?;
     let mut stack: Vec<usize> = Vec::new();
     stack.try_reserve_exact(n).ok()?;
+    let mut upper_rows: Vec<usize> = Vec::new();
+    upper_rows.try_reserve_exact(n).ok()?;
     let mut upper = 0usize;
     for (j, &col) in col_forward.iter().enumerate() {
-        let column_start = l_rows.len();
+        upper_rows.clear();
         for &row in &row_idx[col_ptr[col]..col_ptr[col + 1]] {
             let start = row_inverse[row];
             if seen[start] == j {
@@ -45,7 +50,9 @@ pub fn lu_factor_nnz(
                     if k == j {
                         continue;
                     }
-                    for &next in &l_rows[l_ptr[k]..l_ptr[k + 1]] {
+                    upper_rows.push(k);
+                    let end = l_ptr[k] + searched[k].min(l_ptr[k + 1] - l_ptr[k]);
+                    for &next in &l_rows[l_ptr[k]..end] {
                         if seen[next] != j {
                             seen[next] = j;
                             stack.push(next);
@@ -57,10 +64,33 @@ pub fn lu_factor_nnz(
                 }
             }
         }
-        debug_assert!(l_rows.len() >= column_start);
         l_ptr.push(l_rows.len());
+        for &k in &upper_rows {
+            if searched[k] != usize::MAX {
+                continue;
+            }
+            let column = &mut l_rows[l_ptr[k]..l_ptr[k + 1]];
+            if column.contains(&j) {
+                let mut kept = 0;
+                for i in 0..column.len() {
+                    if column[i] <= j {
+                        column.swap(i, kept);
+                        kept += 1;
+                    }
+                }
+                searched[k] = kept;
+            }
+        }
     }
     Some(upper + l_rows.len())
+}
+
+/// `n` copies of `value`, or `None` when they cannot be allocated.
+fn try_filled(n: usize, value: usize) -> Option<Vec<usize>> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).ok()?;
+    v.resize(n, value);
+    Some(v)
 }
 
 #[cfg(test)]
@@ -134,10 +164,11 @@ mod tests {
                 .wrapping_add(1442695040888963407);
             (state >> 33) as usize
         };
-        for n in [1, 2, 5, 17, 40] {
-            for _ in 0..5 {
+        for n in [1, 2, 5, 17, 40, 90] {
+            for trial in 0..12 {
+                let sparsity = [3, 7, 25][trial % 3];
                 let a: Vec<Vec<bool>> = (0..n)
-                    .map(|i| (0..n).map(|j| i == j || next() % 7 == 0).collect())
+                    .map(|i| (0..n).map(|j| i == j || next() % sparsity == 0).collect())
                     .collect();
                 let mut rows: Vec<usize> = (0..n).collect();
                 let mut cols: Vec<usize> = (0..n).collect();

@@ -29,7 +29,8 @@ pub(crate) struct NewtonMatrix {
     numeric: NumericLu<usize, f64>,
     workspace: MemBuffer,
     /// `nnz(L) + nnz(U)` of the first successful factorization (counted once: the row pivots
-    /// of later ones may differ, the count costs about one more factorization).
+    /// of later ones may differ; the count costs 0.26x-0.4x of one numeric factorization,
+    /// measured on box piles of 1k and 10k contacts).
     factor_nnz: Option<usize>,
 }
 
