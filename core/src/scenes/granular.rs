@@ -42,7 +42,7 @@ pub struct PileSpec {
 impl PileSpec {
     /// Parses `contacts=N,piles=P,seed=S` (any order; `piles` defaults to 1, `seed` to 1).
     pub fn parse(text: &str) -> Result<PileSpec, Fc3dError> {
-        parse_spec(text, false).map(|scene| scene.pile)
+        super::parse_spec(text, false).map(|scene| scene.pile)
     }
 
     pub(super) fn check(&self) -> Result<(), Fc3dError> {
@@ -60,105 +60,6 @@ impl PileSpec {
     pub fn name(&self) -> String {
         format!("piles-c{}-p{}-s{}", self.contacts, self.piles, self.seed)
     }
-}
-
-/// The bodies a generated scene is made of.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum PileShape {
-    /// Square pyramids of spheres ([`sphere_piles`], the default).
-    #[default]
-    Spheres,
-    /// Stepped pyramids of boxes, 4 contact points per face contact
-    /// ([`super::boxes::box_piles`]).
-    Boxes,
-}
-
-impl PileShape {
-    /// The shape named `spheres` or `boxes`.
-    pub fn from_name(name: &str) -> Result<PileShape, Fc3dError> {
-        match name.trim() {
-            "spheres" => Ok(PileShape::Spheres),
-            "boxes" => Ok(PileShape::Boxes),
-            other => Err(Fc3dError::InvalidOption(format!(
-                "unknown shape '{other}' (spheres, boxes)"
-            ))),
-        }
-    }
-}
-
-/// A generated scene: the piles and what they are made of.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct GeneratedScene {
-    pub pile: PileSpec,
-    pub shape: PileShape,
-}
-
-impl GeneratedScene {
-    /// Parses `contacts=N,piles=P,seed=S,shape=spheres|boxes` (any order; `piles` defaults to 1,
-    /// `seed` to 1, `shape` to spheres).
-    pub fn parse(text: &str) -> Result<GeneratedScene, Fc3dError> {
-        parse_spec(text, true)
-    }
-
-    /// A short name for tables and files: `piles-c100000-p4-s1` (spheres),
-    /// `boxes-c100000-p4-s1`.
-    pub fn name(&self) -> String {
-        match self.shape {
-            PileShape::Spheres => self.pile.name(),
-            PileShape::Boxes => format!(
-                "boxes-c{}-p{}-s{}",
-                self.pile.contacts, self.pile.piles, self.pile.seed
-            ),
-        }
-    }
-
-    /// Generates the scene (sparse-block W).
-    pub fn generate(&self) -> Result<FrictionProblem<'static>, Fc3dError> {
-        match self.shape {
-            PileShape::Spheres => sphere_piles(&self.pile),
-            PileShape::Boxes => super::boxes::box_piles(&self.pile),
-        }
-    }
-}
-
-/// The keys of a scene spec; `shape` only where a shape can be chosen.
-fn parse_spec(text: &str, with_shape: bool) -> Result<GeneratedScene, Fc3dError> {
-    let mut pile = PileSpec {
-        contacts: 0,
-        piles: 1,
-        seed: 1,
-    };
-    let mut shape = PileShape::Spheres;
-    let bad = |why: String| Fc3dError::InvalidOption(format!("scene spec '{text}': {why}"));
-    for part in text.split(',').filter(|p| !p.trim().is_empty()) {
-        let (key, value) = part
-            .split_once('=')
-            .ok_or_else(|| bad(format!("'{part}' is not key=value")))?;
-        if with_shape && key.trim() == "shape" {
-            shape = PileShape::from_name(value).map_err(|e| bad(e.to_string()))?;
-            continue;
-        }
-        let number: u64 = value
-            .trim()
-            .replace('_', "")
-            .parse()
-            .map_err(|_| bad(format!("'{value}' is not a non-negative integer")))?;
-        match key.trim() {
-            "contacts" => pile.contacts = number as usize,
-            "piles" => pile.piles = number as usize,
-            "seed" => pile.seed = number,
-            other => {
-                let keys = if with_shape {
-                    "contacts, piles, seed, shape"
-                } else {
-                    "contacts, piles, seed"
-                };
-                return Err(bad(format!("unknown key '{other}' ({keys})")));
-            }
-        }
-    }
-    pile.check()?;
-    Ok(GeneratedScene { pile, shape })
 }
 
 /// SplitMix64: a tiny, well-mixed generator whose sequence is fixed by its definition.
@@ -448,28 +349,5 @@ pub(super) mod tests {
                 l[i * n + j] = v / djj;
             }
         }
-    }
-
-    #[test]
-    fn scene_specs_parse_with_their_shape() {
-        let s = GeneratedScene::parse("contacts=100,shape=boxes,piles=2").unwrap();
-        assert_eq!(s.pile, spec(100, 2, 1));
-        assert_eq!(s.shape, PileShape::Boxes);
-        assert_eq!(s.name(), "boxes-c100-p2-s1");
-        let d = GeneratedScene::parse("contacts=100").unwrap();
-        assert_eq!(d.shape, PileShape::Spheres);
-        assert_eq!(d.name(), "piles-c100-p1-s1");
-        assert!(GeneratedScene::parse("contacts=100,shape=cones").is_err());
-        // A plain pile spec has no shape.
-        assert!(PileSpec::parse("contacts=100,shape=boxes").is_err());
-        assert_eq!(
-            bits(
-                &GeneratedScene::parse("contacts=50,shape=boxes")
-                    .unwrap()
-                    .generate()
-                    .unwrap()
-            ),
-            bits(&crate::scenes::box_piles(&spec(50, 1, 1)).unwrap())
-        );
     }
 }
