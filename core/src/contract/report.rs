@@ -76,6 +76,7 @@ pub struct SolveReport {
 
 /// The fill of a sparse LU factorization `P A Q = L U`: how many entries the factors hold
 /// against the factorized matrix. Counted structurally on the first factorization of the solve
+/// (of the first solve, when a [`crate::Workspace`] keeps NSN's Newton matrix across solves)
 /// from the pattern and the permutations chosen (fill-reducing column order, partial pivoting):
 /// see [`crate::math::lu_fill`]. Within AUTO, the largest of its stages' fills.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
