@@ -141,3 +141,29 @@ fn a_ray_beside_another_part_is_still_detected() {
         assert_eq!(unbounded, 2);
     }
 }
+
+/// Every family's preset on the Capsules + Confeti-ex03 problem (it has a solution): a result
+/// whose error is at the tolerance is reported `Converged`, never `Unbounded`.
+#[test]
+fn no_family_reports_a_solution_of_parts_of_different_scales_unbounded() {
+    let p = side_by_side(
+        &shared("Capsules-i100-889.dat"),
+        &shared("Confeti-ex03-Fc3D-SBM.dat"),
+    );
+    let mut converged = 0;
+    for method in fc3d_core::Method::presets() {
+        let config = SolverConfig::new(method)
+            .with_tolerance(1e-6)
+            .with_max_iter(5000)
+            .with_time_budget(Some(std::time::Duration::from_millis(500)));
+        let n = p.size();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let report = solve(&p, &config, &mut r, &mut u).unwrap();
+        eprintln!("{}: {:?} {:e}", config.label(), report.status, report.error);
+        if report.error <= 1e-6 {
+            assert_eq!(report.status, SolveStatus::Converged, "{}", config.label());
+            converged += 1;
+        }
+    }
+    assert!(converged > 0);
+}
