@@ -34,6 +34,8 @@ pub fn alart_curnier_parts(
     residual(formulation, r, u, &ContactData { mu, rho_n, rho_t })
 }
 
+use std::time::{Duration, Instant};
+
 use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::Fc3dError;
 use crate::local::AlgorithmVariant;
@@ -205,10 +207,21 @@ impl NewtonSolver {
         if outcome.converged {
             return outcome;
         }
+        let mut last_iteration_time = Duration::ZERO;
         for iteration in 1..=run.max_iter {
+            // A factorization cannot be interrupted: an iteration expected (from the last one)
+            // to end past the deadline is not started.
+            if iteration > 1 && run.cannot_afford(last_iteration_time) {
+                outcome.out_of_time = true;
+                break;
+            }
+            let iteration_start = Instant::now();
             // Newton direction J d = -F, regularised if needed, else the fixed-point direction.
             let mut found = false;
             for shift_try in std::iter::once(0.0).chain(REGULARIZATION_SHIFTS) {
+                if shift_try != 0.0 && run.out_of_time() {
+                    break;
+                }
                 self.matrix.fill(
                     &self.w,
                     &self.a,
@@ -311,6 +324,7 @@ impl NewtonSolver {
                 reaction: r,
                 error,
             });
+            last_iteration_time = iteration_start.elapsed();
             if let Some(stop) = run.end_of_iteration(iteration, error <= run.tolerance) {
                 if !stop.out_of_time {
                     outcome.converged = true;
