@@ -35,6 +35,8 @@
 #                      within S seconds (default 0.1: runs over 50 ms are timed once)
 #   --timeout S        cap of one ladder process (default 20 x the largest budget + 30 s)
 #   --tie X            errors <= X count as equal in the report (default 1e-14)
+#   --siconos-from CSV take Siconos' rows from an earlier run's CSV (same problems and budgets)
+#                      instead of running Siconos again: re-measures fc3d's side only
 #   --out FILE         the CSV (default target/compare-siconos/budget.csv; report next to it, .txt,
 #                      and the picture, .svg)
 #
@@ -49,7 +51,7 @@ cd "$(dirname "$0")/.."
 DATA=${FC3D_SICONOS_DATA:-../shared/data/siconos}
 
 problems="" solvers="" fc3d_solvers=590 budgets=1ms,10ms,100ms,1s tol=1e-14 reps=3 rep_budget=0.1
-cap="" tie=1e-14 out=target/compare-siconos/budget.csv
+cap="" tie=1e-14 out=target/compare-siconos/budget.csv siconos_from=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --problems) problems=$2; shift ;;
@@ -62,7 +64,8 @@ while [ $# -gt 0 ]; do
     --timeout) cap=$2; shift ;;
     --tie) tie=$2; shift ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n '2,47p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --siconos-from) siconos_from=$2; shift ;;
+    -h|--help) awk 'NR > 1 && /^set -euo/ { exit } NR > 1' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -156,10 +159,14 @@ for path in "${paths[@]}"; do
     count=$((count + 1))
     run fc3d anytime "$path" "$solver" 0 "$name"
   done
-  for solver in "${solvers[@]}"; do
-    count=$((count + 1))
-    run siconos ladder "$path" "$solver" "$tol" "$name"
-  done
+  if [ -n "$siconos_from" ]; then
+    grep -a "^$name,siconos," "$siconos_from" >>"$out" || echo "   no Siconos rows for $name in $siconos_from" >&2
+  else
+    for solver in "${solvers[@]}"; do
+      count=$((count + 1))
+      run siconos ladder "$path" "$solver" "$tol" "$name"
+    done
+  fi
   printf '[%4d/%d %5ds] %s\n' "$count" "$total" $((SECONDS - start)) "$name"
 done
 echo "== done in $((SECONDS - start)) s: $out"
