@@ -301,12 +301,23 @@ fn report(rows: &[Kept], tie: f64, auto_solver: &str) -> (String, Vec<Point>) {
             }
         }
     }
-    let failed: Vec<String> = rows
+    // Per (library, solver, outcome): the problems, each counted once over the budgets.
+    let mut failures: BTreeMap<(&str, &str, &str), std::collections::BTreeSet<&str>> =
+        BTreeMap::new();
+    for k in rows
         .iter()
-        .filter(|k| !matches!(k.info.as_str(), "none") && k.info.parse::<i32>().is_err())
-        .map(|k| format!("{} {} {}: {}", k.library, k.solver, k.problem, k.info))
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
+        .filter(|k| k.info != "none" && k.info.parse::<i32>().is_err())
+    {
+        failures
+            .entry((k.library.as_str(), k.solver.as_str(), k.info.as_str()))
+            .or_default()
+            .insert(k.problem.as_str());
+    }
+    let failed: Vec<String> = failures
+        .iter()
+        .map(|((library, solver, info), problems)| {
+            format!("{library} {solver} {info} on {} problems", problems.len())
+        })
         .collect();
     let _ = writeln!(
         s,
