@@ -74,33 +74,9 @@ read -r -a problems <<<"$(echo "$problems" | tr ",\n" "  ")"
 read -r -a solvers <<<"$(echo "$solvers" | tr ",\n" "  ")"
 read -r -a tols <<<"$(echo "$tols" | tr ",\n" "  ")"
 
-packages=()
-command -v cc >/dev/null || packages+=(gcc libc6-dev)
-[ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
-if [ ${#packages[@]} -gt 0 ]; then
-  echo "== installing ${packages[*]}"
-  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${packages[@]}" >/dev/null
-fi
-
-echo "== building libfc3d, compare_report and the two benchmark binaries"
-cargo build --release -p fc3d
-cargo build --release -p fc3d-cli --bin compare_report
-BUILD=$(mktemp -d)
-trap 'rm -rf "$BUILD"' EXIT
-trap 'exit 130' INT TERM
-# A private copy of libfc3d.so: a rebuild of target/release during a long run must not change
-# the library under test halfway.
-cp target/release/libfc3d.so "$BUILD/libfc3d.so.0"
-ln -s libfc3d.so.0 "$BUILD/libfc3d.so"
-cp target/release/compare_report "$BUILD/"
-CFLAGS=(-std=c99 -O2 -Wall -Wextra -Werror)
-cc "${CFLAGS[@]}" -Icapi/include/siconos-compat -Icapi/include bench/siconos_compare.c -L"$BUILD" -lfc3d -lm -o "$BUILD/fc3d"
-cc "${CFLAGS[@]}" -I/usr/include/siconos/numerics -I/usr/include/siconos bench/siconos_compare.c \
-  -lsiconos_numerics -lm -o "$BUILD/siconos"
-# Both libraries single-threaded (fc3d is; Siconos' OpenBLAS would otherwise start a thread pool).
-export LD_LIBRARY_PATH="$BUILD${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+# Builds libfc3d, the report and bench/siconos_compare.c against both libraries into $BUILD.
+# shellcheck source=scripts/siconos-harness.sh
+. scripts/siconos-harness.sh compare_report
 export FC3D_COMPARE_REP_BUDGET=$rep_budget
 
 paths=()

@@ -217,4 +217,39 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     let f = ProblemFeatures::of(&shared("Confeti-ex13-Fc3D-SBM.dat"));
     assert!(!f.strongly_coupled());
     assert_eq!(choose(&f, 1e-8, None).1[0].kind, StageKind::Nsgs);
+    // Budget rows: on the Capsules and BoxesStack (40-300 contacts) an anytime solve starts
+    // with NSGS under 7 ms, with ADMM from 7 to 20 ms, with PROX above; OneObject (23
+    // contacts) and RockPile (463) keep NSGS up to 20 ms.
+    let anytime = |name: &str, ms: u64| {
+        let f = ProblemFeatures::of(&shared(name));
+        choose(&f, 0.0, Some(Duration::from_millis(ms))).1[0].kind
+    };
+    for name in ["Capsules-i101-404.dat", "BoxesStack1-i100000-32.hdf5.dat"] {
+        assert_eq!(anytime(name, 1), StageKind::Nsgs, "{name}");
+        assert_eq!(anytime(name, 10), StageKind::Admm, "{name}");
+        assert_eq!(anytime(name, 100), StageKind::Prox, "{name}");
+    }
+    assert_eq!(anytime("OneObject-i1028-138.hdf5.dat", 10), StageKind::Nsgs);
+    assert_eq!(anytime("RockPile_tob1.dat", 10), StageKind::Nsgs);
+}
+
+#[test]
+fn an_anytime_solve_stops_at_round_off() {
+    // FC3D_Example1 (3 contacts) is solved to 1e-17 in a few sweeps: with tolerance 0 and a
+    // budget of 10 s AUTO returns at round-off instead of running its stages for 10 s.
+    let p = shared("FC3D_Example1.dat");
+    let n = p.size();
+    let config = SolverConfig::new(AutoOptions::default())
+        .with_tolerance(0.0)
+        .with_max_iter(usize::MAX)
+        .with_time_budget(Some(Duration::from_secs(10)));
+    let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+    let start = Instant::now();
+    let report = solve(&p, &config, &mut r, &mut u).unwrap();
+    assert!(start.elapsed() < Duration::from_secs(5), "{report:?}");
+    assert!(
+        report.error <= fc3d_core::solvers::auto::ROUND_OFF,
+        "{report:?}"
+    );
+    assert_eq!(report.error, true_error(&p, &r));
 }
