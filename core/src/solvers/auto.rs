@@ -22,7 +22,7 @@ use crate::matrix::Delassus;
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 use crate::solvers::admm::AdmmOptions;
-use crate::solvers::nsgs::{run_sweeps, NsgsOptions, SweepSchedule, Sweeper};
+use crate::solvers::nsgs::{run_sweeps, NsgsOptions, PreparedSweep, SweepSchedule, Sweeper};
 use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 use crate::solvers::prox::ProxOptions;
 use crate::solvers::tresca::TrescaOptions;
@@ -425,8 +425,63 @@ impl Family for AutoOptions {
         u: &mut [f64],
         observer: &mut Observer<'_>,
     ) -> Result<SolverOutcome, Fc3dError> {
-        auto(problem, self, limits, r, u, observer)
+        auto(
+            problem,
+            self,
+            limits,
+            r,
+            u,
+            observer,
+            &mut AutoCarry::default(),
+        )
     }
+}
+
+/// Where AUTO ended a solve: the rule and plan it followed and the stage of that plan it
+/// finished with. A workspace keeps it so that the next step with the same W pattern, tolerance
+/// and budget skips the feature pass and the stages that came before.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoChoice {
+    /// Index of the rule in [`RULES`] (`usize::MAX` for a plan given in [`AutoOptions`]).
+    pub rule: usize,
+    pub plan: &'static [PlannedStage],
+    /// Index in `plan` of the stage the solve finished with.
+    pub stage: usize,
+    pub tolerance: f64,
+    pub budget: Option<Duration>,
+}
+
+impl AutoChoice {
+    /// The stage kind the solve finished with.
+    pub fn kind(&self) -> StageKind {
+        self.plan[self.stage].kind
+    }
+}
+
+/// What a workspace hands AUTO and gets back: structures built from W's block pattern (valid
+/// for the problem solved) and the choice to resume from (only when the pattern is unchanged).
+/// After the solve, `choice` is where this solve ended and the structures are handed back.
+#[derive(Default)]
+pub(crate) struct AutoCarry {
+    pub sweep: Option<PreparedSweep>,
+    pub newton: Option<NewtonSolver>,
+    pub resume: Option<AutoChoice>,
+    pub choice: Option<AutoChoice>,
+    /// The solve resumed from `resume` (same tolerance and budget).
+    pub resumed: bool,
+}
+
+/// Runs AUTO with what a workspace kept (see [`AutoCarry`]).
+pub(crate) fn auto_with(
+    problem: &FrictionProblem<'_>,
+    options: &AutoOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+    carry: &mut AutoCarry,
+) -> Result<SolverOutcome, Fc3dError> {
+    auto(problem, options, limits, r, u, observer, carry)
 }
 
 /// AUTO's id: fc3d's own, in the range 568..=599 Siconos 4.4 leaves free.
@@ -452,14 +507,35 @@ fn auto(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
+    carry: &mut AutoCarry,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let run = limits.start();
     let tolerance = run.tolerance;
-    let (rule, plan) = match options.plan {
-        Some(plan) => (usize::MAX, plan),
-        None => choose(&ProblemFeatures::of(problem), tolerance, limits.time_budget),
+    let budget = limits.time_budget;
+    let resume = carry.resume.take().filter(|c| {
+        options.plan.is_none()
+            && c.tolerance == tolerance
+            && c.budget == budget
+            && c.stage < c.plan.len()
+    });
+    let (rule, plan, first) = match (options.plan, resume) {
+        (Some(plan), _) => (usize::MAX, plan, 0),
+        (None, Some(c)) => (c.rule, c.plan, c.stage),
+        (None, None) => {
+            let (rule, plan) = choose(&ProblemFeatures::of(problem), tolerance, budget);
+            (rule, plan, 0)
+        }
     };
+    carry.resumed = resume.is_some() && options.plan.is_none();
+    let mut last_stage = first;
+    // A colouring kept for another run is handed back as it came.
+    let (kept_rows, kept_colouring) = match carry.sweep.take() {
+        Some(p) => (Some(p.rows), p.colouring),
+        None => (None, None),
+    };
+    let mut kept_rows = kept_rows;
+    let mut kept_newton = carry.newton.take();
     let mut log = StageLog::new(rule);
     // The initial error is not measured (a product with W, as much as a whole solve of a small
     // problem): the first stage starts from r as given.
@@ -485,10 +561,11 @@ fn auto(
     let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
     let mut newton: Option<NewtonSolver> = None;
 
-    'plan: for planned in plan {
+    'plan: for (index, planned) in plan.iter().enumerate().skip(first) {
         if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
             break;
         }
+        last_stage = index;
         // Every stage starts from the best iterate seen.
         if best.restore_if_better(r, error) {
             error = best_error;
@@ -498,13 +575,19 @@ fn auto(
         let mut done = 0usize;
         let end;
         // The sweeper and the Newton matrix are built once per solve, at their first stage.
+        // A workspace's structures (built for this W's pattern) are taken over.
         let built = match planned.kind {
-            Newton if newton.is_none() => NewtonSolver::new(problem, &newton_options)
-                .map(|s| newton = Some(s))
-                .is_ok(),
-            Nsgs if sweeper.is_none() => Sweeper::with_options(problem, &nsgs_options, tolerance)
-                .map(|s| sweeper = Some(s))
-                .is_ok(),
+            Newton if newton.is_none() => {
+                NewtonSolver::reusing(problem, &newton_options, kept_newton.take())
+                    .map(|(s, _)| newton = Some(s))
+                    .is_ok()
+            }
+            Nsgs if sweeper.is_none() => match kept_rows.take() {
+                Some(rows) => Sweeper::with_rows(rows, &nsgs_options, tolerance, None),
+                None => Sweeper::with_options(problem, &nsgs_options, tolerance),
+            }
+            .map(|s| sweeper = Some(s))
+            .is_ok(),
             _ => true,
         };
         if !built {
@@ -597,6 +680,21 @@ fn auto(
     // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
     // family's last step): it is the final error unless an earlier iterate was better.
     let restored = best.restore_if_better(r, error);
+    carry.choice = Some(AutoChoice {
+        rule,
+        plan,
+        stage: last_stage,
+        tolerance,
+        budget,
+    });
+    carry.sweep = sweeper
+        .map(|s| s.into_prepared().0)
+        .or(kept_rows)
+        .map(|rows| PreparedSweep {
+            rows,
+            colouring: kept_colouring,
+        });
+    carry.newton = newton.or(kept_newton);
     Ok(SolverOutcome {
         stages: Some(log),
         ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
