@@ -14,8 +14,8 @@
 use std::time::{Duration, Instant};
 
 use crate::contract::{
-    BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
-    StageKind, StageLog,
+    BestIterate, ErrorEvaluation, Family, IterationEvent, Limits, Observer, SolverOutcome, Stage,
+    StageEnd, StageKind, StageLog,
 };
 use crate::error::Fc3dError;
 use crate::matrix::Delassus;
@@ -484,6 +484,33 @@ pub(crate) fn auto_with(
     auto(problem, options, limits, r, u, observer, carry)
 }
 
+/// The sweeps to run before the next measurement of the error: those the contraction seen over
+/// the last `iterations` sweeps (from `before` to `error`) needs to reach `tolerance`, between 1
+/// and `max`; twice the last probe while no contraction is known yet. Measured this way, a
+/// Gauss-Seidel stage stops within a sweep or two of the first one below the tolerance, with
+/// a few measurements of the error (each costs about one product with W, less than a sweep).
+fn next_probe(
+    last: usize,
+    before: f64,
+    error: f64,
+    iterations: usize,
+    tolerance: f64,
+    max: usize,
+) -> usize {
+    let rate = (error / before).powf(1.0 / iterations.max(1) as f64);
+    let sweeps = if rate.is_finite() && rate > 0.0 && rate < 1.0 && error > tolerance {
+        ((tolerance / error).ln() / rate.ln()).ceil()
+    } else {
+        (2 * last) as f64
+    };
+    // Tolerance 0 (an anytime solve) asks for infinitely many: the longest probe.
+    if sweeps >= 1.0 {
+        (sweeps.min(max as f64) as usize).max(1)
+    } else {
+        1
+    }
+}
+
 /// AUTO's id: fc3d's own, in the range 568..=599 Siconos 4.4 leaves free.
 pub const AUTO_ID: i32 = 590;
 
@@ -547,11 +574,14 @@ fn auto(
     // Local solver 551 (Newton with Goldstein-Price): the fastest NSGS on the small shared
     // problems (README "AUTO").
     let nsgs_options = NsgsOptions::with_local(crate::local::LocalSolverKind::NewtonAlartCurnierGp);
+    // The sweeps run without a test of their own (Siconos' increment test passes hundreds of
+    // sweeps after the error on the Capsules): AUTO measures the full error after each run of
+    // sweeps, whose length it predicts from the rate seen (see `next_probe`).
     let schedule = SweepSchedule {
-        error_evaluation: nsgs_options.error_evaluation,
-        evaluation_frequency: nsgs_options.evaluation_frequency,
+        error_evaluation: ErrorEvaluation::Light,
+        evaluation_frequency: 1,
         local_tolerance: nsgs_options.local_tolerance,
-        stop_when_stalled: true,
+        stop_when_stalled: false,
     };
     let mut sweeper: Option<Sweeper> = None;
     let prox_options = ProxOptions::default();
@@ -599,6 +629,11 @@ fn auto(
             });
             continue 'plan;
         }
+        // The stall test looks at windows of `watch.chunk` iterations; NSGS measures inside a
+        // window as often as its predicted convergence asks.
+        let mut window_start = error;
+        let mut window = 0usize;
+        let mut probe = 1usize;
         loop {
             let left = (run.max_iter - total).min(allowance - done);
             if left == 0 {
@@ -609,7 +644,11 @@ fn auto(
                 };
                 break;
             }
-            let chunk = watch.chunk.min(left);
+            let chunk = match planned.kind {
+                Nsgs => probe.min(watch.chunk - window),
+                _ => watch.chunk,
+            }
+            .min(left);
             let before = error;
             let offset = total;
             let mut shifted = |ev: &IterationEvent<'_>| {
@@ -625,7 +664,8 @@ fn auto(
             let (iterations, measured) = match planned.kind {
                 Nsgs => {
                     let sweeper = sweeper.as_mut().expect("built above");
-                    let l = stage_limits(tolerance, chunk, run.deadline());
+                    // Tolerance 0: the sweeps run the whole probe (or stop on a fixed point).
+                    let l = stage_limits(0.0, chunk, run.deadline());
                     let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
                     (o.iterations, o.final_error)
                 }
@@ -664,11 +704,17 @@ fn auto(
                 end = StageEnd::Limits;
                 break;
             }
-            // NaN compares false: a non-finite error is a stall.
-            if !(error <= watch.factor * before) {
-                end = StageEnd::Stalled;
-                break;
+            window += iterations;
+            if window >= watch.chunk {
+                // NaN compares false: a non-finite error is a stall.
+                if !(error <= watch.factor * window_start) {
+                    end = StageEnd::Stalled;
+                    break;
+                }
+                window_start = error;
+                window = 0;
             }
+            probe = next_probe(probe, before, error, iterations, tolerance, watch.chunk);
         }
         log.push(Stage {
             kind: planned.kind,
@@ -700,4 +746,25 @@ fn auto(
         ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
             .with_final_error((!restored && error.is_finite()).then_some(error))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::next_probe;
+
+    #[test]
+    fn probes_double_until_a_rate_is_known_then_aim_at_the_tolerance() {
+        // No rate yet (first measurement): twice the last probe, at most `max`.
+        assert_eq!(next_probe(1, f64::INFINITY, 1e-2, 1, 1e-4, 10), 2);
+        assert_eq!(next_probe(8, f64::INFINITY, 1e-2, 8, 1e-4, 10), 10);
+        // Error divided by 10 per sweep, 1e-2 -> 1e-4: two more sweeps.
+        assert_eq!(next_probe(2, 1e-0, 1e-2, 2, 1e-4, 10), 2);
+        // A slow rate asks for the longest probe; no progress: doubling.
+        assert_eq!(next_probe(2, 1.0, 0.99, 1, 1e-4, 10), 10);
+        assert_eq!(next_probe(2, 1.0, 1.5, 1, 1e-4, 10), 4);
+        // An anytime solve (tolerance 0) measures at the longest probe.
+        assert_eq!(next_probe(2, 1.0, 0.5, 1, 0.0, 10), 10);
+        // NaN errors: doubling too (the stall window ends the stage).
+        assert_eq!(next_probe(2, f64::NAN, f64::NAN, 1, 1e-4, 10), 4);
+    }
 }
