@@ -209,7 +209,12 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     assert_eq!(first(0.0, Some(Duration::from_millis(1))), StageKind::Nsgs);
     assert_eq!(first(0.0, Some(Duration::from_secs(1))), StageKind::Prox);
     assert_eq!(first(1e-8, None), StageKind::Prox);
+    assert_eq!(first(1e-6, None), StageKind::Prox);
     assert_eq!(first(1e-4, None), StageKind::Admm);
+    // BoxesStack1 (52 contacts, mu 0.7): ADMM first to 1e-6.
+    let f = ProblemFeatures::of(&shared("BoxesStack1-i100000-32.hdf5.dat"));
+    assert!(f.strongly_coupled() && f.mu_max >= 0.5);
+    assert_eq!(choose(&f, 1e-6, None).1[0].kind, StageKind::Admm);
     // Capsules-i101-404: 225 contacts, EG first at loose tolerances.
     let f = ProblemFeatures::of(&shared("Capsules-i101-404.dat"));
     assert_eq!(choose(&f, 1e-4, None).1[0].kind, StageKind::ExtraGradient);

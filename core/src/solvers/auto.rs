@@ -60,6 +60,9 @@ pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
 pub const STRONG_MU: f64 = 0.25;
 /// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
 pub const WEAK_DOMINANCE: f64 = 0.16;
+/// `mu_max` below which PROX beats ADMM on strongly coupled problems at tight tolerances: the
+/// shared and generated problems of that class have mu <= 0.42 or mu >= 0.7.
+pub const MODERATE_MU: f64 = 0.5;
 
 impl ProblemFeatures {
     /// Strong frictional coupling (see [`Condition::strongly_coupled`]).
@@ -197,6 +200,10 @@ pub struct Condition {
     pub strongly_coupled: Option<bool>,
     /// The solve has a time budget of at most this (a short anytime solve).
     pub max_budget: Option<Duration>,
+    /// The largest friction coefficient is below this.
+    pub max_mu: Option<f64>,
+    /// The tolerance is below this (a tight solve).
+    pub max_tolerance: Option<f64>,
 }
 
 impl Condition {
@@ -207,6 +214,8 @@ impl Condition {
         min_contacts: None,
         strongly_coupled: None,
         max_budget: None,
+        max_mu: None,
+        max_tolerance: None,
     };
 
     fn holds(&self, f: &ProblemFeatures, tolerance: f64, budget: Option<Duration>) -> bool {
@@ -221,6 +230,8 @@ impl Condition {
             && self
                 .max_budget
                 .is_none_or(|m| budget.is_some_and(|b| b <= m))
+            && self.max_mu.is_none_or(|m| f.mu_max < m)
+            && self.max_tolerance.is_none_or(|t| tolerance < t)
     }
 }
 
@@ -282,6 +293,19 @@ pub const RULES: &[Rule] = &[
         why: "large strongly coupled problems to 1e-4 (Capsules, RockPile): EG's iterations (one \
               product with W) are the cheapest, EG is the fastest on the Capsules (3-10x ADMM); \
               where it stalls (RockPile) ADMM, then PROX take over",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_mu: Some(MODERATE_MU),
+            max_tolerance: Some(1e-5),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems with mu < 0.5 to 1e-6 or tighter (OneObject, mu 0.3; \
+              generated piles of 40 and 60 contacts, mu 0.38-0.42): PROX is the fastest or within \
+              1.7x of it at 1e-6 where ADMM first is 2.8-54x behind; with mu = 0.7 (BoxesStack, \
+              Capsules) it is the other way round (PROX 10-30x behind ADMM on two of them)",
     },
     Rule {
         when: Condition {
