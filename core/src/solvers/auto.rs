@@ -73,35 +73,27 @@ impl ProblemFeatures {
     pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
         let nc = problem.n_contacts();
         let mu = problem.mu();
-        let (w_nn, off_normal, stored_blocks) = normal_rows(problem.w(), nc);
-        let mut block_asymmetry = 0.0_f64;
-        for c in 0..nc {
-            if let Some(b) = problem.w().diagonal_block(c) {
-                let scale = b.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
-                let mut skew = 0.0_f64;
-                for i in 0..3 {
-                    for j in 0..i {
-                        skew = skew.max((b[i][j] - b[j][i]).abs());
-                    }
-                }
-                if scale > 0.0 {
-                    block_asymmetry = block_asymmetry.max(skew / scale);
-                }
-            }
-        }
-        let largest = w_nn.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let mut rows = NormalRows::new(nc);
+        let stored_blocks = rows.read(problem.w(), nc);
+        let NormalRows {
+            w_nn,
+            largest,
+            smallest,
+            diagonal_dominance,
+            block_asymmetry,
+        } = rows;
         let singular_contacts = w_nn.iter().filter(|&&v| v <= 1e-12 * largest).count();
-        let smallest = w_nn.iter().fold(f64::INFINITY, |m, &v| m.min(v));
         let diagonal_spread = if smallest > 0.0 {
             largest / smallest
         } else {
             f64::INFINITY
         };
-        let diagonal_dominance = w_nn
-            .iter()
-            .zip(&off_normal)
-            .map(|(&d, &o)| if o > 0.0 { d / o } else { f64::INFINITY })
-            .fold(f64::INFINITY, f64::min);
+        let (mut mu_min, mut mu_max, mut frictionless) = (f64::INFINITY, 0.0_f64, 0);
+        for &m in mu {
+            mu_min = mu_min.min(m);
+            mu_max = mu_max.max(m);
+            frictionless += usize::from(m == 0.0);
+        }
         ProblemFeatures {
             n_contacts: nc,
             block_density: if nc > 0 {
@@ -109,9 +101,9 @@ impl ProblemFeatures {
             } else {
                 0.0
             },
-            mu_min: mu.iter().copied().fold(f64::INFINITY, f64::min),
-            mu_max: mu.iter().copied().fold(0.0, f64::max),
-            frictionless: mu.iter().filter(|&&m| m == 0.0).count(),
+            mu_min,
+            mu_max,
+            frictionless,
             diagonal_dominance,
             block_asymmetry,
             diagonal_spread,
@@ -120,55 +112,109 @@ impl ProblemFeatures {
     }
 }
 
-/// Per contact, `W_NN` and the sum of `|W_Nj|` over the normal row outside the contact's block,
-/// and the number of stored 3x3 blocks: only the normal rows are read (a third of a dense W).
-fn normal_rows(w: &Delassus<'_>, nc: usize) -> (Vec<f64>, Vec<f64>, f64) {
-    let mut w_nn = vec![0.0_f64; nc];
-    let mut off = vec![0.0_f64; nc];
-    let stored = match w {
-        Delassus::Dense(d) => {
-            let n = 3 * nc;
-            let values = d.values();
-            for (c, (diag, off)) in w_nn.iter_mut().zip(off.iter_mut()).enumerate() {
-                let i = 3 * c;
-                for j in 0..n {
-                    let v = values[i + j * n];
-                    if j / 3 != c {
-                        *off += v.abs();
-                    } else if j == i {
-                        *diag = v;
+/// What one pass over W's normal rows (and the diagonal blocks they cross) gathers: each
+/// contact's `W_NN` (kept for the singular count, which needs the largest first) and running
+/// extremes, so that nothing else of size `nc` is allocated.
+struct NormalRows {
+    w_nn: Vec<f64>,
+    largest: f64,
+    smallest: f64,
+    diagonal_dominance: f64,
+    block_asymmetry: f64,
+}
+
+impl NormalRows {
+    fn new(nc: usize) -> Self {
+        NormalRows {
+            w_nn: Vec::with_capacity(nc),
+            largest: 0.0,
+            smallest: f64::INFINITY,
+            diagonal_dominance: f64::INFINITY,
+            block_asymmetry: 0.0,
+        }
+    }
+
+    /// Contact `c`'s normal row: its diagonal block (row-major) and the sum of `|W_Nj|` outside
+    /// that block.
+    fn push(&mut self, block: &[[f64; 3]; 3], off: f64) {
+        let d = block[0][0];
+        self.w_nn.push(d);
+        self.largest = self.largest.max(d);
+        self.smallest = self.smallest.min(d);
+        if off > 0.0 {
+            self.diagonal_dominance = self.diagonal_dominance.min(d / off);
+        }
+        let scale = block.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut skew = 0.0_f64;
+        for i in 0..3 {
+            for j in 0..i {
+                skew = skew.max((block[i][j] - block[j][i]).abs());
+            }
+        }
+        if scale > 0.0 {
+            self.block_asymmetry = self.block_asymmetry.max(skew / scale);
+        }
+    }
+
+    /// Reads every contact's normal row and diagonal block, in contact order; returns the
+    /// number of stored 3x3 blocks (a third of a dense W is read).
+    fn read(&mut self, w: &Delassus<'_>, nc: usize) -> f64 {
+        match w {
+            Delassus::Dense(d) => {
+                let n = 3 * nc;
+                let values = d.values();
+                for c in 0..nc {
+                    let i = 3 * c;
+                    let mut off = 0.0;
+                    for j in (0..i).chain(i + 3..n) {
+                        off += values[i + j * n].abs();
                     }
+                    let block = std::array::from_fn(|a| {
+                        std::array::from_fn(|b| values[(i + a) + (i + b) * n])
+                    });
+                    self.push(&block, off);
                 }
+                (nc * nc) as f64
             }
-            (nc * nc) as f64
-        }
-        Delassus::SparseBlock(b) => {
-            for (bi, bj, block) in b.iter_blocks() {
-                // Column-major: the normal row is entries 0, 3, 6.
-                if bi == bj {
-                    w_nn[bi] += block[0];
-                } else {
-                    off[bi] += block[0].abs() + block[3].abs() + block[6].abs();
-                }
-            }
-            b.n_blocks() as f64
-        }
-        Delassus::Sparse(m) => {
-            let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
-            for c in 0..nc {
-                let i = 3 * c;
-                for k in ptr[i]..ptr[i + 1] {
-                    if cols[k] / 3 != c {
-                        off[c] += values[k].abs();
-                    } else if cols[k] == i {
-                        w_nn[c] += values[k];
+            Delassus::SparseBlock(b) => {
+                let (row_ptr, cols, blocks) = (b.row_ptr(), b.col_idx(), b.blocks());
+                for c in 0..nc {
+                    let mut diag = [[0.0; 3]; 3];
+                    let mut off = 0.0;
+                    for k in row_ptr[c]..row_ptr[c + 1] {
+                        // Column-major: the normal row is entries 0, 3, 6.
+                        let block = &blocks[k];
+                        if cols[k] == c {
+                            for (a, row) in diag.iter_mut().enumerate() {
+                                for (b, v) in row.iter_mut().enumerate() {
+                                    *v += block[a + 3 * b];
+                                }
+                            }
+                        } else {
+                            off += block[0].abs() + block[3].abs() + block[6].abs();
+                        }
                     }
+                    self.push(&diag, off);
                 }
+                b.n_blocks() as f64
             }
-            m.nnz() as f64 / 9.0
+            Delassus::Sparse(m) => {
+                let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
+                for c in 0..nc {
+                    let i = 3 * c;
+                    let mut off = 0.0;
+                    for k in ptr[i]..ptr[i + 1] {
+                        if cols[k] / 3 != c {
+                            off += values[k].abs();
+                        }
+                    }
+                    let block = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
+                    self.push(&block, off);
+                }
+                m.nnz() as f64 / 9.0
+            }
         }
-    };
-    (w_nn, off, stored)
+    }
 }
 
 /// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
