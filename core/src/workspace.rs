@@ -15,7 +15,8 @@
 //!   [`WorkspaceStats`]).
 //! * **AUTO's last choice** ([`Workspace::auto_choice`]): while W's block pattern, the tolerance
 //!   and the budget are unchanged, AUTO skips its feature pass and starts from the stage of its
-//!   plan that finished the previous solve; its NSGS and Newton stages use the kept structures.
+//!   plan that reached the tolerance in the previous solve; its NSGS and Newton stages use the
+//!   kept structures.
 //!
 //! A workspace solve is the ordinary [`crate::solve`] (same checks, rescaling, post-processing
 //! and reported error) started from the warm iterate: its result equals a cold [`crate::solve`]
@@ -292,8 +293,9 @@ impl Workspace {
         self.memory.len()
     }
 
-    /// Where AUTO's last solve through this workspace ended (rule, plan, finishing stage);
-    /// `None` before, or after a solve with another method or one that failed.
+    /// Where AUTO's last solve through this workspace ended (rule, plan, the stage that reached
+    /// the tolerance); `None` before, after a solve with another method, one that failed or one
+    /// that did not reach its tolerance (an anytime solve keeps the stage its budget ended in).
     pub fn auto_choice(&self) -> Option<&AutoChoice> {
         self.auto_choice.as_ref()
     }

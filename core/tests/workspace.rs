@@ -350,4 +350,20 @@ fn auto_resumes_from_the_stage_that_finished_while_the_pattern_holds() {
         run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
         2
     );
+    assert!(ws.auto_choice().is_some());
+    // A solve that stops short of its tolerance leaves no choice: the next one chooses afresh.
+    let short = SolverConfig::new(AutoOptions::default())
+        .with_tolerance(1e-12)
+        .with_max_iter(1);
+    let seq = box_slide(10, &mut cold_stepper(nsgs()));
+    let step = seq.steps.last().unwrap();
+    let (mut r, mut u) = (
+        vec![0.0; step.problem.size()],
+        vec![0.0; step.problem.size()],
+    );
+    let report = ws
+        .solve(&step.problem, &short, &step.ids, &mut r, &mut u)
+        .unwrap();
+    assert!(!report.converged());
+    assert!(ws.auto_choice().is_none());
 }

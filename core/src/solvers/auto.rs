@@ -507,22 +507,22 @@ impl Family for AutoOptions {
     }
 }
 
-/// Where AUTO ended a solve: the rule and plan it followed and the stage of that plan it
-/// finished with. A workspace keeps it so that the next step with the same W pattern, tolerance
+/// Where AUTO ended a solve: the rule and plan it followed and the stage of that plan that
+/// reached the tolerance (in an anytime solve, the one the budget ended in). A workspace keeps it so that the next step with the same W pattern, tolerance
 /// and budget skips the feature pass and the stages that came before.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AutoChoice {
     /// Index of the rule in [`RULES`] (`usize::MAX` for a plan given in [`AutoOptions`]).
     pub rule: usize,
     pub plan: &'static [PlannedStage],
-    /// Index in `plan` of the stage the solve finished with.
+    /// Index in `plan` of the stage that reached the tolerance.
     pub stage: usize,
     pub tolerance: f64,
     pub budget: Option<Duration>,
 }
 
 impl AutoChoice {
-    /// The stage kind the solve finished with.
+    /// The kind of the stage that reached the tolerance.
     pub fn kind(&self) -> StageKind {
         self.plan[self.stage].kind
     }
@@ -796,7 +796,11 @@ fn auto(
     // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
     // family's last step): it is the final error unless an earlier iterate was better.
     let restored = best.restore_if_better(r, error);
-    carry.choice = Some(AutoChoice {
+    // Only a stage that reached the tolerance (or, in an anytime solve, the one the budget ended
+    // in) is worth starting from: after a solve that ran out of stages or iterations, the next
+    // one chooses afresh.
+    let finished = error <= tolerance || (tolerance == 0.0 && out_of_time);
+    carry.choice = finished.then_some(AutoChoice {
         rule,
         plan,
         stage: last_stage,
