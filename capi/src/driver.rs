@@ -132,18 +132,7 @@ unsafe fn driver_impl(
             config.tolerance
         );
         print_fill(&report);
-        if let Some(log) = &report.stages {
-            for (k, s) in log.stages().enumerate() {
-                eprintln!(
-                    "fc3d: AUTO stage {}: {} {} iterations, error {:e}, {}",
-                    k + 1,
-                    s.kind.name(),
-                    s.iterations,
-                    s.error,
-                    s.end.name()
-                );
-            }
-        }
+        eprint!("{}", auto_stage_lines(&report));
     }
     Ok(report.status.info_code())
 }
@@ -158,6 +147,25 @@ pub(crate) fn print_fill(report: &SolveReport) {
             f.ratio()
         );
     }
+}
+
+/// The verbose lines (each ending with a newline) of the stages AUTO took, empty for another
+/// solver: `fc3d_driver` and `fc3d_workspace_driver` print them alike.
+pub(crate) fn auto_stage_lines(report: &fc3d_core::SolveReport) -> String {
+    let mut lines = String::new();
+    if let Some(log) = &report.stages {
+        for (k, s) in log.stages().enumerate() {
+            lines.push_str(&format!(
+                "fc3d: AUTO stage {}: {} {} iterations, error {:e}, {}\n",
+                k + 1,
+                s.kind.name(),
+                s.iterations,
+                s.error,
+                s.end.name()
+            ));
+        }
+    }
+    lines
 }
 
 /// `fc2d_driver`'s work: the 2D problem and options read, solved, written back.

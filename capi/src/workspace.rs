@@ -9,14 +9,14 @@
 
 use std::os::raw::{c_double, c_int};
 
-use super::driver::solve_into_host;
+use super::driver::{auto_stage_lines, solve_into_host};
 use super::matrix::c_slice;
 use super::params::config_from_c;
 use super::problem::problem_from_c;
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_INVALID_SIZE};
 use crate::codes::FC3D_ERR_NULL_POINTER;
-use fc3d_core::{diagnose, ContactStatus, DiagnosticOptions, Workspace};
+use fc3d_core::{diagnose, ContactStatus, DiagnosticOptions, SolveReport, Workspace};
 
 /// Marks a live workspace: a pointer that was freed (or never was a workspace) is refused
 /// when it no longer holds it, rather than used.
@@ -145,23 +145,33 @@ pub unsafe extern "C" fn fc3d_workspace_driver(
                 ws.solve_with_observer(&p, &config, ids, r, u, observer)
             })?;
             if verbose() > 0 {
-                let s = ws.stats();
-                eprintln!(
-                    "fc3d: {} on {} contacts (workspace: {} warm, {} cold so far; W structure reused {}, built {}): {:?} after {} iterations, error {:e}",
-                    config.label(),
-                    p.n_contacts(),
-                    s.warm_contacts,
-                    s.cold_contacts,
-                    s.structure_reused,
-                    s.structure_built,
-                    report.status,
-                    report.iterations,
-                    report.error,
+                eprint!(
+                    "{}",
+                    verbose_text(&config.label(), p.n_contacts(), ws, &report)
                 );
             }
             Ok(report.status.info_code())
         },
     )
+}
+
+/// What `fc3d_workspace_driver` prints when verbose: the solve with what the workspace reused,
+/// then, for AUTO, its stages as `fc3d_driver` prints them.
+fn verbose_text(label: &str, n_contacts: usize, ws: &Workspace, report: &SolveReport) -> String {
+    let s = ws.stats();
+    let mut text = format!(
+        "fc3d: {label} on {n_contacts} contacts (workspace: {} warm, {} cold so far; W structure reused {}, built {}; AUTO resumed {}): {:?} after {} iterations, error {:e}\n",
+        s.warm_contacts,
+        s.cold_contacts,
+        s.structure_reused,
+        s.structure_built,
+        s.auto_resumed,
+        report.status,
+        report.iterations,
+        report.error,
+    );
+    text.push_str(&auto_stage_lines(report));
+    text
 }
 
 /// Per-contact diagnostics of the reaction `reaction` (3 per contact) of `problem`, with
@@ -251,4 +261,28 @@ pub unsafe extern "C" fn fc3d_contact_diagnostics(
             Ok(0)
         },
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fc3d_core::{AutoOptions, Delassus, DenseMatrix, FrictionProblem, SolverConfig};
+
+    #[test]
+    fn the_verbose_text_shows_autos_stages_as_fc3d_driver_does() {
+        let w = DenseMatrix::new(3, 3, vec![1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]).unwrap();
+        let p = FrictionProblem::new(Delassus::Dense(w), vec![-1.0, 2.0, 0.0], vec![0.5]).unwrap();
+        let config = SolverConfig::new(AutoOptions::default()).with_tolerance(1e-10);
+        let mut ws = Workspace::new();
+        let mut text = String::new();
+        for _ in 0..2 {
+            let (mut r, mut u) = (vec![0.0; 3], vec![0.0; 3]);
+            let report = ws.solve(&p, &config, &[7], &mut r, &mut u).unwrap();
+            let stages = auto_stage_lines(&report);
+            assert!(stages.starts_with("fc3d: AUTO stage 1: NSGS "), "{stages}");
+            text = verbose_text(&config.label(), 1, &ws, &report);
+            assert!(text.ends_with(&stages), "{text}");
+        }
+        assert!(text.contains("AUTO resumed 1)"), "{text}");
+    }
 }

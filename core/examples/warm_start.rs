@@ -119,6 +119,10 @@ fn main() {
         ("NSGS tol 1e-4", nsgs(1e-4)),
         ("NSGS tol 1e-6", nsgs(1e-6)),
         ("NSN-AC tol 1e-8", nsn(1e-8)),
+        (
+            "AUTO tol 1e-6",
+            SolverConfig::new(fc3d_core::AutoOptions::default()).with_tolerance(1e-6),
+        ),
     ];
     println!(
         "{:<14} {:>5} {:>8} {:<16} {:>11} {:>11} {:>11} {:>7} {:>9} {:>9} {:>9} {:>9}",

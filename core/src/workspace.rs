@@ -7,12 +7,16 @@
 //!   starts from `r_c = 0`; a contact of the previous step that is absent now (it vanished) is
 //!   forgotten.
 //! * **Active set.** Whether each contact ended the last solve pushing (`r_N > 0`), by id.
-//! * **Prepared W.** The structures a family builds from W before iterating — NSGS's block rows,
-//!   NSN's Newton matrix pattern with its symbolic LU factorization — are kept and refilled with
-//!   the new values when the new W has the same block pattern. The check is part of the refill:
-//!   one pass over the stored blocks, no allocation for the block rows; when the pattern
-//!   changed, the structure is rebuilt (and counted in [`WorkspaceStats`]).
-//! * **Room for AUTO's last choice** ([`Workspace::auto_choice`]).
+//! * **Prepared W.** The structures a family builds from W before iterating — NSGS's block rows
+//!   and the colouring of a coloured sweep, NSN's Newton matrix pattern with its symbolic LU
+//!   factorization — are kept and refilled with the new values when the new W has the same block
+//!   pattern. The check is part of the refill: one pass over the stored blocks, no allocation
+//!   for the block rows; when the pattern changed, the structure is rebuilt (and counted in
+//!   [`WorkspaceStats`]).
+//! * **AUTO's last choice** ([`Workspace::auto_choice`]): while W's block pattern, the tolerance
+//!   and the budget are unchanged, AUTO skips its feature pass and starts from the stage of its
+//!   plan that reached the tolerance in the previous solve; its NSGS and Newton stages use the
+//!   kept structures.
 //!
 //! A workspace solve is the ordinary [`crate::solve`] (same checks, rescaling, post-processing
 //! and reported error) started from the warm iterate: its result equals a cold [`crate::solve`]
@@ -26,7 +30,8 @@ use crate::error::Fc3dError;
 use crate::matrix::{BlockRows, Delassus};
 use crate::problem::FrictionProblem;
 use crate::solve::solve_with_runner;
-use crate::solvers::nsgs::nsgs_on_rows;
+use crate::solvers::auto::{auto_with, AutoCarry, AutoChoice};
+use crate::solvers::nsgs::{nsgs_on_rows, Decomposition, PreparedSweep};
 use crate::solvers::nsn::{nsn_on, NewtonSolver};
 
 /// What a workspace remembers of one contact.
@@ -49,6 +54,10 @@ pub struct WorkspaceStats {
     pub structure_reused: usize,
     /// Solves that had to build it (first solve, pattern change, other family).
     pub structure_built: usize,
+    /// Coloured NSGS solves that took the colouring kept from an earlier solve.
+    pub colouring_reused: usize,
+    /// AUTO solves that resumed from the last choice (no feature pass).
+    pub auto_resumed: usize,
 }
 
 /// How many contacts [`Workspace::initial_guess`] started warm and cold.
@@ -84,9 +93,9 @@ pub struct Workspace {
     memory: HashMap<i64, ContactMemory>,
     /// The map being built for the current solve (kept to reuse its allocation).
     next_memory: HashMap<i64, ContactMemory>,
-    rows: Option<BlockRows>,
+    sweep: Option<PreparedSweep>,
     newton: Option<NewtonSolver>,
-    auto_choice: Option<Method>,
+    auto_choice: Option<AutoChoice>,
     stats: WorkspaceStats,
 }
 
@@ -94,7 +103,7 @@ impl std::fmt::Debug for Workspace {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Workspace")
             .field("contacts", &self.memory.len())
-            .field("has_block_rows", &self.rows.is_some())
+            .field("has_block_rows", &self.sweep.is_some())
             .field("has_newton_matrix", &self.newton.is_some())
             .field("auto_choice", &self.auto_choice)
             .field("stats", &self.stats)
@@ -181,7 +190,10 @@ impl Workspace {
                 what: "workspace contact memory".into(),
                 bytes: ids.len() * std::mem::size_of::<(i64, ContactMemory)>(),
             })?;
-        let (rows, newton, stats) = (&mut self.rows, &mut self.newton, &mut self.stats);
+        let (sweep, newton, stats) = (&mut self.sweep, &mut self.newton, &mut self.stats);
+        // Only an AUTO solve that follows an AUTO solve resumes.
+        let mut last_choice = self.auto_choice.take();
+        let auto_choice = &mut self.auto_choice;
         let mut runner = |p: &FrictionProblem<'_>,
                           cfg: &SolverConfig,
                           r: &mut [f64],
@@ -191,9 +203,32 @@ impl Workspace {
             let limits = cfg.limits();
             match &cfg.method {
                 Method::Nsgs(options) => {
-                    let prepared = prepared_rows(rows.take(), p.w(), stats)?;
+                    let (prepared, _) = prepared_sweep(sweep.take(), p.w(), stats)?;
+                    if options.decomposition == Decomposition::Coloured
+                        && prepared.colouring.is_some()
+                    {
+                        stats.colouring_reused += 1;
+                    }
                     let (outcome, back) = nsgs_on_rows(p, options, &limits, prepared, r, u, obs);
-                    *rows = back;
+                    *sweep = back;
+                    outcome
+                }
+                Method::Auto(options) => {
+                    let (prepared, same_pattern) = prepared_sweep(sweep.take(), p.w(), stats)?;
+                    let mut carry = AutoCarry {
+                        sweep: Some(prepared),
+                        newton: newton.take(),
+                        resume: last_choice.take().filter(|_| same_pattern),
+                        choice: None,
+                        resumed: false,
+                    };
+                    let outcome = auto_with(p, options, &limits, r, u, obs, &mut carry);
+                    if outcome.is_ok() && carry.resumed {
+                        stats.auto_resumed += 1;
+                    }
+                    *sweep = carry.sweep;
+                    *newton = carry.newton;
+                    *auto_choice = carry.choice;
                     outcome
                 }
                 Method::Nsn(options) => {
@@ -258,14 +293,11 @@ impl Workspace {
         self.memory.len()
     }
 
-    /// The method an automatic choice settled on last (set by the caller that made the choice;
-    /// `None` until then), so that the next step can start from it.
-    pub fn auto_choice(&self) -> Option<&Method> {
+    /// Where AUTO's last solve through this workspace ended (rule, plan, the stage that reached
+    /// the tolerance); `None` before, after a solve with another method, one that failed or one
+    /// that did not reach its tolerance (an anytime solve keeps the stage its budget ended in).
+    pub fn auto_choice(&self) -> Option<&AutoChoice> {
         self.auto_choice.as_ref()
-    }
-
-    pub fn set_auto_choice(&mut self, method: Option<Method>) {
-        self.auto_choice = method;
     }
 
     pub fn stats(&self) -> &WorkspaceStats {
@@ -278,20 +310,28 @@ impl Workspace {
     }
 }
 
-/// The block rows of `w`: `kept` refilled in place when `w` has its pattern, else built anew.
-fn prepared_rows(
-    kept: Option<BlockRows>,
+/// The block rows of `w`: `kept` refilled in place (with its colouring) when `w` has its
+/// pattern, else built anew (without colouring); the flag tells whether the pattern held.
+fn prepared_sweep(
+    kept: Option<PreparedSweep>,
     w: &Delassus<'_>,
     stats: &mut WorkspaceStats,
-) -> Result<BlockRows, Fc3dError> {
-    if let Some(mut rows) = kept {
-        if rows.refill_from(w) {
+) -> Result<(PreparedSweep, bool), Fc3dError> {
+    if let Some(mut prepared) = kept {
+        if prepared.rows.refill_from(w) {
             stats.structure_reused += 1;
-            return Ok(rows);
+            return Ok((prepared, true));
         }
     }
     stats.structure_built += 1;
-    w.block_rows()
+    let rows: BlockRows = w.block_rows()?;
+    Ok((
+        PreparedSweep {
+            rows,
+            colouring: None,
+        },
+        false,
+    ))
 }
 
 fn check_unique(ids: &[i64]) -> Result<(), Fc3dError> {

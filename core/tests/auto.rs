@@ -209,7 +209,12 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     assert_eq!(first(0.0, Some(Duration::from_millis(1))), StageKind::Nsgs);
     assert_eq!(first(0.0, Some(Duration::from_secs(1))), StageKind::Prox);
     assert_eq!(first(1e-8, None), StageKind::Prox);
+    assert_eq!(first(1e-6, None), StageKind::Prox);
     assert_eq!(first(1e-4, None), StageKind::Admm);
+    // BoxesStack1 (52 contacts, mu 0.7): ADMM first to 1e-6.
+    let f = ProblemFeatures::of(&shared("BoxesStack1-i100000-32.hdf5.dat"));
+    assert!(f.strongly_coupled() && f.mu_max >= 0.5);
+    assert_eq!(choose(&f, 1e-6, None).1[0].kind, StageKind::Admm);
     // Capsules-i101-404: 225 contacts, EG first at loose tolerances.
     let f = ProblemFeatures::of(&shared("Capsules-i101-404.dat"));
     assert_eq!(choose(&f, 1e-4, None).1[0].kind, StageKind::ExtraGradient);
@@ -252,4 +257,33 @@ fn an_anytime_solve_stops_at_round_off() {
         "{report:?}"
     );
     assert_eq!(report.error, true_error(&p, &r));
+}
+
+#[test]
+fn the_features_are_the_same_in_every_storage() {
+    for name in ["OneObject-i1028-138.hdf5.dat", "Capsules-i101-404.dat"] {
+        let p = shared(name);
+        let f = ProblemFeatures::of(&p);
+        assert!(
+            f.block_asymmetry > 0.0 && f.diagonal_dominance.is_finite(),
+            "{f:?}"
+        );
+        for w in [
+            Delassus::Dense(p.w().to_dense()),
+            Delassus::Sparse(p.w().to_csr()),
+        ] {
+            let q = FrictionProblem::new(w, p.q().to_vec(), p.mu().to_vec()).unwrap();
+            let g = ProblemFeatures::of(&q);
+            assert_eq!(g.n_contacts, f.n_contacts);
+            assert_eq!(g.mu_max, f.mu_max);
+            assert_eq!(g.singular_contacts, f.singular_contacts);
+            for (a, b) in [
+                (g.diagonal_dominance, f.diagonal_dominance),
+                (g.block_asymmetry, f.block_asymmetry),
+                (g.diagonal_spread, f.diagonal_spread),
+            ] {
+                assert!((a - b).abs() <= 1e-12 * b.abs(), "{name}: {a} vs {b}");
+            }
+        }
+    }
 }

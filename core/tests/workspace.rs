@@ -4,9 +4,10 @@
 
 use fc3d_core::matrix::BlockRows;
 use fc3d_core::scenes::sequences::{box_slide, pile_settling, Sequence};
+use fc3d_core::solvers::auto::choose;
 use fc3d_core::{
-    solve, BlockSparseMatrix, Delassus, FrictionProblem, Method, NsgsOptions, NsnFormulation,
-    NsnOptions, Rescaling, SolverConfig, Workspace,
+    solve, AutoOptions, BlockSparseMatrix, Decomposition, Delassus, FrictionProblem, Method,
+    NsgsOptions, NsnFormulation, NsnOptions, ProblemFeatures, Rescaling, SolverConfig, Workspace,
 };
 
 /// `k` independent spheres on a plane (W block diagonal), each pushed down by `push[c]`.
@@ -230,4 +231,139 @@ fn sequences_have_contacts_that_appear_and_vanish() {
         .filter(|(_, &mu)| mu > 0.0)
         .fold(0.0_f64, |m, (uc, _)| m.max(uc[1].hypot(uc[2])));
     assert!(slip < 0.02, "largest slip velocity at the end {slip}");
+}
+
+#[test]
+fn the_colouring_of_a_coloured_sweep_is_kept_while_the_pattern_holds() {
+    let coloured = SolverConfig::new(NsgsOptions {
+        decomposition: Decomposition::Coloured,
+        threads: 2,
+        ..NsgsOptions::default()
+    })
+    .with_tolerance(1e-10);
+    // Bitwise the cold solve from the same iterate, with the colouring taken over.
+    let seq = box_slide(40, &mut cold_stepper(nsgs()));
+    let mut ws = Workspace::new();
+    for step in &seq.steps {
+        let n = step.problem.size();
+        let mut r_cold = vec![0.0; n];
+        ws.initial_guess(&step.ids, &mut r_cold).unwrap();
+        let mut u_cold = vec![0.0; n];
+        let cold = solve(&step.problem, &coloured, &mut r_cold, &mut u_cold).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let warm = ws
+            .solve(&step.problem, &coloured, &step.ids, &mut r, &mut u)
+            .unwrap();
+        assert_eq!(warm.iterations, cold.iterations);
+        assert_eq!(r, r_cold);
+        assert_eq!(u, u_cold);
+    }
+    let s = *ws.stats();
+    assert!(s.structure_reused > 0, "{s:?}");
+    assert_eq!(s.colouring_reused, s.structure_reused, "{s:?}");
+
+    // A pattern change drops it; a plain NSGS solve in between keeps it.
+    let mut ws = Workspace::new();
+    let run = |ws: &mut Workspace, config: &SolverConfig, p: &FrictionProblem<'_>, ids: &[i64]| {
+        let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+        ws.solve(p, config, ids, &mut r, &mut u).unwrap();
+    };
+    run(&mut ws, &coloured, &spheres(&[1.0, 2.0]), &[1, 2]);
+    run(&mut ws, &nsgs(), &spheres(&[1.5, 2.0]), &[1, 2]);
+    run(&mut ws, &coloured, &spheres(&[2.0, 0.5]), &[1, 2]);
+    assert_eq!(ws.stats().colouring_reused, 1);
+    run(&mut ws, &coloured, &spheres(&[2.0, 0.5, 1.0]), &[1, 2, 3]);
+    assert_eq!(ws.stats().colouring_reused, 1);
+    run(&mut ws, &coloured, &spheres(&[2.0, 0.5, 1.5]), &[1, 2, 3]);
+    assert_eq!(ws.stats().colouring_reused, 2);
+}
+
+#[test]
+fn auto_resumes_from_the_stage_that_finished_while_the_pattern_holds() {
+    let auto = SolverConfig::new(AutoOptions::default()).with_tolerance(1e-8);
+    let seq = box_slide(40, &mut cold_stepper(nsgs()));
+    let mut ws = Workspace::new();
+    let mut resumed = 0;
+    for (k, step) in seq.steps.iter().enumerate() {
+        let n = step.problem.size();
+        let before = ws.auto_choice().copied();
+        let resumes = ws.stats().auto_resumed;
+        let mut r_cold = vec![0.0; n];
+        ws.initial_guess(&step.ids, &mut r_cold).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let warm = ws
+            .solve(&step.problem, &auto, &step.ids, &mut r, &mut u)
+            .unwrap();
+        assert!(warm.converged(), "step {k}: {:e}", warm.error);
+        let choice = *ws.auto_choice().expect("AUTO records its choice");
+        let log = warm.stages.expect("AUTO logs its stages");
+        assert_eq!(log.rule, choice.rule);
+        assert_eq!(log.stages().last().unwrap().kind, choice.kind());
+        if ws.stats().auto_resumed > resumes {
+            // Resumed: the plan from the stage that finished last time, the same rule, and
+            // the same result as a cold solve of that part of the plan.
+            resumed += 1;
+            let before = before.expect("a resumed solve follows a recorded one");
+            assert_eq!(log.rule, before.rule);
+            assert_eq!(log.stages().next().unwrap().kind, before.kind(), "step {k}");
+            let rest = SolverConfig::new(AutoOptions {
+                plan: Some(&before.plan[before.stage..]),
+            })
+            .with_tolerance(1e-8);
+            let mut u_cold = vec![0.0; n];
+            let cold = solve(&step.problem, &rest, &mut r_cold, &mut u_cold).unwrap();
+            assert_eq!(warm.iterations, cold.iterations, "step {k}");
+            assert_eq!(r, r_cold, "step {k}");
+        } else {
+            // Not resumed: the rule the features give.
+            let f = ProblemFeatures::of(&step.problem);
+            assert_eq!(choose(&f, 1e-8, None).0, log.rule, "step {k}");
+        }
+    }
+    assert!(resumed > 0, "{:?}", ws.stats());
+
+    // Another tolerance, another pattern or another method in between: no resume.
+    let mut ws = Workspace::new();
+    let run = |ws: &mut Workspace, config: &SolverConfig, p: &FrictionProblem<'_>, ids: &[i64]| {
+        let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+        ws.solve(p, config, ids, &mut r, &mut u).unwrap();
+        ws.stats().auto_resumed
+    };
+    assert_eq!(run(&mut ws, &auto, &spheres(&[1.0, 2.0]), &[1, 2]), 0);
+    assert_eq!(run(&mut ws, &auto, &spheres(&[1.5, 2.0]), &[1, 2]), 1);
+    let looser = auto.clone().with_tolerance(1e-4);
+    assert_eq!(run(&mut ws, &looser, &spheres(&[1.5, 2.5]), &[1, 2]), 1);
+    assert_eq!(
+        run(&mut ws, &looser, &spheres(&[1.0, 2.5, 1.0]), &[1, 2, 3]),
+        1
+    );
+    assert_eq!(
+        run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
+        2
+    );
+    assert_eq!(
+        run(&mut ws, &nsgs(), &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
+        2
+    );
+    assert!(ws.auto_choice().is_none());
+    assert_eq!(
+        run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
+        2
+    );
+    assert!(ws.auto_choice().is_some());
+    // A solve that stops short of its tolerance leaves no choice: the next one chooses afresh.
+    let short = SolverConfig::new(AutoOptions::default())
+        .with_tolerance(1e-12)
+        .with_max_iter(1);
+    let seq = box_slide(10, &mut cold_stepper(nsgs()));
+    let step = seq.steps.last().unwrap();
+    let (mut r, mut u) = (
+        vec![0.0; step.problem.size()],
+        vec![0.0; step.problem.size()],
+    );
+    let report = ws
+        .solve(&step.problem, &short, &step.ids, &mut r, &mut u)
+        .unwrap();
+    assert!(!report.converged());
+    assert!(ws.auto_choice().is_none());
 }

@@ -14,15 +14,15 @@
 use std::time::{Duration, Instant};
 
 use crate::contract::{
-    BestIterate, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome, Stage, StageEnd,
-    StageKind, StageLog, MAX_STAGES,
+    BestIterate, ErrorEvaluation, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome,
+    Stage, StageEnd, StageKind, StageLog, MAX_STAGES,
 };
 use crate::error::Fc3dError;
 use crate::matrix::Delassus;
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 use crate::solvers::admm::AdmmOptions;
-use crate::solvers::nsgs::{run_sweeps, NsgsOptions, SweepSchedule, Sweeper};
+use crate::solvers::nsgs::{run_sweeps, NsgsOptions, PreparedSweep, SweepSchedule, Sweeper};
 use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 use crate::solvers::prox::ProxOptions;
 use crate::solvers::tresca::TrescaOptions;
@@ -63,6 +63,9 @@ pub const ADMM_BUDGET: Duration = Duration::from_millis(7);
 pub const STRONG_MU: f64 = 0.25;
 /// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
 pub const WEAK_DOMINANCE: f64 = 0.16;
+/// `mu_max` below which PROX beats ADMM on strongly coupled problems at tight tolerances: the
+/// shared and generated problems of that class have mu <= 0.42 or mu >= 0.7.
+pub const MODERATE_MU: f64 = 0.5;
 
 impl ProblemFeatures {
     /// Strong frictional coupling (see [`Condition::strongly_coupled`]).
@@ -73,35 +76,27 @@ impl ProblemFeatures {
     pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
         let nc = problem.n_contacts();
         let mu = problem.mu();
-        let (w_nn, off_normal, stored_blocks) = normal_rows(problem.w(), nc);
-        let mut block_asymmetry = 0.0_f64;
-        for c in 0..nc {
-            if let Some(b) = problem.w().diagonal_block(c) {
-                let scale = b.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
-                let mut skew = 0.0_f64;
-                for i in 0..3 {
-                    for j in 0..i {
-                        skew = skew.max((b[i][j] - b[j][i]).abs());
-                    }
-                }
-                if scale > 0.0 {
-                    block_asymmetry = block_asymmetry.max(skew / scale);
-                }
-            }
-        }
-        let largest = w_nn.iter().fold(0.0_f64, |m, &v| m.max(v));
+        let mut rows = NormalRows::new(nc);
+        let stored_blocks = rows.read(problem.w(), nc);
+        let NormalRows {
+            w_nn,
+            largest,
+            smallest,
+            diagonal_dominance,
+            block_asymmetry,
+        } = rows;
         let singular_contacts = w_nn.iter().filter(|&&v| v <= 1e-12 * largest).count();
-        let smallest = w_nn.iter().fold(f64::INFINITY, |m, &v| m.min(v));
         let diagonal_spread = if smallest > 0.0 {
             largest / smallest
         } else {
             f64::INFINITY
         };
-        let diagonal_dominance = w_nn
-            .iter()
-            .zip(&off_normal)
-            .map(|(&d, &o)| if o > 0.0 { d / o } else { f64::INFINITY })
-            .fold(f64::INFINITY, f64::min);
+        let (mut mu_min, mut mu_max, mut frictionless) = (f64::INFINITY, 0.0_f64, 0);
+        for &m in mu {
+            mu_min = mu_min.min(m);
+            mu_max = mu_max.max(m);
+            frictionless += usize::from(m == 0.0);
+        }
         ProblemFeatures {
             n_contacts: nc,
             block_density: if nc > 0 {
@@ -109,9 +104,9 @@ impl ProblemFeatures {
             } else {
                 0.0
             },
-            mu_min: mu.iter().copied().fold(f64::INFINITY, f64::min),
-            mu_max: mu.iter().copied().fold(0.0, f64::max),
-            frictionless: mu.iter().filter(|&&m| m == 0.0).count(),
+            mu_min,
+            mu_max,
+            frictionless,
             diagonal_dominance,
             block_asymmetry,
             diagonal_spread,
@@ -120,55 +115,109 @@ impl ProblemFeatures {
     }
 }
 
-/// Per contact, `W_NN` and the sum of `|W_Nj|` over the normal row outside the contact's block,
-/// and the number of stored 3x3 blocks: only the normal rows are read (a third of a dense W).
-fn normal_rows(w: &Delassus<'_>, nc: usize) -> (Vec<f64>, Vec<f64>, f64) {
-    let mut w_nn = vec![0.0_f64; nc];
-    let mut off = vec![0.0_f64; nc];
-    let stored = match w {
-        Delassus::Dense(d) => {
-            let n = 3 * nc;
-            let values = d.values();
-            for (c, (diag, off)) in w_nn.iter_mut().zip(off.iter_mut()).enumerate() {
-                let i = 3 * c;
-                for j in 0..n {
-                    let v = values[i + j * n];
-                    if j / 3 != c {
-                        *off += v.abs();
-                    } else if j == i {
-                        *diag = v;
+/// What one pass over W's normal rows (and the diagonal blocks they cross) gathers: each
+/// contact's `W_NN` (kept for the singular count, which needs the largest first) and running
+/// extremes, so that nothing else of size `nc` is allocated.
+struct NormalRows {
+    w_nn: Vec<f64>,
+    largest: f64,
+    smallest: f64,
+    diagonal_dominance: f64,
+    block_asymmetry: f64,
+}
+
+impl NormalRows {
+    fn new(nc: usize) -> Self {
+        NormalRows {
+            w_nn: Vec::with_capacity(nc),
+            largest: 0.0,
+            smallest: f64::INFINITY,
+            diagonal_dominance: f64::INFINITY,
+            block_asymmetry: 0.0,
+        }
+    }
+
+    /// Contact `c`'s normal row: its diagonal block (row-major) and the sum of `|W_Nj|` outside
+    /// that block.
+    fn push(&mut self, block: &[[f64; 3]; 3], off: f64) {
+        let d = block[0][0];
+        self.w_nn.push(d);
+        self.largest = self.largest.max(d);
+        self.smallest = self.smallest.min(d);
+        if off > 0.0 {
+            self.diagonal_dominance = self.diagonal_dominance.min(d / off);
+        }
+        let scale = block.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut skew = 0.0_f64;
+        for i in 0..3 {
+            for j in 0..i {
+                skew = skew.max((block[i][j] - block[j][i]).abs());
+            }
+        }
+        if scale > 0.0 {
+            self.block_asymmetry = self.block_asymmetry.max(skew / scale);
+        }
+    }
+
+    /// Reads every contact's normal row and diagonal block, in contact order; returns the
+    /// number of stored 3x3 blocks (a third of a dense W is read).
+    fn read(&mut self, w: &Delassus<'_>, nc: usize) -> f64 {
+        match w {
+            Delassus::Dense(d) => {
+                let n = 3 * nc;
+                let values = d.values();
+                for c in 0..nc {
+                    let i = 3 * c;
+                    let mut off = 0.0;
+                    for j in (0..i).chain(i + 3..n) {
+                        off += values[i + j * n].abs();
                     }
+                    let block = std::array::from_fn(|a| {
+                        std::array::from_fn(|b| values[(i + a) + (i + b) * n])
+                    });
+                    self.push(&block, off);
                 }
+                (nc * nc) as f64
             }
-            (nc * nc) as f64
-        }
-        Delassus::SparseBlock(b) => {
-            for (bi, bj, block) in b.iter_blocks() {
-                // Column-major: the normal row is entries 0, 3, 6.
-                if bi == bj {
-                    w_nn[bi] += block[0];
-                } else {
-                    off[bi] += block[0].abs() + block[3].abs() + block[6].abs();
-                }
-            }
-            b.n_blocks() as f64
-        }
-        Delassus::Sparse(m) => {
-            let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
-            for c in 0..nc {
-                let i = 3 * c;
-                for k in ptr[i]..ptr[i + 1] {
-                    if cols[k] / 3 != c {
-                        off[c] += values[k].abs();
-                    } else if cols[k] == i {
-                        w_nn[c] += values[k];
+            Delassus::SparseBlock(b) => {
+                let (row_ptr, cols, blocks) = (b.row_ptr(), b.col_idx(), b.blocks());
+                for c in 0..nc {
+                    let mut diag = [[0.0; 3]; 3];
+                    let mut off = 0.0;
+                    for k in row_ptr[c]..row_ptr[c + 1] {
+                        // Column-major: the normal row is entries 0, 3, 6.
+                        let block = &blocks[k];
+                        if cols[k] == c {
+                            for (a, row) in diag.iter_mut().enumerate() {
+                                for (b, v) in row.iter_mut().enumerate() {
+                                    *v += block[a + 3 * b];
+                                }
+                            }
+                        } else {
+                            off += block[0].abs() + block[3].abs() + block[6].abs();
+                        }
                     }
+                    self.push(&diag, off);
                 }
+                b.n_blocks() as f64
             }
-            m.nnz() as f64 / 9.0
+            Delassus::Sparse(m) => {
+                let (ptr, cols, values) = (m.row_ptr(), m.col_idx(), m.values());
+                for c in 0..nc {
+                    let i = 3 * c;
+                    let mut off = 0.0;
+                    for k in ptr[i]..ptr[i + 1] {
+                        if cols[k] / 3 != c {
+                            off += values[k].abs();
+                        }
+                    }
+                    let block = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
+                    self.push(&block, off);
+                }
+                m.nnz() as f64 / 9.0
+            }
         }
-    };
-    (w_nn, off, stored)
+    }
 }
 
 /// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
@@ -202,6 +251,10 @@ pub struct Condition {
     pub max_budget: Option<Duration>,
     /// The solve has a time budget of at least this.
     pub min_budget: Option<Duration>,
+    /// The largest friction coefficient is below this.
+    pub max_mu: Option<f64>,
+    /// The tolerance is below this (a tight solve).
+    pub max_tolerance: Option<f64>,
 }
 
 impl Condition {
@@ -213,6 +266,8 @@ impl Condition {
         strongly_coupled: None,
         max_budget: None,
         min_budget: None,
+        max_mu: None,
+        max_tolerance: None,
     };
 
     fn holds(&self, f: &ProblemFeatures, tolerance: f64, budget: Option<Duration>) -> bool {
@@ -230,6 +285,8 @@ impl Condition {
             && self
                 .min_budget
                 .is_none_or(|m| budget.is_some_and(|b| b >= m))
+            && self.max_mu.is_none_or(|m| f.mu_max < m)
+            && self.max_tolerance.is_none_or(|t| tolerance < t)
     }
 }
 
@@ -307,6 +364,19 @@ pub const RULES: &[Rule] = &[
         why: "large strongly coupled problems to 1e-4 (Capsules, RockPile): EG's iterations (one \
               product with W) are the cheapest, EG is the fastest on the Capsules (3-10x ADMM); \
               where it stalls (RockPile) ADMM, then PROX take over",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_mu: Some(MODERATE_MU),
+            max_tolerance: Some(1e-5),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems with mu < 0.5 to 1e-6 or tighter (OneObject, mu 0.3; \
+              generated piles of 40 and 60 contacts, mu 0.38-0.42): PROX is the fastest or within \
+              1.7x of it at 1e-6 where ADMM first is 2.8-54x behind; with mu = 0.7 (BoxesStack, \
+              Capsules) it is the other way round (PROX 10-30x behind ADMM on two of them)",
     },
     Rule {
         when: Condition {
@@ -450,7 +520,89 @@ impl Family for AutoOptions {
         u: &mut [f64],
         observer: &mut Observer<'_>,
     ) -> Result<SolverOutcome, Fc3dError> {
-        auto(problem, self, limits, r, u, observer)
+        auto(
+            problem,
+            self,
+            limits,
+            r,
+            u,
+            observer,
+            &mut AutoCarry::default(),
+        )
+    }
+}
+
+/// Where AUTO ended a solve: the rule and plan it followed and the stage of that plan that
+/// reached the tolerance (in an anytime solve, the one the budget ended in). A workspace keeps it so that the next step with the same W pattern, tolerance
+/// and budget skips the feature pass and the stages that came before.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AutoChoice {
+    /// Index of the rule in [`RULES`] (`usize::MAX` for a plan given in [`AutoOptions`]).
+    pub rule: usize,
+    pub plan: &'static [PlannedStage],
+    /// Index in `plan` of the stage that reached the tolerance.
+    pub stage: usize,
+    pub tolerance: f64,
+    pub budget: Option<Duration>,
+}
+
+impl AutoChoice {
+    /// The kind of the stage that reached the tolerance.
+    pub fn kind(&self) -> StageKind {
+        self.plan[self.stage].kind
+    }
+}
+
+/// What a workspace hands AUTO and gets back: structures built from W's block pattern (valid
+/// for the problem solved) and the choice to resume from (only when the pattern is unchanged).
+/// After the solve, `choice` is where this solve ended and the structures are handed back.
+#[derive(Default)]
+pub(crate) struct AutoCarry {
+    pub sweep: Option<PreparedSweep>,
+    pub newton: Option<NewtonSolver>,
+    pub resume: Option<AutoChoice>,
+    pub choice: Option<AutoChoice>,
+    /// The solve resumed from `resume` (same tolerance and budget).
+    pub resumed: bool,
+}
+
+/// Runs AUTO with what a workspace kept (see [`AutoCarry`]).
+pub(crate) fn auto_with(
+    problem: &FrictionProblem<'_>,
+    options: &AutoOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+    carry: &mut AutoCarry,
+) -> Result<SolverOutcome, Fc3dError> {
+    auto(problem, options, limits, r, u, observer, carry)
+}
+
+/// The sweeps to run before the next measurement of the error: those the contraction seen over
+/// the last `iterations` sweeps (from `before` to `error`) needs to reach `tolerance`, between 1
+/// and `max`; twice the last probe while no contraction is known yet. Measured this way, a
+/// Gauss-Seidel stage stops within a sweep or two of the first one below the tolerance, with
+/// a few measurements of the error (each costs about one product with W, less than a sweep).
+fn next_probe(
+    last: usize,
+    before: f64,
+    error: f64,
+    iterations: usize,
+    tolerance: f64,
+    max: usize,
+) -> usize {
+    let rate = (error / before).powf(1.0 / iterations.max(1) as f64);
+    let sweeps = if rate.is_finite() && rate > 0.0 && rate < 1.0 && error > tolerance {
+        ((tolerance / error).ln() / rate.ln()).ceil()
+    } else {
+        (2 * last) as f64
+    };
+    // Tolerance 0 (an anytime solve) asks for infinitely many: the longest probe.
+    if sweeps >= 1.0 {
+        (sweeps.min(max as f64) as usize).max(1)
+    } else {
+        1
     }
 }
 
@@ -481,17 +633,10 @@ fn auto(
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
+    carry: &mut AutoCarry,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let run = limits.start();
-    let (rule, plan) = match options.plan {
-        Some(plan) => (usize::MAX, plan),
-        None => choose(
-            &ProblemFeatures::of(problem),
-            run.tolerance,
-            limits.time_budget,
-        ),
-    };
     // An anytime solve (a budget and a tolerance below round-off) stops at round-off: the
     // stages after it gain nothing and their steps overran the budget on the small shared
     // problems (README "AUTO against Siconos at equal budget").
@@ -500,6 +645,31 @@ fn auto(
     } else {
         run.tolerance
     };
+    let requested = run.tolerance;
+    let budget = limits.time_budget;
+    let resume = carry.resume.take().filter(|c| {
+        options.plan.is_none()
+            && c.tolerance == requested
+            && c.budget == budget
+            && c.stage < c.plan.len()
+    });
+    let (rule, plan, first) = match (options.plan, resume) {
+        (Some(plan), _) => (usize::MAX, plan, 0),
+        (None, Some(c)) => (c.rule, c.plan, c.stage),
+        (None, None) => {
+            let (rule, plan) = choose(&ProblemFeatures::of(problem), requested, budget);
+            (rule, plan, 0)
+        }
+    };
+    carry.resumed = resume.is_some() && options.plan.is_none();
+    let mut last_stage = first;
+    // A colouring kept for another run is handed back as it came.
+    let (kept_rows, kept_colouring) = match carry.sweep.take() {
+        Some(p) => (Some(p.rows), p.colouring),
+        None => (None, None),
+    };
+    let mut kept_rows = kept_rows;
+    let mut kept_newton = carry.newton.take();
     let mut log = StageLog::new(rule);
     // The initial error is not measured (a product with W, as much as a whole solve of a small
     // problem): the first stage starts from r as given.
@@ -511,11 +681,14 @@ fn auto(
     // Local solver 551 (Newton with Goldstein-Price): the fastest NSGS on the small shared
     // problems (README "AUTO").
     let nsgs_options = NsgsOptions::with_local(crate::local::LocalSolverKind::NewtonAlartCurnierGp);
+    // The sweeps run without a test of their own (Siconos' increment test passes hundreds of
+    // sweeps after the error on the Capsules): AUTO measures the full error after each run of
+    // sweeps, whose length it predicts from the rate seen (see `next_probe`).
     let schedule = SweepSchedule {
-        error_evaluation: nsgs_options.error_evaluation,
-        evaluation_frequency: nsgs_options.evaluation_frequency,
+        error_evaluation: ErrorEvaluation::Light,
+        evaluation_frequency: 1,
         local_tolerance: nsgs_options.local_tolerance,
-        stop_when_stalled: true,
+        stop_when_stalled: false,
     };
     let mut sweeper: Option<Sweeper> = None;
     let prox_options = ProxOptions::default();
@@ -533,12 +706,13 @@ fn auto(
     let passes = if run.deadline().is_some() {
         MAX_STAGES
     } else {
-        plan.len()
+        plan.len() - first
     };
-    'plan: for planned in plan.iter().cycle().take(passes) {
+    'plan: for (index, planned) in plan.iter().enumerate().cycle().skip(first).take(passes) {
         if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
             break;
         }
+        last_stage = index;
         // Every stage starts from the best iterate seen.
         if best.restore_if_better(r, error) {
             error = best_error;
@@ -570,13 +744,19 @@ fn auto(
         let mut done = 0usize;
         let end;
         // The sweeper and the Newton matrix are built once per solve, at their first stage.
+        // A workspace's structures (built for this W's pattern) are taken over.
         let built = match planned.kind {
-            Newton if newton.is_none() => NewtonSolver::new(problem, &newton_options)
-                .map(|s| newton = Some(s))
-                .is_ok(),
-            Nsgs if sweeper.is_none() => Sweeper::with_options(problem, &nsgs_options, tolerance)
-                .map(|s| sweeper = Some(s))
-                .is_ok(),
+            Newton if newton.is_none() => {
+                NewtonSolver::reusing(problem, &newton_options, kept_newton.take())
+                    .map(|(s, _)| newton = Some(s))
+                    .is_ok()
+            }
+            Nsgs if sweeper.is_none() => match kept_rows.take() {
+                Some(rows) => Sweeper::with_rows(rows, &nsgs_options, tolerance, None),
+                None => Sweeper::with_options(problem, &nsgs_options, tolerance),
+            }
+            .map(|s| sweeper = Some(s))
+            .is_ok(),
             _ => true,
         };
         if !built {
@@ -588,6 +768,11 @@ fn auto(
             });
             continue 'plan;
         }
+        // The stall test looks at windows of `watch.chunk` iterations; NSGS measures inside a
+        // window as often as its predicted convergence asks.
+        let mut window_start = error;
+        let mut window = 0usize;
+        let mut probe = 1usize;
         loop {
             let left = (run.max_iter - total).min(allowance - done);
             if left == 0 {
@@ -598,7 +783,11 @@ fn auto(
                 };
                 break;
             }
-            let chunk = watch.chunk.min(left);
+            let chunk = match planned.kind {
+                Nsgs => probe.min(watch.chunk - window),
+                _ => watch.chunk,
+            }
+            .min(left);
             let before = error;
             let offset = total;
             let mut shifted = |ev: &IterationEvent<'_>| {
@@ -614,7 +803,8 @@ fn auto(
             let (iterations, measured) = match planned.kind {
                 Nsgs => {
                     let sweeper = sweeper.as_mut().expect("built above");
-                    let l = stage_limits(tolerance, chunk, stage_deadline);
+                    // Tolerance 0: the sweeps run the whole probe (or stop on a fixed point).
+                    let l = stage_limits(0.0, chunk, stage_deadline);
                     let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
                     (o.iterations, o.final_error)
                 }
@@ -658,11 +848,17 @@ fn auto(
                 end = StageEnd::Limits;
                 break;
             }
-            // NaN compares false: a non-finite error is a stall.
-            if !(error <= watch.factor * before) {
-                end = StageEnd::Stalled;
-                break;
+            window += iterations;
+            if window >= watch.chunk {
+                // NaN compares false: a non-finite error is a stall.
+                if !(error <= watch.factor * window_start) {
+                    end = StageEnd::Stalled;
+                    break;
+                }
+                window_start = error;
+                window = 0;
             }
+            probe = next_probe(probe, before, error, iterations, tolerance, watch.chunk);
         }
         log.push(Stage {
             kind: planned.kind,
@@ -675,10 +871,50 @@ fn auto(
     // family's last step): it is the final error unless an earlier iterate was better.
     let restored = best.restore_if_better(r, error);
     let fill = Fill::largest(fill, newton.as_ref().and_then(NewtonSolver::fill));
+    // Only a stage that reached the tolerance (or, in an anytime solve, the one the budget ended
+    // in) is worth starting from: after a solve that ran out of stages or iterations, the next
+    // one chooses afresh.
+    let finished = error <= tolerance || (requested == 0.0 && out_of_time);
+    carry.choice = finished.then_some(AutoChoice {
+        rule,
+        plan,
+        stage: last_stage,
+        tolerance: requested,
+        budget,
+    });
+    carry.sweep = sweeper
+        .map(|s| s.into_prepared().0)
+        .or(kept_rows)
+        .map(|rows| PreparedSweep {
+            rows,
+            colouring: kept_colouring,
+        });
+    carry.newton = newton.or(kept_newton);
     Ok(SolverOutcome {
         stages: Some(log),
         fill,
         ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
             .with_final_error((!restored && error.is_finite()).then_some(error))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::next_probe;
+
+    #[test]
+    fn probes_double_until_a_rate_is_known_then_aim_at_the_tolerance() {
+        // No rate yet (first measurement): twice the last probe, at most `max`.
+        assert_eq!(next_probe(1, f64::INFINITY, 1e-2, 1, 1e-4, 10), 2);
+        assert_eq!(next_probe(8, f64::INFINITY, 1e-2, 8, 1e-4, 10), 10);
+        // Error divided by 10 per sweep, 1e-2 -> 1e-4: two more sweeps.
+        assert_eq!(next_probe(2, 1e-0, 1e-2, 2, 1e-4, 10), 2);
+        // A slow rate asks for the longest probe; no progress: doubling.
+        assert_eq!(next_probe(2, 1.0, 0.99, 1, 1e-4, 10), 10);
+        assert_eq!(next_probe(2, 1.0, 1.5, 1, 1e-4, 10), 4);
+        // An anytime solve (tolerance 0) measures at the longest probe.
+        assert_eq!(next_probe(2, 1.0, 0.5, 1, 0.0, 10), 10);
+        // NaN errors: doubling too (the stall window ends the stage).
+        assert_eq!(next_probe(2, f64::NAN, f64::NAN, 1, 1e-4, 10), 4);
+    }
 }

@@ -14,6 +14,7 @@ mod sweeper;
 
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
 pub use settings::{ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
+pub(crate) use sweeper::Colouring;
 pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
 
 use crate::contract::{
@@ -98,27 +99,44 @@ pub(crate) fn nsgs(
 ) -> Result<SolverOutcome, Fc3dError> {
     // Everything that can fail happens before r is touched (the options are checked below).
     let rows = problem.w().block_rows()?;
-    nsgs_on_rows(problem, options, limits, rows, r, u, observer).0
+    let prepared = PreparedSweep {
+        rows,
+        colouring: None,
+    };
+    nsgs_on_rows(problem, options, limits, prepared, r, u, observer).0
 }
 
-/// [`nsgs`] over block rows of `problem`'s W prepared earlier: the rows are moved into the
-/// sweeper and handed back with the outcome, so that a workspace keeps them for the next step.
+/// What a Gauss-Seidel run prepares from W's block pattern and a workspace keeps from one time
+/// step to the next while the pattern holds: the block rows and, once a coloured sweep ran, its
+/// colouring.
+pub(crate) struct PreparedSweep {
+    pub rows: crate::matrix::BlockRows,
+    pub colouring: Option<Colouring>,
+}
+
+/// [`nsgs`] over block rows of `problem`'s W prepared earlier (with the colouring of their
+/// pattern, when known): they are moved into the sweeper and handed back with the outcome, so
+/// that a workspace keeps them for the next step.
 pub(crate) fn nsgs_on_rows(
     problem: &FrictionProblem<'_>,
     options: &NsgsOptions,
     limits: &Limits,
-    rows: crate::matrix::BlockRows,
+    prepared: PreparedSweep,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
-) -> (
-    Result<SolverOutcome, Fc3dError>,
-    Option<crate::matrix::BlockRows>,
-) {
+) -> (Result<SolverOutcome, Fc3dError>, Option<PreparedSweep>) {
     if let Err(e) = options.validate() {
-        return (Err(e), Some(rows));
+        return (Err(e), Some(prepared));
     }
-    let mut sweeper = match Sweeper::with_rows(rows, options, limits.tolerance) {
+    let PreparedSweep { rows, colouring } = prepared;
+    // A colouring this run does not use is handed back as it came.
+    let (colouring, unused) = if options.decomposition == Decomposition::Coloured {
+        (colouring, None)
+    } else {
+        (None, colouring)
+    };
+    let mut sweeper = match Sweeper::with_rows(rows, options, limits.tolerance, colouring) {
         Ok(s) => s,
         Err(e) => return (Err(e), None),
     };
@@ -133,7 +151,9 @@ pub(crate) fn nsgs_on_rows(
     } else {
         run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
     };
-    (outcome, Some(sweeper.into_rows()))
+    let (rows, colouring) = sweeper.into_prepared();
+    let colouring = colouring.or(unused);
+    (outcome, Some(PreparedSweep { rows, colouring }))
 }
 
 /// How a Gauss-Seidel run tests for convergence and tunes its local tolerance.

@@ -251,9 +251,7 @@ pub struct GaussSeidel<const D: usize, S: ContactStep<D>> {
 /// Units and colours do not depend on the number of threads, and each unit's squared increment
 /// has its own slot, summed in unit order: the sweep is the same for any number of threads.
 struct ColouredPlan {
-    /// Units grouped by colour.
-    order: Vec<usize>,
-    colour_start: Vec<usize>,
+    colouring: Colouring,
     unit_sums: Vec<f64>,
     /// Next unit to take, per colour.
     next_unit: Vec<AtomicUsize>,
@@ -264,16 +262,43 @@ struct ColouredPlan {
 /// Consecutive contacts swept by one thread as a unit in a coloured sweep.
 const UNIT: usize = 512;
 
-impl ColouredPlan {
-    fn new<const D: usize>(rows: &BlockRows<D>, threads: usize) -> Result<Self, Fc3dError> {
+/// The units of a coloured sweep grouped by colour: it depends on W's block pattern only (not
+/// on its values nor on the number of threads), so a workspace keeps it while the pattern holds.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Colouring {
+    /// Units grouped by colour.
+    order: Vec<usize>,
+    /// Where each colour's units start in `order` (one more entry than colours).
+    colour_start: Vec<usize>,
+}
+
+impl Colouring {
+    fn of<const D: usize>(rows: &BlockRows<D>) -> Result<Self, Fc3dError> {
         let (order, colour_start) = ContactGraph::new(rows, UNIT)?.colour()?;
-        let n_colours = colour_start.len() - 1;
-        let unit_sums = try_vec(order.len(), 0.0, "sweep increments")?;
+        Ok(Colouring {
+            order,
+            colour_start,
+        })
+    }
+}
+
+impl ColouredPlan {
+    /// The plan over `colouring`, which must be that of `rows`' pattern (computed when `None`).
+    fn new<const D: usize>(
+        rows: &BlockRows<D>,
+        threads: usize,
+        colouring: Option<Colouring>,
+    ) -> Result<Self, Fc3dError> {
+        let colouring = match colouring {
+            Some(c) => c,
+            None => Colouring::of(rows)?,
+        };
+        let n_colours = colouring.colour_start.len() - 1;
+        let unit_sums = try_vec(colouring.order.len(), 0.0, "sweep increments")?;
         let pool = Pool::shared(threads)?;
         let threads = pool.as_ref().map_or(1, |p| p.threads());
         Ok(ColouredPlan {
-            order,
-            colour_start,
+            colouring,
             unit_sums,
             next_unit: (0..n_colours).map(|_| AtomicUsize::new(0)).collect(),
             barrier: SpinBarrier::new(threads),
@@ -317,20 +342,22 @@ impl Sweeper {
     ) -> Result<Self, Fc3dError> {
         options.validate()?;
         let rows = problem.w().block_rows()?;
-        Self::with_rows(rows, options, tolerance)
+        Self::with_rows(rows, options, tolerance, None)
     }
 
     /// [`Sweeper::with_options`] over block rows prepared earlier (a workspace keeps them from
-    /// one time step to the next); `options` must have been validated.
+    /// one time step to the next) and, for a coloured sweep, the colouring of their pattern
+    /// when it is known; `options` must have been validated.
     pub(crate) fn with_rows(
         rows: BlockRows,
         options: &NsgsOptions,
         tolerance: f64,
+        colouring: Option<Colouring>,
     ) -> Result<Self, Fc3dError> {
         let step = LocalStep::new(&rows, &options.local)?;
         let mut sweeper = GaussSeidel::from_parts(rows, step, &options.into(), tolerance)?;
         if options.decomposition == Decomposition::Coloured {
-            sweeper.colour(resolve_threads(options.threads))?;
+            sweeper.colour(resolve_threads(options.threads), colouring)?;
         }
         Ok(sweeper)
     }
@@ -417,8 +444,13 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
     }
 
     /// Switches to multicoloured sweeps on `threads` threads (see [`Decomposition::Coloured`]).
-    pub(crate) fn colour(&mut self, threads: usize) -> Result<(), Fc3dError> {
-        self.coloured = Some(ColouredPlan::new(&self.rows, threads)?);
+    /// `colouring`, when given, is that of the rows' pattern (kept from an earlier sweeper).
+    pub(crate) fn colour(
+        &mut self,
+        threads: usize,
+        colouring: Option<Colouring>,
+    ) -> Result<(), Fc3dError> {
+        self.coloured = Some(ColouredPlan::new(&self.rows, threads, colouring)?);
         Ok(())
     }
 
@@ -493,9 +525,10 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
         d_sq
     }
 
-    /// Gives the block rows back (to be kept for the next problem with the same pattern).
-    pub(crate) fn into_rows(self) -> BlockRows<D> {
-        self.rows
+    /// Gives the block rows and the colouring of their pattern back (to be kept for the next
+    /// problem with the same pattern).
+    pub(crate) fn into_prepared(self) -> (BlockRows<D>, Option<Colouring>) {
+        (self.rows, self.coloured.map(|c| c.colouring))
     }
 
     /// A multicoloured sweep (see [`ColouredPlan`]). Every unit's update depends only on `r` at
@@ -515,8 +548,11 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
             next.store(0, Ordering::Relaxed);
         }
         let ColouredPlan {
-            order,
-            colour_start,
+            colouring:
+                Colouring {
+                    order,
+                    colour_start,
+                },
             unit_sums,
             next_unit,
             barrier,
