@@ -55,7 +55,8 @@ pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use solvers::auto::{AutoOptions, ProblemFeatures};
 pub use solvers::nsgs::{
-    ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper, NUM_THREADS_ENV,
+    Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper,
+    NUM_THREADS_ENV,
 };
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;

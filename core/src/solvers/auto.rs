@@ -476,6 +476,7 @@ fn auto(
         evaluation_frequency: nsgs_options.evaluation_frequency,
         local_tolerance: nsgs_options.local_tolerance,
         stop_when_stalled: true,
+        acceleration: Default::default(),
     };
     let mut sweeper: Option<Sweeper> = None;
     let prox_options = ProxOptions::default();
