@@ -20,6 +20,16 @@ fn main() {
     })
     .unwrap();
     let n = 3 * p.n_contacts();
+    let f = fc3d_core::ProblemFeatures::of(&p);
+    println!(
+        "{contacts} contacts, {piles} piles: AUTO's features: density {:.2e}, mu {:.2}..{:.2}, \
+         normal-row dominance {:.3}, strongly coupled {}",
+        f.block_density,
+        f.mu_min,
+        f.mu_max,
+        f.diagonal_dominance,
+        f.strongly_coupled()
+    );
     let mut configs: Vec<(String, NsgsOptions)> = vec![("plain".into(), NsgsOptions::default())];
     for omega in [1.3, 1.6, 1.8] {
         configs.push((
