@@ -53,7 +53,7 @@ pub use solve::{
 };
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
-pub use solvers::auto::{AutoOptions, ProblemFeatures};
+pub use solvers::auto::{AutoOptions, PlannedStage, ProblemFeatures};
 pub use solvers::nsgs::{
     Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper,
     NUM_THREADS_ENV,
