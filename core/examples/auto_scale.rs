@@ -38,9 +38,14 @@ fn main() {
         ("EG to the limits", vec![patient(ExtraGradient)]),
         ("NSGS to the limits", vec![patient(Nsgs)]),
         ("NSGS, TFP to the limits", vec![s(Nsgs), patient(Tresca)]),
+        ("TFP to the limits", vec![patient(Tresca)]),
     ];
+    let only = std::env::var("ONLY").ok();
     for &ms in &args[2..] {
         for (name, plan) in &plans {
+            if only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
+                continue;
+            }
             let plan: Option<&'static [PlannedStage]> =
                 (!plan.is_empty()).then(|| &*Box::leak(plan.clone().into_boxed_slice()));
             let mut config = SolverConfig::new(AutoOptions { plan });

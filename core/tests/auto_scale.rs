@@ -1,11 +1,12 @@
 //! AUTO on large strongly coupled problems (generated piles from 5000 contacts): Gauss-Seidel
-//! first, then extragradient to the limits; no stage that factorizes a matrix of W's size; the
+//! first, then extragradient to the limits (from 30000 contacts, Gauss-Seidel to the limits);
+//! no stage that factorizes a matrix of W's size; the
 //! budget holds and the error reported is the one measured on the returned reactions.
 
 use std::time::{Duration, Instant};
 
 use fc3d_core::scenes::{sphere_piles, PileSpec};
-use fc3d_core::solvers::auto::{choose, LARGE_PROBLEM, TO_THE_LIMITS};
+use fc3d_core::solvers::auto::{choose, HUGE_PROBLEM, LARGE_PROBLEM, TO_THE_LIMITS};
 use fc3d_core::{natural_map_error, solve, AutoOptions, ProblemFeatures, SolverConfig, StageKind};
 
 #[test]
@@ -23,13 +24,22 @@ fn large_piles_get_sweeps_then_extragradient_to_the_limits() {
     for (tol, budget) in [
         (1e-4, None),
         (1e-8, None),
-        (0.0, Some(Duration::from_millis(5))),
+        (0.0, Some(Duration::from_secs(1))),
     ] {
         let (_, plan) = choose(&large, tol, budget);
         let kinds: Vec<StageKind> = plan.iter().map(|s| s.kind).collect();
         assert_eq!(kinds, [StageKind::Nsgs, StageKind::ExtraGradient]);
         assert_eq!(plan[1].allowance, TO_THE_LIMITS);
     }
+    // From HUGE_PROBLEM on, sweeps only (features of a pile that size; not solved here).
+    let huge = ProblemFeatures {
+        n_contacts: HUGE_PROBLEM,
+        ..large
+    };
+    let (_, plan) = choose(&huge, 1e-4, None);
+    assert_eq!(plan.len(), 1);
+    assert_eq!(plan[0].kind, StageKind::Nsgs);
+    assert_eq!(plan[0].allowance, TO_THE_LIMITS);
     // Below the threshold the rows of the shared problems still apply.
     let small = ProblemFeatures::of(&pile(1000));
     let (_, plan) = choose(&small, 1e-4, None);

@@ -61,6 +61,11 @@ pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
 /// still reach 1e-4 within 2 s, and the 10k-contact one, where one ADMM iteration costs 75x more.
 pub const LARGE_PROBLEM: usize = 5000;
 
+/// Contacts from which AUTO sweeps to the limits on strongly coupled problems, without handing
+/// over to extragradient: between the 10k-contact pile (EG best after 10 s) and the 100k one
+/// (EG 9x behind NSGS after 10 s).
+pub const HUGE_PROBLEM: usize = 30_000;
+
 /// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
 pub const STRONG_MU: f64 = 0.25;
 /// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
@@ -268,6 +273,27 @@ pub const RULES: &[Rule] = &[
     Rule {
         when: Condition {
             strongly_coupled: Some(true),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None), stage(Admm, None)],
+        why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
+              solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
+              step is not done yet); PROX takes over where it stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(HUGE_PROBLEM),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, TO_THE_LIMITS)],
+        why: "hyperstatic piles of 10^5 contacts: Gauss-Seidel sweeps to the limits; EG falls \
+              behind there (3.0e-2 after 10 s against NSGS's 3.5e-3)",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
             min_contacts: Some(LARGE_PROBLEM),
             ..Condition::ANY
         },
@@ -277,17 +303,6 @@ pub const RULES: &[Rule] = &[
               iteration at 10x the contacts and overrun a 1 s budget in their set-up (ADMM: over \
               9 GB at 10^5); Gauss-Seidel gains most in the first second, EG (one product with \
               W per iteration) in the next ones, to the limits since every error falls slowly",
-    },
-    Rule {
-        when: Condition {
-            strongly_coupled: Some(true),
-            max_budget: Some(SHORT_BUDGET),
-            ..Condition::ANY
-        },
-        plan: &[stage(Nsgs, None), stage(Prox, None), stage(Admm, None)],
-        why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
-              solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
-              step is not done yet); PROX takes over where it stalls",
     },
     Rule {
         when: Condition {
