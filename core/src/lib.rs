@@ -54,9 +54,10 @@ pub use solve::{
 };
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
-pub use solvers::auto::{AutoChoice, AutoOptions, ProblemFeatures};
+pub use solvers::auto::{AutoChoice, AutoOptions, PlannedStage, ProblemFeatures};
 pub use solvers::nsgs::{
-    ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper, NUM_THREADS_ENV,
+    Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper,
+    NUM_THREADS_ENV,
 };
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;

@@ -100,6 +100,7 @@ pub(super) unsafe fn read(
         freezing,
         decomposition,
         threads,
+        ..Default::default()
     })
 }
 

@@ -59,6 +59,16 @@ pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
 /// problems of 40 to 300 contacts: its set-up (a factorization) takes 5-10 ms on the Capsules.
 pub const ADMM_BUDGET: Duration = Duration::from_millis(7);
 
+/// Contacts from which AUTO leaves out the methods that factorize a matrix of W's size (ADMM,
+/// PROX, Newton) on strongly coupled problems: between the 1k-contact pile, where ADMM and PROX
+/// still reach 1e-4 within 2 s, and the 10k-contact one, where one ADMM iteration costs 75x more.
+pub const LARGE_PROBLEM: usize = 5000;
+
+/// Contacts from which AUTO sweeps to the limits on strongly coupled problems, without handing
+/// over to extragradient: between the 10k-contact pile (EG best after 10 s) and the 100k one
+/// (EG 9x behind NSGS after 10 s).
+pub const HUGE_PROBLEM: usize = 30_000;
+
 /// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
 pub const STRONG_MU: f64 = 0.25;
 /// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
@@ -221,7 +231,7 @@ impl NormalRows {
 }
 
 /// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
-/// or the limits stop it).
+/// or the limits stop it; [`TO_THE_LIMITS`]: not stopped by a stall either).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlannedStage {
     pub kind: StageKind,
@@ -231,6 +241,11 @@ pub struct PlannedStage {
 const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedStage {
     PlannedStage { kind, allowance }
 }
+
+/// The allowance of a stage that runs until the tolerance or the limits, whatever its progress:
+/// on large hyperstatic piles every method's error falls slowly but steadily (README "Scale"),
+/// and a stall test would end the solve with most of the budget unspent.
+pub const TO_THE_LIMITS: Option<usize> = Some(usize::MAX);
 
 /// When a rule applies: every condition given must hold (`None`: any value).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -347,6 +362,29 @@ pub const RULES: &[Rule] = &[
         why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
               solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
               step is not done yet); PROX takes over where it stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(HUGE_PROBLEM),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, TO_THE_LIMITS)],
+        why: "hyperstatic piles of 10^5 contacts: Gauss-Seidel sweeps to the limits; EG falls \
+              behind there (3.0e-2 after 10 s against NSGS's 3.5e-3)",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(LARGE_PROBLEM),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(ExtraGradient, TO_THE_LIMITS)],
+        why: "large hyperstatic piles (generated, 10^4-10^5 contacts): no method reaches 1e-4 \
+              within a minute, the factorizing ones (ADMM, PROX, Newton) cost 75-245x more per \
+              iteration at 10x the contacts and overrun a 1 s budget in their set-up (ADMM: over \
+              9 GB at 10^5); Gauss-Seidel gains most in the first second, EG (one product with \
+              W per iteration) in the next ones, to the limits since every error falls slowly",
     },
     Rule {
         when: Condition {
@@ -689,6 +727,7 @@ fn auto(
         evaluation_frequency: 1,
         local_tolerance: nsgs_options.local_tolerance,
         stop_when_stalled: false,
+        acceleration: Default::default(),
     };
     let mut sweeper: Option<Sweeper> = None;
     let prox_options = ProxOptions::default();
@@ -848,10 +887,13 @@ fn auto(
                 end = StageEnd::Limits;
                 break;
             }
+            // A stage run to the limits is not ended by a stall (large piles: every method's
+            // error falls slowly).
+            let patient = planned.allowance == TO_THE_LIMITS && error.is_finite();
             window += iterations;
             if window >= watch.chunk {
                 // NaN compares false: a non-finite error is a stall.
-                if !(error <= watch.factor * window_start) {
+                if !patient && !(error <= watch.factor * window_start) {
                     end = StageEnd::Stalled;
                     break;
                 }

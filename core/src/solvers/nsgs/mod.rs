@@ -7,13 +7,14 @@
 //! Dumont's criterion (37) as the stopping test. A frictionless contact (mu = 0) is solved as the
 //! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
 
+mod anderson;
 mod islands;
 mod parallel;
 mod settings;
 mod sweeper;
 
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
-pub use settings::{ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
+pub use settings::{Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
 pub(crate) use sweeper::Colouring;
 pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
 
@@ -24,6 +25,9 @@ use crate::contract::{
 use crate::error::Fc3dError;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
+
+/// History of the `NSGS-AA` presets (measured on generated piles, README "Scale").
+pub const DEFAULT_ANDERSON_MEMORY: usize = 5;
 
 impl Family for NsgsOptions {
     /// Siconos' NSGS first (the default of id 500), then the parallel decompositions, each also
@@ -44,11 +48,29 @@ impl Family for NsgsOptions {
                 });
             }
         }
+        // Anderson-accelerated sweeps (full error every sweep: the cheap increment test means
+        // little once points are extrapolated).
+        for decomposition in [Decomposition::Sequential, Decomposition::Coloured] {
+            presets.push(NsgsOptions {
+                decomposition,
+                error_evaluation: ErrorEvaluation::Full,
+                acceleration: Acceleration::Anderson {
+                    memory: DEFAULT_ANDERSON_MEMORY,
+                },
+                ..Default::default()
+            });
+        }
         presets
     }
 
     fn name(&self) -> &'static str {
         let full = self.error_evaluation == ErrorEvaluation::Full;
+        if let Acceleration::Anderson { .. } = self.acceleration {
+            return match self.decomposition {
+                Decomposition::Coloured => "NSGS-COLOURED-AA",
+                _ => "NSGS-AA",
+            };
+        }
         match (self.decomposition, full) {
             (Decomposition::Sequential, false) => "NSGS",
             (Decomposition::Coloured, false) => "NSGS-COLOURED",
@@ -145,6 +167,7 @@ pub(crate) fn nsgs_on_rows(
         evaluation_frequency: options.evaluation_frequency,
         local_tolerance: options.local_tolerance,
         stop_when_stalled: true,
+        acceleration: options.acceleration,
     };
     let outcome = if options.decomposition == Decomposition::Islands {
         islands::run_islands(problem, &mut sweeper, options, limits, r, u, observer)
@@ -166,6 +189,8 @@ pub(crate) struct SweepSchedule {
     /// left r unchanged while the full error is above the tolerance): Siconos' 3D NSGS does,
     /// its 2D NSGS sweeps on.
     pub stop_when_stalled: bool,
+    /// Acceleration across sweeps.
+    pub acceleration: Acceleration,
 }
 
 /// The Gauss-Seidel main loop over contacts of any dimension: sweep, test on the schedule,
@@ -195,9 +220,17 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
     // (its copy allocated once, here).
     let mut best = run.deadline().map(|_| BestIterate::new(r, f64::INFINITY));
 
+    let mut anderson = match options.acceleration {
+        Acceleration::None => None,
+        Acceleration::Anderson { memory } => Some(anderson::Anderson::new(r.len(), memory)?),
+    };
+
     let mut last_measured = None;
     let mut dumont = None;
     for iteration in 1..=run.max_iter {
+        if let Some(a) = anderson.as_mut() {
+            a.before_sweep(r);
+        }
         let increment_sq = sweeper.sweep(q, mu, r);
         let test = schedule.test(iteration, increment_sq, r, |measure| match measure {
             Measure::NaturalMap => problem.error(r, u),
@@ -265,6 +298,11 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
                 dumont_criterion: dumont,
                 ..outcome
             });
+        }
+        if let Some(a) = anderson.as_mut() {
+            // Only now, with r tested and the run going on: the next sweep may start from an
+            // extrapolated point.
+            a.after_sweep(r);
         }
     }
     Ok(SolverOutcome {

@@ -52,6 +52,20 @@ pub enum Decomposition {
     Islands,
 }
 
+/// Acceleration of the sweep across iterations (an fc3d option; Siconos has none).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Acceleration {
+    /// Plain Gauss-Seidel (default).
+    #[default]
+    None,
+    /// Anderson's type-II step over the last `memory` sweeps (1..=16), safeguarded: an
+    /// extrapolated point is kept only while the sweep from it shrinks the residual
+    /// `|G(x) - x|`; otherwise the run falls back to the plain sweep's output and restarts the
+    /// history. The error is measured on sweep outputs only. Sequential order or
+    /// [`Decomposition::Coloured`] only; no freezing.
+    Anderson { memory: usize },
+}
+
 /// Settings of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500). Its limits default to
 /// 1000 sweeps and a tolerance of 1e-4. Under a time budget NSGS stops after the sweep that
 /// spends it and returns the best iterate it measured.
@@ -85,6 +99,8 @@ pub struct NsgsOptions {
     /// `FC3D_NUM_THREADS` when it holds a positive integer, else the machine's available
     /// parallelism. The results do not depend on it.
     pub threads: usize,
+    /// Acceleration across sweeps (default [`Acceleration::None`]).
+    pub acceleration: Acceleration,
 }
 
 impl Default for NsgsOptions {
@@ -99,6 +115,7 @@ impl Default for NsgsOptions {
             freezing: None,
             decomposition: Decomposition::Sequential,
             threads: 0,
+            acceleration: Acceleration::None,
         }
     }
 }
@@ -130,6 +147,19 @@ impl NsgsOptions {
                 && self.freezing.is_none_or(|k| k == 0)
                 && self.error_evaluation != ErrorEvaluation::DumontCriterion;
             require_setting(supported, name, value, why)?;
+        }
+        if let Acceleration::Anderson { memory } = self.acceleration {
+            require_setting(
+                (1..=super::anderson::MAX_MEMORY).contains(&memory),
+                "nsgs.acceleration.memory",
+                memory,
+                "in 1..=16",
+            )?;
+            let supported = self.decomposition != Decomposition::Islands
+                && self.freezing.is_none_or(|k| k == 0)
+                && self.error_evaluation != ErrorEvaluation::DumontCriterion;
+            let why = "the sequential or coloured sweep without freezing or Dumont's criterion";
+            require_setting(supported, "nsgs.acceleration", "Anderson", why)?;
         }
         match self.local_tolerance {
             LocalTolerance::Given => Ok(()),

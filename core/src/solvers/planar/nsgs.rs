@@ -55,6 +55,7 @@ pub(crate) fn nsgs(
         evaluation_frequency: options.evaluation_frequency,
         local_tolerance: LocalTolerance::Given,
         stop_when_stalled: false,
+        acceleration: Default::default(),
     };
     run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
 }

@@ -268,6 +268,7 @@ fn nsgs<const D: usize>(
         local_tolerance: options.local_tolerance,
         // Siconos' rolling NSGS sweeps on when a sweep leaves r unchanged above the tolerance.
         stop_when_stalled: false,
+        acceleration: Default::default(),
     };
     run_sweeps(problem, &mut sweeper, &schedule, limits, r, u, observer)
 }
