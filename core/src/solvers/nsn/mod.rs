@@ -454,3 +454,43 @@ pub(crate) fn nsn_on(
     let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
     SolverOutcome::stopped(out.iterations, out.out_of_time).with_fill(solver.fill())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The duration of the last Newton step is kept across runs (the proximal point method runs
+    /// one per proximal step): once the solver has an estimate, a run whose deadline has passed
+    /// starts no step; a fresh solver still takes its first one.
+    #[test]
+    fn a_step_that_cannot_be_afforded_is_not_started_in_a_later_run() {
+        let p = crate::io::dat::read_dat_file(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shared/data/siconos/Rover4609.dat"
+        )))
+        .unwrap();
+        let n = p.size();
+        let options = NsnOptions::new(NsnFormulation::AlartCurnier);
+        let limits = |time_budget| Limits {
+            tolerance: 0.0,
+            max_iter: 3,
+            time_budget,
+        };
+        let mut solver = NewtonSolver::new(&p, &options).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let free = limits(None).start();
+        let o = solver.run(p.q(), p.mu(), 0.0, &free, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (3, false));
+        assert!(solver.last_iteration_time > Duration::ZERO);
+
+        let spent = limits(Some(Duration::from_nanos(1))).start();
+        while !spent.out_of_time() {}
+        let o = solver.run(p.q(), p.mu(), 0.0, &spent, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (0, true));
+
+        let mut fresh = NewtonSolver::new(&p, &options).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let o = fresh.run(p.q(), p.mu(), 0.0, &spent, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (1, true));
+    }
+}
