@@ -114,3 +114,96 @@ fn with_the_default_cheap_error_the_budget_still_returns_the_best_iterate() {
         report.error
     );
 }
+
+/// Anytime mode (tolerance 0, no practical iteration limit) on a few contacts, where the iterate
+/// reaches round-off within the budget and every loop (outer and inner) would otherwise run to
+/// its iteration limit: the run stops because of the budget, at most one iteration is reported
+/// after the deadline, and the inner solves stop too (an inner loop that did not read the clock
+/// would run its 10^7 iterations, minutes). No timing bound tighter than seconds is asserted.
+fn stops_at_the_deadline_in_anytime_mode(name: &str, file: &str, method: fc3d_core::Method) {
+    let p = read_dat_file(std::path::Path::new(&format!(
+        "{}/../../shared/data/siconos/{file}",
+        env!("CARGO_MANIFEST_DIR")
+    )))
+    .unwrap();
+    let n = p.size();
+    let budget = Duration::from_millis(5);
+    let config = SolverConfig::new(method)
+        .with_tolerance(0.0)
+        .with_max_iter(10_000_000)
+        .with_time_budget(Some(budget));
+    for _ in 0..3 {
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let mut first: Option<Instant> = None;
+        let mut after_deadline = 0;
+        let start = Instant::now();
+        let report = solve_with_observer(&p, &config, &mut r, &mut u, &mut |_| {
+            let now = Instant::now();
+            // The solver's deadline is at most `budget` after its first report: a report at or
+            // after that instant is followed by the end-of-iteration test, which must stop.
+            let first = *first.get_or_insert(now);
+            if now >= first + budget {
+                after_deadline += 1;
+            }
+        })
+        .unwrap();
+        let elapsed = start.elapsed();
+        assert!(
+            after_deadline <= 1,
+            "{name} on {file}: {after_deadline} iterations reported after the deadline"
+        );
+        if report.status != SolveStatus::Converged {
+            assert_eq!(
+                report.status,
+                SolveStatus::TimeBudgetExhausted,
+                "{name} on {file}"
+            );
+        }
+        assert!(report.iterations < 10_000_000, "{name} on {file}");
+        assert!(
+            elapsed < Duration::from_secs(3),
+            "{name} on {file}: {elapsed:?} for a budget of {budget:?}"
+        );
+    }
+}
+
+#[test]
+fn prox_stops_at_the_deadline_near_round_off() {
+    use fc3d_core::{NsnFormulation, NsnOptions, ProxInternal, ProxOptions};
+    let nsn = ProxOptions {
+        internal_max_iter: Some(10_000_000),
+        ..ProxOptions::default()
+    };
+    let nsgs = ProxOptions {
+        internal: ProxInternal::Nsgs(NsgsOptions::default()),
+        internal_max_iter: Some(10_000_000),
+        ..ProxOptions::default()
+    };
+    let newton = NsnOptions {
+        line_search_max_iter: 10_000_000,
+        ..NsnOptions::new(NsnFormulation::AlartCurnier)
+    };
+    let nsn_long_search = ProxOptions {
+        internal: ProxInternal::NsnAc(newton),
+        internal_max_iter: Some(10_000_000),
+        ..ProxOptions::default()
+    };
+    for file in [
+        "Rover4609.dat",
+        "Confeti-ex13-4contact-Fc3D-SBM.dat",
+        "NESpheres_10_1.dat",
+    ] {
+        stops_at_the_deadline_in_anytime_mode("PROX/NSN-AC", file, nsn.into());
+        stops_at_the_deadline_in_anytime_mode("PROX/NSGS", file, nsgs.into());
+        stops_at_the_deadline_in_anytime_mode("PROX/NSN-AC", file, nsn_long_search.into());
+    }
+}
+
+#[test]
+fn admm_and_vi_stop_at_the_deadline_near_round_off() {
+    use fc3d_core::{AdmmOptions, ViOptions};
+    for file in ["Rover4609.dat", "Confeti-ex13-4contact-Fc3D-SBM.dat"] {
+        stops_at_the_deadline_in_anytime_mode("ADMM", file, AdmmOptions::default().into());
+        stops_at_the_deadline_in_anytime_mode("VI", file, ViOptions::default().into());
+    }
+}

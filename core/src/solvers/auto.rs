@@ -839,19 +839,19 @@ fn auto(
             // The families report the natural-map error of (r, u = W r + q) when their last
             // step measured it (the contract of `SolverOutcome::final_error`): then it is not
             // measured again.
-            let (iterations, measured) = match planned.kind {
+            let (iterations, measured, stopped_for_time) = match planned.kind {
                 Nsgs => {
                     let sweeper = sweeper.as_mut().expect("built above");
                     // Tolerance 0: the sweeps run the whole probe (or stop on a fixed point).
                     let l = stage_limits(0.0, chunk, stage_deadline);
                     let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
-                    (o.iterations, o.final_error)
+                    (o.iterations, o.final_error, o.out_of_time)
                 }
                 Newton => {
                     let solver = newton.as_mut().expect("built above");
                     let inner = stage_limits(tolerance, chunk, stage_deadline).start();
                     let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
-                    (o.iterations, None)
+                    (o.iterations, None, o.out_of_time)
                 }
                 Prox | Admm | Tresca | ExtraGradient => {
                     let family: &dyn Family = match planned.kind {
@@ -863,7 +863,7 @@ fn auto(
                     let l = stage_limits(tolerance, chunk, stage_deadline);
                     let o = family.run(problem, &l, r, u, &mut shifted)?;
                     fill = Fill::largest(fill, o.fill);
-                    (o.iterations, o.final_error)
+                    (o.iterations, o.final_error, o.out_of_time)
                 }
             };
             // A stage that did nothing (converged at entry, or cut at once) still counts one
@@ -878,7 +878,10 @@ fn auto(
                 end = StageEnd::Converged;
                 break;
             }
-            if run.out_of_time() {
+            // A stage under the whole budget that stopped for time (possibly just before the
+            // deadline, its next Newton step expected to end past it) ends the solve for time.
+            let whole_budget_spent = stopped_for_time && stage_deadline == run.deadline();
+            if run.out_of_time() || whole_budget_spent {
                 out_of_time = true;
                 end = StageEnd::Limits;
                 break;

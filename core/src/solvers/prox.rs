@@ -232,13 +232,13 @@ fn prox(
             *sq = q - shift * ri;
         }
         let internal_tol = (error / 10.0).max(tolerance_floor);
-        let internal_converged = match &options.internal {
+        let (internal_converged, internal_out_of_time) = match &options.internal {
             ProxInternal::NsnAc(_) => {
                 let solver = newton.as_mut().expect("built for NSN-AC");
                 let inner = run.inner(internal_tol, internal_max_iter);
-                solver
-                    .run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {})
-                    .converged
+                let outcome =
+                    solver.run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
+                (outcome.converged, outcome.out_of_time)
             }
             ProxInternal::Nsgs(g) => {
                 let inner = FrictionProblem::new(
@@ -260,7 +260,7 @@ fn prox(
                 let inner_error = outcome
                     .final_error
                     .unwrap_or_else(|| natural_map_error(&inner, r, u));
-                inner_error <= internal_tol
+                (inner_error <= internal_tol, outcome.out_of_time)
             }
         };
         error = natural_map_error(problem, r, u);
@@ -277,6 +277,13 @@ fn prox(
         if !error.is_finite() {
             break;
         }
+        // An internal solve stopped by the budget (possibly before its first iteration, which
+        // was expected to end past the deadline) ends the run: another proximal step could not
+        // do more, and its unconverged solve must not inflate the shift.
+        if internal_out_of_time || run.out_of_time() {
+            out_of_time = true;
+            break;
+        }
         if variable {
             shift = if internal_converged {
                 options.sigma * error.powf(options.nu)
@@ -286,10 +293,6 @@ fn prox(
             if !(shift.is_finite() && shift > 0.0) {
                 break;
             }
-        }
-        if run.out_of_time() {
-            out_of_time = true;
-            break;
         }
     }
     best.restore_if_better(r, error);

@@ -75,6 +75,10 @@ pub(crate) struct NewtonSolver {
     best_r: Vec<f64>,
     /// max_c max_i |W_cc[i][i]|: the scale of the regularization shifts.
     diagonal_scale: f64,
+    /// Duration of the last Newton iteration of any [`NewtonSolver::run`] of this solve: the
+    /// estimate that gates the next one, also the first one of the next run (the proximal point
+    /// method runs one per proximal step).
+    last_iteration_time: Duration,
 }
 
 impl NewtonSolver {
@@ -99,6 +103,7 @@ impl NewtonSolver {
                 kept.options = *options;
                 kept.w = w;
                 kept.diagonal_scale = diagonal_scale;
+                kept.last_iteration_time = Duration::ZERO;
                 return Ok((kept, true));
             }
         }
@@ -124,6 +129,7 @@ impl NewtonSolver {
             wd: vec![0.0; n],
             best_r: vec![0.0; n],
             diagonal_scale,
+            last_iteration_time: Duration::ZERO,
         };
         Ok((solver, false))
     }
@@ -207,11 +213,12 @@ impl NewtonSolver {
         if outcome.converged {
             return outcome;
         }
-        let mut last_iteration_time = Duration::ZERO;
         for iteration in 1..=run.max_iter {
-            // A factorization cannot be interrupted: an iteration expected (from the last one)
-            // to end past the deadline is not started.
-            if iteration > 1 && run.cannot_afford(last_iteration_time) {
+            // A factorization cannot be interrupted: an iteration expected (from the last one,
+            // possibly of an earlier run) to end past the deadline is not started. The first
+            // iteration of a solve has no estimate and is always started.
+            let estimated = iteration > 1 || self.last_iteration_time > Duration::ZERO;
+            if estimated && run.cannot_afford(self.last_iteration_time) {
                 outcome.out_of_time = true;
                 break;
             }
@@ -324,7 +331,7 @@ impl NewtonSolver {
                 reaction: r,
                 error,
             });
-            last_iteration_time = iteration_start.elapsed();
+            self.last_iteration_time = iteration_start.elapsed();
             if let Some(stop) = run.end_of_iteration(iteration, error <= run.tolerance) {
                 if !stop.out_of_time {
                     outcome.converged = true;
@@ -446,4 +453,44 @@ pub(crate) fn nsn_on(
     let run = limits.start();
     let out = solver.run(problem.q(), problem.mu(), 0.0, &run, r, u, observer);
     SolverOutcome::stopped(out.iterations, out.out_of_time).with_fill(solver.fill())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The duration of the last Newton step is kept across runs (the proximal point method runs
+    /// one per proximal step): once the solver has an estimate, a run whose deadline has passed
+    /// starts no step; a fresh solver still takes its first one.
+    #[test]
+    fn a_step_that_cannot_be_afforded_is_not_started_in_a_later_run() {
+        let p = crate::io::dat::read_dat_file(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shared/data/siconos/Rover4609.dat"
+        )))
+        .unwrap();
+        let n = p.size();
+        let options = NsnOptions::new(NsnFormulation::AlartCurnier);
+        let limits = |time_budget| Limits {
+            tolerance: 0.0,
+            max_iter: 3,
+            time_budget,
+        };
+        let mut solver = NewtonSolver::new(&p, &options).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let free = limits(None).start();
+        let o = solver.run(p.q(), p.mu(), 0.0, &free, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (3, false));
+        assert!(solver.last_iteration_time > Duration::ZERO);
+
+        let spent = limits(Some(Duration::from_nanos(1))).start();
+        while !spent.out_of_time() {}
+        let o = solver.run(p.q(), p.mu(), 0.0, &spent, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (0, true));
+
+        let mut fresh = NewtonSolver::new(&p, &options).unwrap();
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let o = fresh.run(p.q(), p.mu(), 0.0, &spent, &mut r, &mut u, &mut |_| {});
+        assert_eq!((o.iterations, o.out_of_time), (1, true));
+    }
 }
