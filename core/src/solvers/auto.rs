@@ -742,8 +742,10 @@ fn auto(
     // Under a time budget, a plan whose stages all ended (stalled) before the deadline starts
     // over from the best iterate: the host gave that time, and returning early with a worse
     // error never helps (README "AUTO", the equal-budget comparison with Siconos).
+    // Passes are bounded (stages skipped late in a budget log nothing); the log's capacity
+    // ends the solve first.
     let passes = if run.deadline().is_some() {
-        MAX_STAGES
+        MAX_STAGES * plan.len()
     } else {
         plan.len() - first
     };
@@ -772,8 +774,17 @@ fn auto(
         // the time left, so that a method that is slow on this problem (PROX on BoxesStack and
         // RockPile) leaves time to the next one while a fast one (PROX on the Capsules) still
         // converges; the plan then starts over (README "AUTO against Siconos at equal budget").
+        // The last stage the log can hold gets all the time left: halving would end the solve
+        // before the deadline with the budget unspent.
+        // So does a stage run to the limits (large piles).
+        let last_possible = log.len() + 1 == MAX_STAGES;
+        let whole_remainder = last_possible || planned.allowance == TO_THE_LIMITS;
         let stage_deadline = match run.deadline() {
-            Some(d) if plan.len() > 1 && limits.time_budget.is_some_and(|b| b > SHORT_BUDGET) => {
+            Some(d)
+                if plan.len() > 1
+                    && !whole_remainder
+                    && limits.time_budget.is_some_and(|b| b > SHORT_BUDGET) =>
+            {
                 let now = Instant::now();
                 Some(now + d.saturating_duration_since(now) / 2)
             }
@@ -892,7 +903,10 @@ fn auto(
             }
             // A stage run to the limits is not ended by a stall (large piles: every method's
             // error falls slowly).
-            let patient = planned.allowance == TO_THE_LIMITS && error.is_finite();
+            // So is the last stage of a budgeted solve: the host gave the time left.
+            let patient = (planned.allowance == TO_THE_LIMITS
+                || (last_possible && run.deadline().is_some()))
+                && error.is_finite();
             window += iterations;
             if window >= watch.chunk {
                 // NaN compares false: a non-finite error is a stall.
