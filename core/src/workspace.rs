@@ -9,7 +9,9 @@
 //! * **Active set.** Whether each contact ended the last solve pushing (`r_N > 0`), by id.
 //! * **Prepared W.** The structures a family builds from W before iterating — NSGS's block rows,
 //!   NSN's Newton matrix pattern with its symbolic LU factorization — are kept and refilled with
-//!   the new values when the new W has the same block pattern. The check is part of the refill:
+//!   the new values when the new W has the same block pattern. A W that is a view of a host's
+//!   blocks (the C API's sparse-block W) is read in place on every call, never converted: the
+//!   kept rows hold their own copy of its index arrays to compare patterns, not its blocks. The check is part of the refill:
 //!   one pass over the stored blocks, no allocation for the block rows; when the pattern
 //!   changed, the structure is rebuilt (and counted in [`WorkspaceStats`]).
 //! * **Room for AUTO's last choice** ([`Workspace::auto_choice`]).
@@ -84,7 +86,9 @@ pub struct Workspace {
     memory: HashMap<i64, ContactMemory>,
     /// The map being built for the current solve (kept to reuse its allocation).
     next_memory: HashMap<i64, ContactMemory>,
-    rows: Option<BlockRows>,
+    /// Kept detached ([`BlockRows::into_detached`]): a host's borrowed blocks are not kept
+    /// past its call.
+    rows: Option<BlockRows<'static>>,
     newton: Option<NewtonSolver>,
     auto_choice: Option<Method>,
     stats: WorkspaceStats,
@@ -193,7 +197,7 @@ impl Workspace {
                 Method::Nsgs(options) => {
                     let prepared = prepared_rows(rows.take(), p.w(), stats)?;
                     let (outcome, back) = nsgs_on_rows(p, options, &limits, prepared, r, u, obs);
-                    *rows = back;
+                    *rows = back.and_then(BlockRows::into_detached);
                     outcome
                 }
                 Method::Nsn(options) => {
@@ -279,12 +283,13 @@ impl Workspace {
 }
 
 /// The block rows of `w`: `kept` refilled in place when `w` has its pattern, else built anew.
-fn prepared_rows(
-    kept: Option<BlockRows>,
-    w: &Delassus<'_>,
+fn prepared_rows<'a>(
+    kept: Option<BlockRows<'static>>,
+    w: &Delassus<'a>,
     stats: &mut WorkspaceStats,
-) -> Result<BlockRows, Fc3dError> {
-    if let Some(mut rows) = kept {
+) -> Result<BlockRows<'a>, Fc3dError> {
+    if let Some(rows) = kept {
+        let mut rows: BlockRows<'a> = rows;
         if rows.refill_from(w) {
             stats.structure_reused += 1;
             return Ok(rows);

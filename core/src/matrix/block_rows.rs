@@ -1,5 +1,6 @@
 use std::sync::Arc;
 
+use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use super::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::error::Fc3dError;
 use crate::math::linalg::{block_vec_add, contact_of, Block};
@@ -8,25 +9,26 @@ use crate::math::linalg::{block_vec_add, contact_of, Block};
 /// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block (row-major,
 /// owned) and the coupling blocks of its row.
 ///
-/// On a sparse-block W the coupling blocks are W's own arrays, shared (reference-counted), not
-/// copied: preparing the view reads the indices and the diagonal blocks only, so it costs a small
-/// fraction of one sweep and no second copy of W. Rows may then hold their diagonal block among
+/// On a sparse-block W the coupling blocks are W's own arrays, shared (reference-counted) or,
+/// when W is a view of a host's blocks, borrowed for `'a`: not copied. Preparing the view reads
+/// the indices and the diagonal blocks only, so it costs a small fraction of one sweep and no
+/// second copy of W. Rows may then hold their diagonal block among
 /// the others: the sweeps skip it (it is [`BlockRows::diagonal`]). From a dense or CSR W, the
 /// view is built in one pass, row by row, keeping only the blocks with a non-zero entry, so a
 /// scene that couples few contacts costs what it couples.
 #[derive(Debug, Clone)]
-pub struct BlockRows<const D: usize = 3> {
+pub struct BlockRows<'a, const D: usize = 3> {
     n_contacts: usize,
     diagonal: Vec<Block<D>>,
     n_off_diagonal: usize,
-    row_ptr: Arc<Vec<usize>>,
-    cols: Arc<Vec<usize>>,
+    row_ptr: Shared<'a, usize>,
+    cols: Shared<'a, usize>,
     /// `D * D` values per block, column-major, in row order.
-    values: Arc<Vec<f64>>,
+    values: BlockValues<'a>,
 }
 
-impl<const D: usize> BlockRows<D> {
-    pub fn from_delassus(w: &Delassus<'_>) -> Result<Self, Fc3dError> {
+impl<'a, const D: usize> BlockRows<'a, D> {
+    pub fn from_delassus(w: &Delassus<'a>) -> Result<Self, Fc3dError> {
         let n = w.nrows();
         if n != w.ncols() || n % D != 0 {
             return Err(Fc3dError::InvalidStructure(format!(
@@ -45,7 +47,7 @@ impl<const D: usize> BlockRows<D> {
     /// The view of a sparse-block W, sharing its arrays (no copy of the blocks): one pass over
     /// the block indices and the diagonal blocks. Duplicate blocks at one place are summed, as
     /// every other reader of W sums them.
-    pub fn from_block_sparse(s: &BlockSparseMatrix) -> Result<Self, Fc3dError> {
+    pub fn from_block_sparse(s: &BlockSparseMatrix<'a>) -> Result<Self, Fc3dError> {
         if D != 3 {
             return Err(Fc3dError::InvalidStructure(format!(
                 "a 3x3 sparse-block W cannot be cut into {D}x{D} contact blocks"
@@ -53,19 +55,14 @@ impl<const D: usize> BlockRows<D> {
         }
         let nc = s.n_block_rows();
         let (row_ptr, cols, values) = s.shared_parts();
-        let mut diagonal = vec![[[0.0; D]; D]; nc];
+        let mut diagonal = crate::error::try_vec(nc, [[0.0; D]; D], "diagonal blocks")?;
         let mut n_off_diagonal = 0;
         for (c, diag) in diagonal.iter_mut().enumerate() {
             let mut found = false;
             for k in row_ptr[c]..row_ptr[c + 1] {
                 if cols[k] == c {
                     found = true;
-                    let b = &values[D * D * k..D * D * (k + 1)];
-                    for (i, row) in diag.iter_mut().enumerate() {
-                        for (j, v) in row.iter_mut().enumerate() {
-                            *v += b[i + D * j];
-                        }
-                    }
+                    add_block(diag, s.block(k));
                 } else {
                     n_off_diagonal += 1;
                 }
@@ -91,38 +88,36 @@ impl<const D: usize> BlockRows<D> {
     /// steps keeps its prepared rows this way. On a sparse-block W nothing is allocated: the
     /// diagonal blocks are refilled in place and W's arrays shared; a dense or CSR W is cut into
     /// rows again (one pass) and its pattern compared.
-    pub fn refill_from(&mut self, w: &Delassus<'_>) -> bool {
+    pub fn refill_from(&mut self, w: &Delassus<'a>) -> bool {
         let nc = self.n_contacts;
         if w.nrows() != D * nc || w.ncols() != D * nc {
             return false;
         }
         match w {
             Delassus::SparseBlock(s) => {
-                if D != 3
-                    || s.row_ptr() != self.row_ptr.as_slice()
-                    || s.col_idx() != self.cols.as_slice()
-                {
+                if D != 3 || s.row_ptr() != &*self.row_ptr || s.col_idx() != &*self.cols {
                     return false;
                 }
-                let (row_ptr, cols, values) = s.shared_parts();
+                let (row_ptr, cols) = (s.row_ptr(), s.col_idx());
                 for (c, diag) in self.diagonal.iter_mut().enumerate() {
                     *diag = [[0.0; D]; D];
                     for k in row_ptr[c]..row_ptr[c + 1] {
                         if cols[k] == c {
-                            let b = &values[D * D * k..D * D * (k + 1)];
-                            for (i, row) in diag.iter_mut().enumerate() {
-                                for (j, v) in row.iter_mut().enumerate() {
-                                    *v += b[i + D * j];
-                                }
-                            }
+                            add_block(diag, s.block(k));
                         }
                     }
+                }
+                // The host's index arrays when W borrows them (equal to ours, checked above).
+                let (row_ptr, cols, values) = s.shared_parts();
+                if row_ptr.is_borrowed() {
+                    self.row_ptr = row_ptr;
+                    self.cols = cols;
                 }
                 self.values = values;
                 true
             }
             Delassus::Dense(_) | Delassus::Sparse(_) => match Self::from_delassus(w) {
-                Ok(fresh) if fresh.row_ptr == self.row_ptr && fresh.cols == self.cols => {
+                Ok(fresh) if *fresh.row_ptr == *self.row_ptr && *fresh.cols == *self.cols => {
                     *self = fresh;
                     true
                 }
@@ -163,17 +158,17 @@ impl<const D: usize> BlockRows<D> {
             n_contacts: nc,
             diagonal: vec![[[0.0; D]; D]; nc],
             n_off_diagonal: 0,
-            row_ptr: Arc::new(Vec::new()),
-            cols: Arc::new(Vec::new()),
-            values: Arc::new(Vec::new()),
+            row_ptr: Shared::Owned(Arc::new(Vec::new())),
+            cols: Shared::Owned(Arc::new(Vec::new())),
+            values: BlockValues::Packed(Arc::new(Vec::new())),
         }
     }
 
     fn finish(mut self, row_ptr: Vec<usize>, cols: Vec<usize>, values: Vec<f64>) -> Self {
         self.n_off_diagonal = cols.len();
-        self.row_ptr = Arc::new(row_ptr);
-        self.cols = Arc::new(cols);
-        self.values = Arc::new(values);
+        self.row_ptr = row_ptr.into();
+        self.cols = cols.into();
+        self.values = BlockValues::Packed(Arc::new(values));
         self
     }
 
@@ -282,21 +277,24 @@ impl<const D: usize> BlockRows<D> {
     /// (reactions shared between sweeping threads).
     #[inline]
     pub fn local_q_normal_by(&self, c: usize, q: &[f64], r_at: impl Fn(usize) -> f64) -> f64 {
-        let mut acc = q[D * c];
-        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let b = self.cols[k];
-            if b == c {
-                continue;
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        let cols = &self.cols[range.clone()];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let mut acc = q[D * c];
+            for (k, &b) in range.clone().zip(cols) {
+                if b == c {
+                    continue;
+                }
+                // Row 0 of the column-major block.
+                let m = blocks.at(k);
+                let mut s = m[0] * r_at(D * b);
+                for j in 1..D {
+                    s += m[D * j] * r_at(D * b + j);
+                }
+                acc += s;
             }
-            // Row 0 of the column-major block.
-            let m = &self.values[D * D * k..D * D * (k + 1)];
-            let mut s = m[0] * r_at(D * b);
-            for j in 1..D {
-                s += m[D * j] * r_at(D * b + j);
-            }
-            acc += s;
-        }
-        acc
+            acc
+        })
     }
 
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
@@ -309,23 +307,63 @@ impl<const D: usize> BlockRows<D> {
     /// shared between sweeping threads).
     #[inline]
     pub fn local_q_by(&self, c: usize, q: &[f64], r_of: impl Fn(usize) -> [f64; D]) -> [f64; D] {
-        let mut acc = contact_of(q, c);
-        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let b = self.cols[k];
-            if b == c {
-                continue;
-            }
-            let rb: [f64; D] = r_of(b);
-            let m = &self.values[D * D * k..D * D * (k + 1)];
-            // Each component summed in the order of `block_vec_add` (same bits as a row-major
-            // block).
-            for (i, a) in acc.iter_mut().enumerate() {
-                for (j, x) in rb.iter().enumerate() {
-                    *a += m[i + D * j] * x;
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        let cols = &self.cols[range.clone()];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let mut acc = contact_of(q, c);
+            for (k, &b) in range.clone().zip(cols) {
+                if b == c {
+                    continue;
+                }
+                let rb: [f64; D] = r_of(b);
+                let m = blocks.at(k);
+                // Each component summed in the order of `block_vec_add` (same bits as a
+                // row-major block).
+                for (i, a) in acc.iter_mut().enumerate() {
+                    for (j, x) in rb.iter().enumerate() {
+                        *a += m[i + D * j] * x;
+                    }
                 }
             }
+            acc
+        })
+    }
+
+    /// The same rows with nothing borrowed, to be kept past the borrow (a workspace's, between
+    /// calls): borrowed index arrays are copied (once: a workspace then compares the next W's
+    /// pattern with its own copies), borrowed blocks dropped ([`BlockRows::refill_from`] takes
+    /// the next W's). `None` when the copy cannot be allocated.
+    pub fn into_detached(self) -> Option<BlockRows<'static, D>> {
+        let copy = |a: Shared<'a, usize>| -> Option<Shared<'static, usize>> {
+            Some(match a {
+                Shared::Owned(v) => Shared::Owned(v),
+                Shared::Borrowed(s) => {
+                    Shared::Owned(Arc::new(crate::error::try_copy(s, "block rows").ok()?))
+                }
+            })
+        };
+        let values = match self.values {
+            BlockValues::Packed(v) => BlockValues::Packed(v),
+            BlockValues::Table(_) => BlockValues::Packed(Arc::new(Vec::new())),
+        };
+        Some(BlockRows {
+            n_contacts: self.n_contacts,
+            diagonal: self.diagonal,
+            n_off_diagonal: self.n_off_diagonal,
+            row_ptr: copy(self.row_ptr)?,
+            cols: copy(self.cols)?,
+            values,
+        })
+    }
+}
+
+/// `diag += b` for a column-major block `b`.
+#[inline]
+fn add_block<const D: usize>(diag: &mut Block<D>, b: &[f64]) {
+    for (i, row) in diag.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v += b[i + D * j];
         }
-        acc
     }
 }
 
@@ -334,7 +372,7 @@ mod tests {
     use super::*;
 
     /// 3 contacts, a chain: 0-1 coupled, 1-2 coupled, 0-2 not; block (0, 1) stored twice.
-    fn chain() -> BlockSparseMatrix {
+    fn chain() -> BlockSparseMatrix<'static> {
         let b = |s: f64| -> [f64; 9] { std::array::from_fn(|k| s + k as f64) };
         BlockSparseMatrix::new(
             3,
@@ -360,7 +398,11 @@ mod tests {
         let s = chain();
         let rows = BlockRows::<3>::from_block_sparse(&s).unwrap();
         // The coupling blocks are W's own arrays, not a copy.
-        assert!(Arc::ptr_eq(&rows.values, &s.shared_parts().2));
+        let (BlockValues::Packed(a), BlockValues::Packed(b)) = (&rows.values, &s.shared_parts().2)
+        else {
+            panic!("packed storage expected")
+        };
+        assert!(Arc::ptr_eq(a, b));
         assert_eq!(rows.n_off_diagonal(), 5);
         let sparse = Delassus::SparseBlock(s);
         let dense = Delassus::Dense(sparse.to_dense());

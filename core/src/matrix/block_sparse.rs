@@ -1,24 +1,36 @@
 use std::sync::Arc;
 
+use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::{mat3_from_col_major, Mat3};
 
 /// Square 3x3-block sparse matrix in block-CSR order, blocks stored column-major as in Siconos'
 /// `SparseBlockStructuredMatrix` (restricted to the uniform 3x3 blocks of fc3d).
 ///
-/// The arrays are reference-counted: the [`super::BlockRows`] view of a sweep shares them instead
-/// of copying W (a clone is cheap too; [`BlockSparseMatrix::scaled`] copies).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlockSparseMatrix {
+/// The arrays are fc3d's own, reference-counted (the [`super::BlockRows`] view of a sweep shares
+/// them instead of copying W; a clone is cheap too; [`BlockSparseMatrix::scaled`] copies), or a
+/// host's, borrowed for `'a` ([`BlockSparseMatrix::from_block_table`]: zero copy).
+#[derive(Debug, Clone)]
+pub struct BlockSparseMatrix<'a> {
     n_block_rows: usize,
     n_block_cols: usize,
-    row_ptr: Arc<Vec<usize>>,
-    col_idx: Arc<Vec<usize>>,
-    /// 9 values per block, column-major, blocks one after the other in storage order.
-    values: Arc<Vec<f64>>,
+    row_ptr: Shared<'a, usize>,
+    col_idx: Shared<'a, usize>,
+    /// 9 values per block, column-major, blocks in storage order.
+    values: BlockValues<'a>,
 }
 
-impl BlockSparseMatrix {
+impl PartialEq for BlockSparseMatrix<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.n_block_rows == other.n_block_rows
+            && self.n_block_cols == other.n_block_cols
+            && *self.row_ptr == *other.row_ptr
+            && *self.col_idx == *other.col_idx
+            && self.blocks().eq(other.blocks())
+    }
+}
+
+impl BlockSparseMatrix<'static> {
     /// `row_ptr` has `n_block_rows + 1` entries; block `k` sits at block row `i` for
     /// `row_ptr[i] <= k < row_ptr[i+1]`, block column `col_idx[k]`.
     pub fn new(
@@ -39,18 +51,18 @@ impl BlockSparseMatrix {
         Ok(BlockSparseMatrix {
             n_block_rows,
             n_block_cols,
-            row_ptr: Arc::new(row_ptr),
-            col_idx: Arc::new(col_idx),
+            row_ptr: row_ptr.into(),
+            col_idx: col_idx.into(),
             // Same memory, seen as 9 n_blocks values: no copy.
-            values: Arc::new(blocks.into_flattened()),
+            values: BlockValues::Packed(Arc::new(blocks.into_flattened())),
         })
     }
 
     /// The matrix whose block `k` (storage order, column-major) is `block(k)`, built in one
     /// streaming pass: each block is checked finite as it is copied into storage allocated once,
-    /// fallibly (no zero-filled buffer first, no second pass). What a host's sparse-block W is
-    /// converted with. `storage` is where the values go (cleared first): a caller may hand a
-    /// buffer it prepared (reserved, or advised to the kernel), else `Vec::new()`.
+    /// fallibly (no zero-filled buffer first, no second pass). `storage` is where the values go
+    /// (cleared first): a caller may hand a buffer it prepared (reserved, or advised to the
+    /// kernel), else `Vec::new()`.
     pub fn from_block_fn<E: From<Fc3dError>>(
         n_block_rows: usize,
         n_block_cols: usize,
@@ -77,43 +89,101 @@ impl BlockSparseMatrix {
         Ok(BlockSparseMatrix {
             n_block_rows,
             n_block_cols,
-            row_ptr: Arc::new(row_ptr),
-            col_idx: Arc::new(col_idx),
-            values: Arc::new(values),
+            row_ptr: row_ptr.into(),
+            col_idx: col_idx.into(),
+            values: BlockValues::Packed(Arc::new(values)),
+        })
+    }
+}
+
+impl<'a> BlockSparseMatrix<'a> {
+    /// A view of blocks that live elsewhere (a host's, for the length of a call): block `k` is
+    /// `*blocks[k]`, nothing is copied. The structure is checked here (the index arrays only);
+    /// the values are not read: [`BlockSparseMatrix::check_finite`] does that when asked (a
+    /// solve asks when its error comes out non-finite, which a non-finite entry of W always
+    /// causes, since `NaN * 0` and `inf * 0` are NaN).
+    pub fn from_block_table(
+        n_block_rows: usize,
+        n_block_cols: usize,
+        row_ptr: Shared<'a, usize>,
+        col_idx: Shared<'a, usize>,
+        blocks: Shared<'a, &'a [f64; 9]>,
+    ) -> Result<Self, Fc3dError> {
+        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let nb = col_idx.len();
+        if blocks.len() != nb {
+            return Err(Fc3dError::dims("blocks", nb, blocks.len()));
+        }
+        Ok(BlockSparseMatrix {
+            n_block_rows,
+            n_block_cols,
+            row_ptr,
+            col_idx,
+            values: BlockValues::Table(blocks),
         })
     }
 
-    /// `alpha * self`, same block structure.
-    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix {
-        let mut m = self.clone();
-        Arc::make_mut(&mut m.values)
-            .iter_mut()
-            .for_each(|v| *v *= alpha);
+    /// Whether the blocks are borrowed (a view over a host's blocks).
+    pub fn is_borrowed(&self) -> bool {
+        self.values.is_borrowed()
+    }
+
+    /// Fails with [`Fc3dError::NonFinite`] naming the first block holding a NaN or an infinity.
+    pub fn check_finite(&self) -> Result<(), Fc3dError> {
+        for k in 0..self.n_blocks() {
+            check_block(k, self.block(k))?;
+        }
+        Ok(())
+    }
+
+    /// An owned copy (owned storage is shared, borrowed blocks are copied).
+    pub fn into_owned(self) -> BlockSparseMatrix<'static> {
+        let values = match self.values {
+            BlockValues::Packed(v) => v,
+            BlockValues::Table(t) => Arc::new(t.iter().flat_map(|b| b.iter().copied()).collect()),
+        };
+        BlockSparseMatrix {
+            n_block_rows: self.n_block_rows,
+            n_block_cols: self.n_block_cols,
+            row_ptr: self.row_ptr.into_owned(),
+            col_idx: self.col_idx.into_owned(),
+            values: BlockValues::Packed(values),
+        }
+    }
+
+    /// `alpha * self`, same block structure (owned).
+    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix<'static> {
+        let mut m = self.clone().into_owned();
+        if let BlockValues::Packed(v) = &mut m.values {
+            Arc::make_mut(v).iter_mut().for_each(|v| *v *= alpha);
+        }
         m
     }
 
     /// `(n_block_rows, n_block_cols, row_ptr, col_idx, values)` (9 column-major values per
-    /// block), without a copy unless the arrays are shared with a view still alive.
+    /// block), without a copy unless the arrays are shared with a view still alive or borrowed.
     #[allow(clippy::type_complexity)]
     pub fn into_parts(self) -> (usize, usize, Vec<usize>, Vec<usize>, Vec<f64>) {
-        let take = |a: Arc<Vec<usize>>| Arc::try_unwrap(a).unwrap_or_else(|a| (*a).clone());
-        let values = Arc::try_unwrap(self.values).unwrap_or_else(|a| (*a).clone());
+        let owned = self.into_owned();
+        let BlockValues::Packed(values) = owned.values else {
+            unreachable!("into_owned packs the values")
+        };
+        let values = Arc::try_unwrap(values).unwrap_or_else(|a| (*a).clone());
         (
-            self.n_block_rows,
-            self.n_block_cols,
-            take(self.row_ptr),
-            take(self.col_idx),
+            owned.n_block_rows,
+            owned.n_block_cols,
+            owned.row_ptr.into_vec(),
+            owned.col_idx.into_vec(),
             values,
         )
     }
 
-    /// The shared arrays `(row_ptr, col_idx, values)` (9 column-major values per block), for
-    /// views that must not copy W.
-    pub(crate) fn shared_parts(&self) -> (Arc<Vec<usize>>, Arc<Vec<usize>>, Arc<Vec<f64>>) {
+    /// The shared arrays `(row_ptr, col_idx, values)`, for views that must not copy W.
+    pub(crate) fn shared_parts(&self) -> (Shared<'a, usize>, Shared<'a, usize>, BlockValues<'a>) {
         (
-            Arc::clone(&self.row_ptr),
-            Arc::clone(&self.col_idx),
-            Arc::clone(&self.values),
+            self.row_ptr.clone(),
+            self.col_idx.clone(),
+            self.values.clone(),
         )
     }
 
@@ -138,16 +208,27 @@ impl BlockSparseMatrix {
     pub fn col_idx(&self) -> &[usize] {
         &self.col_idx
     }
+
+    /// Block `k` of the storage order, column-major.
+    #[inline]
+    pub fn block(&self, k: usize) -> &[f64; 9] {
+        match &self.values {
+            BlockValues::Packed(v) => v[9 * k..9 * (k + 1)]
+                .try_into()
+                .expect("9 values per block"),
+            BlockValues::Table(t) => t[k],
+        }
+    }
+
     /// Column-major 3x3 blocks in storage order.
-    pub fn blocks(&self) -> &[[f64; 9]] {
-        self.values.as_chunks::<9>().0
+    pub fn blocks(&self) -> impl ExactSizeIterator<Item = &[f64; 9]> + '_ {
+        (0..self.n_blocks()).map(move |k| self.block(k))
     }
 
     /// Iterates `(block_row, block_col, column-major block)`.
     pub fn iter_blocks(&self) -> impl Iterator<Item = (usize, usize, &[f64; 9])> + '_ {
         (0..self.n_block_rows).flat_map(move |i| {
-            (self.row_ptr[i]..self.row_ptr[i + 1])
-                .map(move |k| (i, self.col_idx[k], &self.blocks()[k]))
+            (self.row_ptr[i]..self.row_ptr[i + 1]).map(move |k| (i, self.col_idx[k], self.block(k)))
         })
     }
 
@@ -155,7 +236,7 @@ impl BlockSparseMatrix {
         let (bi, bj) = (i / 3, j / 3);
         (self.row_ptr[bi]..self.row_ptr[bi + 1])
             .filter(|&k| self.col_idx[k] == bj)
-            .map(|k| self.values[9 * k + (i % 3) + 3 * (j % 3)])
+            .map(|k| self.block(k)[(i % 3) + 3 * (j % 3)])
             .sum()
     }
 
@@ -164,7 +245,7 @@ impl BlockSparseMatrix {
         let mut found = None::<Mat3>;
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             if self.col_idx[k] == c {
-                let b = mat3_from_col_major(&self.blocks()[k]);
+                let b = mat3_from_col_major(self.block(k));
                 found = Some(match found {
                     None => b,
                     Some(a) => {
@@ -182,24 +263,17 @@ impl BlockSparseMatrix {
         found
     }
 
+    /// `y <- y + W x`.
     pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
-        let blocks = self.blocks();
-        for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(self.n_block_rows) {
-            // The row's sums kept in registers; each entry gets its terms in the same order as
-            // block by block into y.
-            let mut acc = [ys[0], ys[1], ys[2]];
-            for k in self.row_ptr[bi]..self.row_ptr[bi + 1] {
-                let b = &blocks[k];
-                let bj = self.col_idx[k];
-                let xs = &x[3 * bj..3 * bj + 3];
-                for (c, &xc) in xs.iter().enumerate() {
-                    acc[0] += b[3 * c] * xc;
-                    acc[1] += b[3 * c + 1] * xc;
-                    acc[2] += b[3 * c + 2] * xc;
-                }
-            }
-            ys.copy_from_slice(&acc);
-        }
+        let (row_ptr, col_idx) = (&*self.row_ptr, &*self.col_idx);
+        with_blocks!(&self.values, 9, |blocks| mul_add_in(
+            &blocks,
+            self.n_block_rows,
+            row_ptr,
+            col_idx,
+            x,
+            y
+        ))
     }
 
     /// Whether block row `c` stores its diagonal block (indices only: no value is read).
@@ -215,6 +289,33 @@ impl BlockSparseMatrix {
                 }
             }
         }
+    }
+}
+
+/// `y <- y + W x` over blocks of any storage (the one product of a sparse-block W).
+fn mul_add_in(
+    blocks: &impl BlockAt,
+    n_block_rows: usize,
+    row_ptr: &[usize],
+    col_idx: &[usize],
+    x: &[f64],
+    y: &mut [f64],
+) {
+    for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(n_block_rows) {
+        // The row's sums kept in registers; each entry gets its terms in the same order as
+        // block by block into y.
+        let mut acc = [ys[0], ys[1], ys[2]];
+        for k in row_ptr[bi]..row_ptr[bi + 1] {
+            let b = blocks.at(k);
+            let bj = col_idx[k];
+            let xs = &x[3 * bj..3 * bj + 3];
+            for (c, &xc) in xs.iter().enumerate() {
+                acc[0] += b[3 * c] * xc;
+                acc[1] += b[3 * c + 1] * xc;
+                acc[2] += b[3 * c + 2] * xc;
+            }
+        }
+        ys.copy_from_slice(&acc);
     }
 }
 

@@ -188,7 +188,7 @@ struct Island<'a> {
     contacts: &'a [usize],
     /// `s_I` of [`Island::error`] (1 when q = 0).
     scale: f64,
-    rows: &'a BlockRows,
+    rows: &'a BlockRows<'a>,
     q: &'a [f64],
     mu: &'a [f64],
 }

@@ -103,17 +103,17 @@ pub(crate) fn nsgs(
 
 /// [`nsgs`] over block rows of `problem`'s W prepared earlier: the rows are moved into the
 /// sweeper and handed back with the outcome, so that a workspace keeps them for the next step.
-pub(crate) fn nsgs_on_rows(
-    problem: &FrictionProblem<'_>,
+pub(crate) fn nsgs_on_rows<'a>(
+    problem: &FrictionProblem<'a>,
     options: &NsgsOptions,
     limits: &Limits,
-    rows: crate::matrix::BlockRows,
+    rows: crate::matrix::BlockRows<'a>,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> (
     Result<SolverOutcome, Fc3dError>,
-    Option<crate::matrix::BlockRows>,
+    Option<crate::matrix::BlockRows<'a>>,
 ) {
     if let Err(e) = options.validate() {
         return (Err(e), Some(rows));
@@ -153,7 +153,7 @@ pub(crate) struct SweepSchedule {
 /// has been checked, so nothing fails once `r` is touched.
 pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
     problem: &P,
-    sweeper: &mut GaussSeidel<D, S>,
+    sweeper: &mut GaussSeidel<'_, D, S>,
     options: &SweepSchedule,
     limits: &Limits,
     r: &mut [f64],

@@ -232,8 +232,8 @@ impl SweepPlan {
 /// One Gauss-Seidel sweep's state for contacts of dimension `D`, prepared once per problem: the
 /// block-row view of W, the one-contact step `S` and the sweep options. A sweep allocates
 /// nothing.
-pub struct GaussSeidel<const D: usize, S: ContactStep<D>> {
-    rows: BlockRows<D>,
+pub struct GaussSeidel<'a, const D: usize, S: ContactStep<D>> {
+    rows: BlockRows<'a, D>,
     step: S,
     /// The calling thread's worker (sequential sweeps and thread 0 of a coloured one).
     worker: S::Worker,
@@ -284,12 +284,12 @@ impl ColouredPlan {
 
 /// The 3D sweep with a local solver (public so that benchmarks and hosts that drive their own
 /// loop can sweep without re-preparing).
-pub type Sweeper = GaussSeidel<3, LocalStep>;
+pub type Sweeper<'a> = GaussSeidel<'a, 3, LocalStep>;
 
-impl Sweeper {
+impl<'a> Sweeper<'a> {
     /// A plain sweeper: contacts in index order, no relaxation, no freezing.
     pub fn new(
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'a>,
         local: &LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
@@ -311,7 +311,7 @@ impl Sweeper {
     /// bookkeeping Dumont's criterion needs, a coloured decomposition); `tolerance` is the
     /// run's, against which freezing judges a contact still. Rejects options out of range.
     pub fn with_options(
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'a>,
         options: &NsgsOptions,
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
@@ -323,7 +323,7 @@ impl Sweeper {
     /// [`Sweeper::with_options`] over block rows prepared earlier (a workspace keeps them from
     /// one time step to the next); `options` must have been validated.
     pub(crate) fn with_rows(
-        rows: BlockRows,
+        rows: BlockRows<'a>,
         options: &NsgsOptions,
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
@@ -395,11 +395,11 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
     (rc, old, local_q)
 }
 
-impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
+impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
     /// A sweeper over the block rows `rows` with the one-contact step `step`; `tolerance` is the
     /// run's, against which freezing judges a contact still.
     pub fn from_parts(
-        rows: BlockRows<D>,
+        rows: BlockRows<'a, D>,
         step: S,
         options: &SweepOptions,
         tolerance: f64,
@@ -424,7 +424,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
 
     /// What an island sweep needs: the block rows, the step, each contact's step state and
     /// the relaxation factor.
-    pub(crate) fn island_parts(&mut self) -> (&BlockRows<D>, &S, &mut [f64], Option<f64>) {
+    pub(crate) fn island_parts(&mut self) -> (&BlockRows<'a, D>, &S, &mut [f64], Option<f64>) {
         (
             &self.rows,
             &self.step,
@@ -494,7 +494,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
     }
 
     /// Gives the block rows back (to be kept for the next problem with the same pattern).
-    pub(crate) fn into_rows(self) -> BlockRows<D> {
+    pub(crate) fn into_rows(self) -> BlockRows<'a, D> {
         self.rows
     }
 
