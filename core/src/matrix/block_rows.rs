@@ -6,20 +6,25 @@ use crate::error::Fc3dError;
 use crate::math::linalg::{block_vec_add, contact_of, Block};
 
 /// Block-row view of a square W with `D x D` blocks (`D` the contact dimension, 3 by default),
-/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block (row-major,
-/// owned) and the coupling blocks of its row.
+/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block and the
+/// coupling blocks of its row.
 ///
-/// On a sparse-block W the coupling blocks are W's own arrays, shared (reference-counted) or,
-/// when W is a view of a host's blocks, borrowed for `'a`: not copied. Preparing the view reads
-/// the indices and the diagonal blocks only, so it costs a small fraction of one sweep and no
-/// second copy of W. Rows may then hold their diagonal block among
-/// the others: the sweeps skip it (it is [`BlockRows::diagonal`]). From a dense or CSR W, the
+/// On a sparse-block W the blocks are W's own arrays, shared (reference-counted) or, when W is a
+/// view of a host's blocks, borrowed for `'a`: not copied. Preparing the view reads the indices
+/// only (where each contact's diagonal block is), so it costs a small fraction of one sweep and
+/// no second copy of W. Rows then hold their diagonal block among the others: the sweeps skip it
+/// there and read it through [`BlockRows::diagonal`]. From a dense or CSR W, the
 /// view is built in one pass, row by row, keeping only the blocks with a non-zero entry, so a
 /// scene that couples few contacts costs what it couples.
 #[derive(Debug, Clone)]
 pub struct BlockRows<'a, const D: usize = 3> {
     n_contacts: usize,
+    /// Each contact's diagonal block, row-major, when W's storage does not hold exactly one
+    /// per contact (a dense or CSR W, or a sparse-block W storing one twice); empty otherwise.
     diagonal: Vec<Block<D>>,
+    /// Where each contact's diagonal block is among `values`, when W stores exactly one per
+    /// contact (a sparse-block W): read from there, nothing gathered or copied.
+    diagonal_at: Vec<usize>,
     n_off_diagonal: usize,
     row_ptr: Shared<'a, usize>,
     cols: Shared<'a, usize>,
@@ -55,25 +60,37 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         }
         let nc = s.n_block_rows();
         let (row_ptr, cols, values) = s.shared_parts();
-        let mut diagonal = crate::error::try_vec(nc, [[0.0; D]; D], "diagonal blocks")?;
+        // One pass over the indices only: the blocks are read where they are, by the sweeps.
+        let mut diagonal_at = crate::error::try_vec(nc, 0usize, "diagonal block positions")?;
         let mut n_off_diagonal = 0;
-        for (c, diag) in diagonal.iter_mut().enumerate() {
-            let mut found = false;
+        let mut repeated = false;
+        for (c, at) in diagonal_at.iter_mut().enumerate() {
+            let mut found = 0;
             for k in row_ptr[c]..row_ptr[c + 1] {
                 if cols[k] == c {
-                    found = true;
-                    add_block(diag, s.block(k));
+                    found += 1;
+                    *at = k;
                 } else {
                     n_off_diagonal += 1;
                 }
             }
-            if !found {
-                return Err(Fc3dError::MissingDiagonalBlock { contact: c });
+            match found {
+                0 => return Err(Fc3dError::MissingDiagonalBlock { contact: c }),
+                1 => {}
+                _ => repeated = true,
             }
+        }
+        let mut diagonal = Vec::new();
+        if repeated {
+            // A diagonal block stored twice: each contact's sum, copied once.
+            diagonal_at = Vec::new();
+            diagonal = crate::error::try_vec(nc, [[0.0; D]; D], "diagonal blocks")?;
+            sum_diagonals(s, &mut diagonal);
         }
         Ok(BlockRows {
             n_contacts: nc,
             diagonal,
+            diagonal_at,
             n_off_diagonal,
             row_ptr,
             cols,
@@ -98,14 +115,9 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                 if D != 3 || s.row_ptr() != &*self.row_ptr || s.col_idx() != &*self.cols {
                     return false;
                 }
-                let (row_ptr, cols) = (s.row_ptr(), s.col_idx());
-                for (c, diag) in self.diagonal.iter_mut().enumerate() {
-                    *diag = [[0.0; D]; D];
-                    for k in row_ptr[c]..row_ptr[c + 1] {
-                        if cols[k] == c {
-                            add_block(diag, s.block(k));
-                        }
-                    }
+                // Same pattern: the diagonal positions hold; summed diagonals are summed again.
+                if self.diagonal_at.is_empty() {
+                    sum_diagonals(s, &mut self.diagonal);
                 }
                 // The host's index arrays when W borrows them (equal to ours, checked above).
                 let (row_ptr, cols, values) = s.shared_parts();
@@ -157,6 +169,7 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         BlockRows {
             n_contacts: nc,
             diagonal: vec![[[0.0; D]; D]; nc],
+            diagonal_at: Vec::new(),
             n_off_diagonal: 0,
             row_ptr: Shared::Owned(Arc::new(Vec::new())),
             cols: Shared::Owned(Arc::new(Vec::new())),
@@ -243,15 +256,28 @@ impl<'a, const D: usize> BlockRows<'a, D> {
     }
 
     #[inline]
-    pub fn diagonal(&self, c: usize) -> &Block<D> {
-        &self.diagonal[c]
+    pub fn diagonal(&self, c: usize) -> Block<D> {
+        if self.diagonal_at.is_empty() {
+            return self.diagonal[c];
+        }
+        let k = self.diagonal_at[c];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let m = &blocks.at(k)[..D * D];
+            let mut b = [[0.0; D]; D];
+            for (i, row) in b.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v = m[i + D * j];
+                }
+            }
+            b
+        })
     }
 
     /// `u <- W r + q` through the stored blocks (zero blocks skipped, so a dense W costs what
     /// its coupling costs).
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
-            let uc = block_vec_add(&self.diagonal[c], &contact_of(r, c), &self.local_q(c, q, r));
+            let uc = block_vec_add(&self.diagonal(c), &contact_of(r, c), &self.local_q(c, q, r));
             u[D * c..D * c + D].copy_from_slice(&uc);
         }
     }
@@ -285,8 +311,8 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                 if b == c {
                     continue;
                 }
-                // Row 0 of the column-major block.
-                let m = blocks.at(k);
+                // Row 0 of the column-major block (cut to its length: no bounds checks below).
+                let m = &blocks.at(k)[..D * D];
                 let mut s = m[0] * r_at(D * b);
                 for j in 1..D {
                     s += m[D * j] * r_at(D * b + j);
@@ -316,7 +342,7 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                     continue;
                 }
                 let rb: [f64; D] = r_of(b);
-                let m = blocks.at(k);
+                let m = &blocks.at(k)[..D * D];
                 // Each component summed in the order of `block_vec_add` (same bits as a
                 // row-major block).
                 for (i, a) in acc.iter_mut().enumerate() {
@@ -349,11 +375,25 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         Some(BlockRows {
             n_contacts: self.n_contacts,
             diagonal: self.diagonal,
+            diagonal_at: self.diagonal_at,
             n_off_diagonal: self.n_off_diagonal,
             row_ptr: copy(self.row_ptr)?,
             cols: copy(self.cols)?,
             values,
         })
+    }
+}
+
+/// Each contact's diagonal block of `s`, the sum of those stored (row-major).
+fn sum_diagonals<const D: usize>(s: &BlockSparseMatrix<'_>, diagonal: &mut [Block<D>]) {
+    let (row_ptr, cols) = (s.row_ptr(), s.col_idx());
+    for (c, diag) in diagonal.iter_mut().enumerate() {
+        *diag = [[0.0; D]; D];
+        for k in row_ptr[c]..row_ptr[c + 1] {
+            if cols[k] == c {
+                add_block(diag, s.block(k));
+            }
+        }
     }
 }
 

@@ -306,7 +306,8 @@ fn mul_add_in(
         // block by block into y.
         let mut acc = [ys[0], ys[1], ys[2]];
         for k in row_ptr[bi]..row_ptr[bi + 1] {
-            let b = blocks.at(k);
+            // A fixed-size view: no bounds check on the 9 values below.
+            let b: &[f64; 9] = blocks.at(k).first_chunk().expect("9 values per block");
             let bj = col_idx[k];
             let xs = &x[3 * bj..3 * bj + 3];
             for (c, &xc) in xs.iter().enumerate() {

@@ -112,7 +112,7 @@ impl LocalStep {
         let solver = AnyLocalSolver::new(options);
         let mut rho = crate::error::try_vec(rows.n_contacts(), (0.0, 0.0), "local penalties")?;
         for (c, rc) in rho.iter_mut().enumerate() {
-            *rc = solver.rho(rows.diagonal(c));
+            *rc = solver.rho(&rows.diagonal(c));
         }
         Ok(LocalStep {
             options: *options,
@@ -379,7 +379,7 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
         None => {
             let lq = *local_q.get_or_insert_with(|| r.local_q(rows, c, q));
             let mut rc = old;
-            step.solve(worker, c, w, &lq, mu[c], memory, &mut rc);
+            step.solve(worker, c, &w, &lq, mu[c], memory, &mut rc);
             rc
         }
     };
@@ -487,7 +487,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
         }
         r[D * c..D * c + D].copy_from_slice(&rc);
         if let Some(lq) = local_q.filter(|_| track) {
-            let uc = block_vec_add(self.rows.diagonal(c), &rc, &lq);
+            let uc = block_vec_add(&self.rows.diagonal(c), &rc, &lq);
             self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
         }
         d_sq

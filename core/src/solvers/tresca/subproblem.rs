@@ -99,7 +99,7 @@ impl<'a> TrescaWorkspace<'a> {
             let mut increment_sq = 0.0;
             for c in 0..self.rows.n_contacts() {
                 let lq = self.rows.local_q(c, q, r);
-                let w = self.rows.diagonal(c);
+                let w = &self.rows.diagonal(c);
                 let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
                 let mut new = match mode {
                     TrescaMode::Full => solve_local_tresca(w, &lq, self.radius[c]),
