@@ -12,7 +12,7 @@ use crate::matrix::BlockRows;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use super::parallel::{
@@ -99,26 +99,53 @@ pub trait ContactStep<const D: usize>: Sync {
     }
 }
 
-/// The 3D step: the configured local solver with each contact's penalty parameters (they depend
-/// on `W_cc` only, so they are computed once per problem).
+/// The 3D step: the configured local solver with each contact's penalty parameters. They depend
+/// on `W_cc` only, so each is computed once per problem, at the contact's first update, from the
+/// diagonal block the update reads anyway: preparing a solve does not visit every diagonal block
+/// of W (on a host's W, one allocation each, that pass cost a fifth of a sweep at 10^5 contacts).
 pub struct LocalStep {
     options: LocalSolverOptions,
-    rho: Vec<(f64, f64)>,
+    /// Per contact, the bits of `(rho_N, rho_T)`; NaN until computed. Atomics (relaxed: each
+    /// contact is updated by one thread at a time, sweeps are ordered by barriers) so that the
+    /// threads of a coloured sweep share the step.
+    rho: Vec<[AtomicU64; 2]>,
     deadline: Option<Instant>,
 }
 
 impl LocalStep {
     fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
-        let solver = AnyLocalSolver::new(options);
-        let mut rho = crate::error::try_vec(rows.n_contacts(), (0.0, 0.0), "local penalties")?;
-        for (c, rc) in rho.iter_mut().enumerate() {
-            *rc = solver.rho(&rows.diagonal(c));
-        }
+        let nc = rows.n_contacts();
+        let mut rho = Vec::new();
+        rho.try_reserve_exact(nc)
+            .map_err(|_| Fc3dError::OutOfMemory {
+                what: "local penalties".into(),
+                bytes: nc.saturating_mul(16),
+            })?;
+        rho.extend((0..nc).map(|_| {
+            [
+                AtomicU64::new(f64::NAN.to_bits()),
+                AtomicU64::new(f64::NAN.to_bits()),
+            ]
+        }));
         Ok(LocalStep {
             options: *options,
             rho,
             deadline: None,
         })
+    }
+
+    /// Contact `c`'s penalty parameters for its diagonal block `w` (computed at first use).
+    #[inline]
+    fn rho_of(&self, solver: &AnyLocalSolver, c: usize, w: &Block<3>) -> (f64, f64) {
+        let [n, t] = &self.rho[c];
+        let rn = f64::from_bits(n.load(Ordering::Relaxed));
+        if !rn.is_nan() {
+            return (rn, f64::from_bits(t.load(Ordering::Relaxed)));
+        }
+        let (rn, rt) = solver.rho(w);
+        n.store(rn.to_bits(), Ordering::Relaxed);
+        t.store(rt.to_bits(), Ordering::Relaxed);
+        (rn, rt)
     }
 }
 
@@ -144,7 +171,8 @@ impl ContactStep<3> for LocalStep {
     ) {
         let p = LocalProblem { w, q: *q, mu };
         let old = *r;
-        solver.solve_in_sweep(&p, self.rho[c], memory, r);
+        let rho = self.rho_of(solver, c, w);
+        solver.solve_in_sweep(&p, rho, memory, r);
         if !r.iter().all(|v| v.is_finite()) {
             *r = old;
         }
