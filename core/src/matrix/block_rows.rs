@@ -1,5 +1,6 @@
 use std::sync::Arc;
 
+use super::block_sparse::NO_DIAGONAL;
 use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use super::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::error::Fc3dError;
@@ -24,7 +25,7 @@ pub struct BlockRows<'a, const D: usize = 3> {
     diagonal: Vec<Block<D>>,
     /// Where each contact's diagonal block is among `values`, when W stores exactly one per
     /// contact (a sparse-block W): read from there, nothing gathered or copied.
-    diagonal_at: Vec<usize>,
+    diagonal_at: Arc<Vec<usize>>,
     n_off_diagonal: usize,
     row_ptr: Shared<'a, usize>,
     cols: Shared<'a, usize>,
@@ -60,32 +61,27 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         }
         let nc = s.n_block_rows();
         let (row_ptr, cols, values) = s.shared_parts();
-        // One pass over the indices only: the blocks are read where they are, by the sweeps.
-        let mut diagonal_at = crate::error::try_vec(nc, 0usize, "diagonal block positions")?;
-        let mut n_off_diagonal = 0;
-        let mut repeated = false;
-        for (c, at) in diagonal_at.iter_mut().enumerate() {
-            let mut found = 0;
-            for k in row_ptr[c]..row_ptr[c + 1] {
-                if cols[k] == c {
-                    found += 1;
-                    *at = k;
-                } else {
-                    n_off_diagonal += 1;
-                }
-            }
-            match found {
-                0 => return Err(Fc3dError::MissingDiagonalBlock { contact: c }),
-                1 => {}
-                _ => repeated = true,
-            }
+        // Where each diagonal block is was found when W's structure was checked: nothing is
+        // read here; the blocks are read where they are, by the sweeps.
+        let (positions, repeated) = s.diagonal_positions();
+        if let Some(c) = positions.iter().position(|&k| k == NO_DIAGONAL) {
+            return Err(Fc3dError::MissingDiagonalBlock { contact: c });
         }
+        let mut diagonal_at = Arc::clone(positions);
+        let mut n_off_diagonal = s.n_blocks() - nc;
         let mut diagonal = Vec::new();
         if repeated {
             // A diagonal block stored twice: each contact's sum, copied once.
-            diagonal_at = Vec::new();
+            diagonal_at = Arc::new(Vec::new());
             diagonal = crate::error::try_vec(nc, [[0.0; D]; D], "diagonal blocks")?;
             sum_diagonals(s, &mut diagonal);
+            n_off_diagonal = (0..nc)
+                .map(|c| {
+                    (row_ptr[c]..row_ptr[c + 1])
+                        .filter(|&k| cols[k] != c)
+                        .count()
+                })
+                .sum();
         }
         Ok(BlockRows {
             n_contacts: nc,
@@ -169,7 +165,7 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         BlockRows {
             n_contacts: nc,
             diagonal: vec![[[0.0; D]; D]; nc],
-            diagonal_at: Vec::new(),
+            diagonal_at: Arc::new(Vec::new()),
             n_off_diagonal: 0,
             row_ptr: Shared::Owned(Arc::new(Vec::new())),
             cols: Shared::Owned(Arc::new(Vec::new())),

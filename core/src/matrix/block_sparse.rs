@@ -18,7 +18,15 @@ pub struct BlockSparseMatrix<'a> {
     col_idx: Shared<'a, usize>,
     /// 9 values per block, column-major, blocks in storage order.
     values: BlockValues<'a>,
+    /// Where each block row's diagonal block is stored ([`NO_DIAGONAL`] when it has none),
+    /// found in the pass that checks the structure.
+    diagonal_at: Arc<Vec<usize>>,
+    /// Whether some block row stores its diagonal block more than once.
+    repeated_diagonal: bool,
 }
+
+/// [`BlockSparseMatrix::diagonal_positions`] of a block row without a diagonal block.
+pub const NO_DIAGONAL: usize = usize::MAX;
 
 impl PartialEq for BlockSparseMatrix<'_> {
     fn eq(&self, other: &Self) -> bool {
@@ -40,7 +48,8 @@ impl BlockSparseMatrix<'static> {
         col_idx: Vec<usize>,
         blocks: Vec<[f64; 9]>,
     ) -> Result<Self, Fc3dError> {
-        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
         if blocks.len() != nb {
             return Err(Fc3dError::dims("blocks", nb, blocks.len()));
@@ -55,6 +64,8 @@ impl BlockSparseMatrix<'static> {
             col_idx: col_idx.into(),
             // Same memory, seen as 9 n_blocks values: no copy.
             values: BlockValues::Packed(Arc::new(blocks.into_flattened())),
+            diagonal_at,
+            repeated_diagonal,
         })
     }
 
@@ -71,7 +82,8 @@ impl BlockSparseMatrix<'static> {
         storage: Vec<f64>,
         mut block: impl FnMut(usize) -> Result<[f64; 9], E>,
     ) -> Result<Self, E> {
-        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
         let mut values = storage;
         values.clear();
@@ -92,6 +104,8 @@ impl BlockSparseMatrix<'static> {
             row_ptr: row_ptr.into(),
             col_idx: col_idx.into(),
             values: BlockValues::Packed(Arc::new(values)),
+            diagonal_at,
+            repeated_diagonal,
         })
     }
 }
@@ -109,7 +123,8 @@ impl<'a> BlockSparseMatrix<'a> {
         col_idx: Shared<'a, usize>,
         blocks: Shared<'a, &'a [f64; 9]>,
     ) -> Result<Self, Fc3dError> {
-        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
         if blocks.len() != nb {
             return Err(Fc3dError::dims("blocks", nb, blocks.len()));
@@ -120,6 +135,8 @@ impl<'a> BlockSparseMatrix<'a> {
             row_ptr,
             col_idx,
             values: BlockValues::Table(blocks),
+            diagonal_at,
+            repeated_diagonal,
         })
     }
 
@@ -148,6 +165,8 @@ impl<'a> BlockSparseMatrix<'a> {
             row_ptr: self.row_ptr.into_owned(),
             col_idx: self.col_idx.into_owned(),
             values: BlockValues::Packed(values),
+            diagonal_at: self.diagonal_at,
+            repeated_diagonal: self.repeated_diagonal,
         }
     }
 
@@ -278,7 +297,13 @@ impl<'a> BlockSparseMatrix<'a> {
 
     /// Whether block row `c` stores its diagonal block (indices only: no value is read).
     pub fn has_diagonal_block(&self, c: usize) -> bool {
-        self.col_idx[self.row_ptr[c]..self.row_ptr[c + 1]].contains(&c)
+        self.diagonal_at[c] != NO_DIAGONAL
+    }
+
+    /// Per block row, where its diagonal block is stored ([`NO_DIAGONAL`] when it has none; the
+    /// last one when it has several), and whether some row has several.
+    pub fn diagonal_positions(&self) -> (&Arc<Vec<usize>>, bool) {
+        (&self.diagonal_at, self.repeated_diagonal)
     }
 
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
@@ -320,12 +345,15 @@ fn mul_add_in(
     }
 }
 
+/// Checks the block structure and finds each block row's diagonal block in the same pass over
+/// the column indices: returns the positions ([`NO_DIAGONAL`] where none) and whether a row
+/// stores its diagonal block more than once.
 fn check_structure(
     n_block_rows: usize,
     n_block_cols: usize,
     row_ptr: &[usize],
     col_idx: &[usize],
-) -> Result<(), Fc3dError> {
+) -> Result<(Arc<Vec<usize>>, bool), Fc3dError> {
     if row_ptr.len() != n_block_rows + 1 {
         return Err(Fc3dError::dims(
             "block row pointers",
@@ -342,13 +370,23 @@ fn check_structure(
     if col_idx.len() != nb {
         return Err(Fc3dError::dims("block column indices", nb, col_idx.len()));
     }
-    if let Some(k) = col_idx.iter().position(|&c| c >= n_block_cols) {
-        return Err(Fc3dError::InvalidStructure(format!(
-            "block {k} has column {} >= {n_block_cols}",
-            col_idx[k]
-        )));
+    let mut diagonal_at = crate::error::try_vec(n_block_rows, NO_DIAGONAL, "diagonal positions")?;
+    let mut repeated = false;
+    for (i, at) in diagonal_at.iter_mut().enumerate() {
+        for k in row_ptr[i]..row_ptr[i + 1] {
+            let c = col_idx[k];
+            if c >= n_block_cols {
+                return Err(Fc3dError::InvalidStructure(format!(
+                    "block {k} has column {c} >= {n_block_cols}"
+                )));
+            }
+            if c == i {
+                repeated |= *at != NO_DIAGONAL;
+                *at = k;
+            }
+        }
     }
-    Ok(())
+    Ok((Arc::new(diagonal_at), repeated))
 }
 
 #[inline]
