@@ -220,8 +220,12 @@ pub(super) unsafe fn block_sparse_from_sbm<'a>(
         )),
         Some(order) => {
             let mut t: Vec<&'a [f64; 9]> = Vec::new();
-            t.try_reserve_exact(order.len())
-                .map_err(|_| size_err("cannot allocate the sorted SBM block table"))?;
+            t.try_reserve_exact(order.len()).map_err(|_| {
+                fc3d_core::error::Fc3dError::OutOfMemory {
+                    what: "sorted SBM block table".into(),
+                    bytes: order.len().saturating_mul(8),
+                }
+            })?;
             // SAFETY: as above, pointer by pointer.
             t.extend(order.iter().map(|&k| &*(pointers[k] as *const [f64; 9])));
             t.into()
