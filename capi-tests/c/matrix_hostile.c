@@ -273,7 +273,113 @@ static int check_coordinates_and_release(void) {
   return 0;
 }
 
+/* Two contacts in one SBM, every block its own malloc (as Siconos' hosts allocate them); row 0
+ * stores its blocks in column order, or reversed when `reverse_row0` (Siconos does not sort). */
+typedef struct {
+  SparseBlockStructuredMatrix* s;
+  NumericsMatrix* M;
+  double* blocks[4]; /* (0,0) (0,1) (1,0) (1,1) */
+} TwoContacts;
+
+static void two_contacts(TwoContacts* t, int reverse_row0) {
+  const double diag[9] = {2.0, 0.1, 0.0, 0.1, 1.5, 0.2, 0.0, 0.3, 1.25}; /* column-major */
+  const double off[9] = {0.5, 0.05, 0.01, 0.02, 0.25, 0.03, 0.04, 0.06, 0.125};
+  for (int k = 0; k < 4; k++) {
+    t->blocks[k] = malloc(9 * sizeof(double));
+    for (int e = 0; e < 9; e++) t->blocks[k][e] = (k == 0 || k == 3 ? diag[e] : off[e]) * (1.0 + 0.1 * k);
+  }
+  SparseBlockStructuredMatrix* s = SBM_new();
+  s->nbblocks = 4;
+  s->blocknumber0 = s->blocknumber1 = 2;
+  s->blocksize0 = malloc(2 * sizeof(unsigned));
+  s->blocksize1 = malloc(2 * sizeof(unsigned));
+  s->blocksize0[0] = s->blocksize1[0] = 3;
+  s->blocksize0[1] = s->blocksize1[1] = 6;
+  s->filled1 = 3;
+  s->filled2 = 4;
+  s->index1_data = malloc(3 * sizeof(size_t));
+  s->index1_data[0] = 0;
+  s->index1_data[1] = 2;
+  s->index1_data[2] = 4;
+  s->index2_data = malloc(4 * sizeof(size_t));
+  s->block = malloc(4 * sizeof(double*));
+  const size_t cols[4] = {0, 1, 0, 1};
+  const int order[4] = {reverse_row0 ? 1 : 0, reverse_row0 ? 0 : 1, 2, 3};
+  for (int k = 0; k < 4; k++) {
+    s->index2_data[k] = cols[order[k]];
+    s->block[k] = t->blocks[order[k]];
+  }
+  t->s = s;
+  t->M = NM_new_SBM(6, 6, s);
+}
+
+static void two_contacts_free(TwoContacts* t) {
+  for (int k = 0; k < 4; k++) t->s->block[k] = t->blocks[k]; /* whatever a check changed */
+  NM_free(t->M);
+}
+
+static int solve_two(TwoContacts* t, double* r, double* u, int* code) {
+  double q[6] = {-1.0, 0.3, -0.2, -0.5, -0.1, 0.4}, mu[2] = {0.5, 0.3};
+  FrictionContactProblem p;
+  memset(&p, 0, sizeof p);
+  p.dimension = 3;
+  p.numberOfContacts = 2;
+  p.M = t->M;
+  p.q = q;
+  p.mu = mu;
+  SolverOptions* o = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+  o->dparam[SICONOS_DPARAM_TOL] = 1e-12;
+  fc3d_clear_last_error();
+  *code = fc3d_driver(&p, r, u, o);
+  solver_options_delete(o);
+  free(o);
+  return 0;
+}
+
+/* fc3d_driver reads the host's blocks in place (issue 14): the block table and index arrays are
+ * checked, never the blocks copied; rows in any order give the same bits; a NULL or misaligned
+ * block pointer and a NaN in a block are refused with the outputs untouched. */
+static int check_driver_reads_blocks_in_place(void) {
+  TwoContacts sorted, reversed;
+  two_contacts(&sorted, 0);
+  two_contacts(&reversed, 1);
+  double r1[6] = {0}, u1[6] = {0}, r2[6] = {0}, u2[6] = {0};
+  int code;
+  solve_two(&sorted, r1, u1, &code);
+  CHECK(code == 0 && r1[0] > 0.0, "two contacts: code %d", code);
+  solve_two(&reversed, r2, u2, &code);
+  CHECK(code == 0 && memcmp(r1, r2, sizeof r1) == 0 && memcmp(u1, u2, sizeof u1) == 0,
+        "a row stored out of column order gives other bits (code %d)", code);
+
+  double r[6], u[6];
+  for (int k = 0; k < 6; k++) r[k] = u[k] = 7.0;
+  sorted.s->block[1] = NULL;
+  solve_two(&sorted, r, u, &code);
+  CHECK(code == FC3D_ERR_NULL_POINTER && strstr(fc3d_last_error_message(), "block 1") && r[0] == 7.0 && u[5] == 7.0,
+        "NULL block pointer: code %d", code);
+  sorted.s->block[1] = (double*)((char*)sorted.blocks[1] + 4);
+  solve_two(&sorted, r, u, &code);
+  CHECK(code < 0 && strstr(fc3d_last_error_message(), "block 1") && r[0] == 7.0, "misaligned block pointer: code %d", code);
+  sorted.s->block[1] = sorted.blocks[1];
+  sorted.s->index2_data[1] = 2;
+  solve_two(&sorted, r, u, &code);
+  CHECK(code == FC3D_ERR_INVALID_STORAGE && r[0] == 7.0, "block column out of range: code %d", code);
+  sorted.s->index2_data[1] = 1;
+  sorted.blocks[1][4] = NAN;
+  solve_two(&sorted, r, u, &code);
+  CHECK(code == FC3D_ERR_NON_FINITE && strstr(fc3d_last_error_message(), "block 1") && r[0] == 7.0 && u[0] == 7.0,
+        "NaN in a coupling block: code %d", code);
+  sorted.blocks[1][4] = 0.25;
+  sorted.blocks[3][0] = INFINITY;
+  solve_two(&sorted, r, u, &code);
+  CHECK(code == FC3D_ERR_NON_FINITE && r[0] == 7.0, "infinity in a diagonal block: code %d", code);
+  two_contacts_free(&sorted);
+  two_contacts_free(&reversed);
+  return 0;
+}
+
 int capi_check_hostile_matrices(void) {
   if (check_get_value() || check_entry_and_triplets() || check_coordinates_and_release()) return 1;
+  if (check_driver_reads_blocks_in_place()) return 1;
   return 0;
 }

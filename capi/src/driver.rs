@@ -9,7 +9,7 @@ use super::params::{
     config_from_c, planar_config_from_c, write_outputs, DPARAM_DUMONT_CRITERION, DPARAM_RESIDU,
     IPARAM_ITER_DONE,
 };
-use super::problem::{planar_problem_from_c, problem_from_c};
+use super::problem::{planar_problem_from_c, problem_view_from_c};
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION};
 use fc3d_core::measure::relative_natural_map_error;
@@ -117,7 +117,8 @@ unsafe fn driver_impl(
         return Err(CError::null("options"));
     }
     let config = config_from_c(&*options)?;
-    let p = problem_from_c(&*problem)?;
+    // The host's sparse-block W is read in place: no copy (the solve checks its values).
+    let p = problem_view_from_c(&*problem)?;
     let report = solve_into_host(&p, reaction, velocity, options, |r, u, observer| {
         solve_with_observer(&p, &config, r, u, observer)
     })?;
@@ -380,7 +381,7 @@ pub unsafe extern "C" fn fc3d_compute_error(
             if error.is_null() {
                 return Err(CError::null("error"));
             }
-            let p = problem_from_c(&*problem)?;
+            let p = problem_view_from_c(&*problem)?;
             let n = p.size();
             let r = c_slice(z as *const c_double, n, "z")?;
             c_slice(w as *const c_double, n, "w")?;
@@ -388,6 +389,11 @@ pub unsafe extern "C" fn fc3d_compute_error(
             let mut u = vec![0.0; n];
             p.velocity(r, &mut u);
             let e = relative_natural_map_error(r, &u, p.mu(), norm.abs());
+            // A non-finite value of W shows in the error (NaN * 0 is NaN): refused only then,
+            // so that W is read once.
+            if !e.is_finite() {
+                p.w().check_finite()?;
+            }
             std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);
             *error = e;
             Ok(if e <= tolerance { 0 } else { 1 })

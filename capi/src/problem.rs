@@ -41,8 +41,21 @@ pub(crate) unsafe fn any_problem_from_c<'a>(
     }
 }
 
-/// The core view of a 3D C problem; dense W, q and mu are borrowed, not copied.
+/// The core view of a 3D C problem; dense W, q and mu are borrowed, not copied; every value of
+/// W is checked finite.
 pub(crate) unsafe fn problem_from_c<'a>(
+    p: &'a FrictionContactProblem,
+) -> CResult<FrictionProblem<'a>> {
+    let view = problem_view_from_c(p)?;
+    view.w().check_finite()?;
+    Ok(view)
+}
+
+/// [`problem_from_c`] for a solve: a sparse-block W is a view of the host's blocks (nothing
+/// copied, see `delassus_view_from_c`) whose values are not read up front; the solve looks for
+/// non-finite ones when its error comes out non-finite (`fc3d_core::solve`), so that a call
+/// costs no extra pass over W.
+pub(crate) unsafe fn problem_view_from_c<'a>(
     p: &'a FrictionContactProblem,
 ) -> CResult<FrictionProblem<'a>> {
     problem_from_c_d::<3>(p)

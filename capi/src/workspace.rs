@@ -12,7 +12,7 @@ use std::os::raw::{c_double, c_int};
 use super::driver::{auto_stage_lines, solve_into_host};
 use super::matrix::c_slice;
 use super::params::config_from_c;
-use super::problem::problem_from_c;
+use super::problem::{problem_from_c, problem_view_from_c};
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_INVALID_SIZE};
 use crate::codes::FC3D_ERR_NULL_POINTER;
@@ -136,7 +136,9 @@ pub unsafe extern "C" fn fc3d_workspace_driver(
                 return Err(CError::null("options"));
             }
             let config = config_from_c(&*options)?;
-            let p = problem_from_c(&*problem)?;
+            // The host's sparse-block W is read in place on every call, never converted (the
+            // workspace keeps its pattern to refill the block rows; the solve checks values).
+            let p = problem_view_from_c(&*problem)?;
             if p.n_contacts() > 0 && contact_ids.is_null() {
                 return Err(CError::null("contact_ids"));
             }

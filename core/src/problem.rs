@@ -147,7 +147,7 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
     pub fn into_owned(self) -> FrictionProblem<'static, D> {
         let w = match self.w {
             Delassus::Dense(d) => Delassus::Dense(d.into_owned()),
-            Delassus::SparseBlock(s) => Delassus::SparseBlock(s),
+            Delassus::SparseBlock(s) => Delassus::SparseBlock(s.into_owned()),
             Delassus::Sparse(s) => Delassus::Sparse(s),
         };
         FrictionProblem {

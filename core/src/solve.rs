@@ -86,7 +86,14 @@ pub(crate) fn solve_with_runner(
         Rescaling::None => run(problem, config, r, u, observer, runner)?,
         Rescaling::Scalar => run_rescaled(problem, config, r, observer, runner)?,
     };
-    Ok(finish(problem, config, outcome, r, u))
+    let report = finish(problem, config, outcome, r, u);
+    // A view of a host's blocks is not read for NaNs and infinities up front (that pass would
+    // cost a sweep): a non-finite entry of W makes W r + q, and so the error, non-finite
+    // whatever r is (NaN * 0 and inf * 0 are NaN), so it is looked for only then.
+    if !report.error.is_finite() {
+        problem.w().check_finite()?;
+    }
+    Ok(report)
 }
 
 /// Runs the configured family on `problem`, after the trivial case (Siconos): when no contact is

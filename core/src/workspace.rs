@@ -10,9 +10,11 @@
 //! * **Prepared W.** The structures a family builds from W before iterating — NSGS's block rows
 //!   and the colouring of a coloured sweep, NSN's Newton matrix pattern with its symbolic LU
 //!   factorization — are kept and refilled with the new values when the new W has the same block
-//!   pattern. The check is part of the refill: one pass over the stored blocks, no allocation
-//!   for the block rows; when the pattern changed, the structure is rebuilt (and counted in
-//!   [`WorkspaceStats`]).
+//!   pattern. A W that is a view of a host's blocks (the C API's sparse-block W) is read in place
+//!   on every call, never converted: the kept rows hold their own copy of its index arrays to
+//!   compare patterns, not its blocks. The check is part of the refill: one pass over the stored
+//!   blocks, no allocation for the block rows; when the pattern changed, the structure is
+//!   rebuilt (and counted in [`WorkspaceStats`]).
 //! * **AUTO's last choice** ([`Workspace::auto_choice`]): while W's block pattern, the tolerance
 //!   and the budget are unchanged, AUTO skips its feature pass and starts from the stage of its
 //!   plan that reached the tolerance in the previous solve; its NSGS and Newton stages use the
@@ -93,7 +95,9 @@ pub struct Workspace {
     memory: HashMap<i64, ContactMemory>,
     /// The map being built for the current solve (kept to reuse its allocation).
     next_memory: HashMap<i64, ContactMemory>,
-    sweep: Option<PreparedSweep>,
+    /// Kept detached ([`BlockRows::into_detached`]): a host's borrowed blocks are not kept
+    /// past its call.
+    sweep: Option<PreparedSweep<'static>>,
     newton: Option<NewtonSolver>,
     auto_choice: Option<AutoChoice>,
     stats: WorkspaceStats,
@@ -210,7 +214,7 @@ impl Workspace {
                         stats.colouring_reused += 1;
                     }
                     let (outcome, back) = nsgs_on_rows(p, options, &limits, prepared, r, u, obs);
-                    *sweep = back;
+                    *sweep = back.and_then(detached);
                     outcome
                 }
                 Method::Auto(options) => {
@@ -226,7 +230,7 @@ impl Workspace {
                     if outcome.is_ok() && carry.resumed {
                         stats.auto_resumed += 1;
                     }
-                    *sweep = carry.sweep;
+                    *sweep = carry.sweep.and_then(detached);
                     *newton = carry.newton;
                     *auto_choice = carry.choice;
                     outcome
@@ -310,21 +314,31 @@ impl Workspace {
     }
 }
 
+/// A prepared sweep that may outlive the call whose W it was built on (see
+/// [`BlockRows::into_detached`]); `None` when its index arrays cannot be copied.
+fn detached(prepared: PreparedSweep<'_>) -> Option<PreparedSweep<'static>> {
+    Some(PreparedSweep {
+        rows: prepared.rows.into_detached()?,
+        colouring: prepared.colouring,
+    })
+}
+
 /// The block rows of `w`: `kept` refilled in place (with its colouring) when `w` has its
 /// pattern, else built anew (without colouring); the flag tells whether the pattern held.
-fn prepared_sweep(
-    kept: Option<PreparedSweep>,
-    w: &Delassus<'_>,
+fn prepared_sweep<'a>(
+    kept: Option<PreparedSweep<'static>>,
+    w: &Delassus<'a>,
     stats: &mut WorkspaceStats,
-) -> Result<(PreparedSweep, bool), Fc3dError> {
-    if let Some(mut prepared) = kept {
+) -> Result<(PreparedSweep<'a>, bool), Fc3dError> {
+    if let Some(kept) = kept {
+        let mut prepared: PreparedSweep<'a> = kept;
         if prepared.rows.refill_from(w) {
             stats.structure_reused += 1;
             return Ok((prepared, true));
         }
     }
     stats.structure_built += 1;
-    let rows: BlockRows = w.block_rows()?;
+    let rows: BlockRows<'a> = w.block_rows()?;
     Ok((
         PreparedSweep {
             rows,

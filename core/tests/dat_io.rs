@@ -133,7 +133,7 @@ fn assert_bit_identical(a: &FrictionProblem<'_>, b: &FrictionProblem<'_>, what: 
         }
         (Delassus::SparseBlock(x), Delassus::SparseBlock(y)) => {
             assert_eq!(x.blocks().len(), y.blocks().len(), "{what}: blocks");
-            for (bx, by) in x.blocks().iter().zip(y.blocks()) {
+            for (bx, by) in x.blocks().zip(y.blocks()) {
                 assert_eq!(bits(bx), bits(by), "{what}: W block");
             }
         }
@@ -145,7 +145,7 @@ fn assert_bit_identical(a: &FrictionProblem<'_>, b: &FrictionProblem<'_>, what: 
 }
 
 /// A sparse-block copy of W: every 3x3 block with a non-zero entry, and every diagonal block.
-fn to_sparse_block(w: &Delassus<'_>) -> BlockSparseMatrix {
+fn to_sparse_block(w: &Delassus<'_>) -> BlockSparseMatrix<'static> {
     let nc = w.nrows() / 3;
     let mut row_ptr = vec![0];
     let mut col_idx = Vec::new();
@@ -653,7 +653,7 @@ fn assert_matrix_bits(a: &Delassus<'_>, b: &Delassus<'_>, what: &str) {
                 (y.row_ptr(), y.col_idx()),
                 "{what}"
             );
-            for (bx, by) in x.blocks().iter().zip(y.blocks()) {
+            for (bx, by) in x.blocks().zip(y.blocks()) {
                 assert_eq!(bits(bx), bits(by), "{what}: block");
             }
         }

@@ -652,7 +652,7 @@ mod with_hdf5 {
             Delassus::SparseBlock(b) => (
                 format!("sparse-block {}x{}", b.n_block_rows(), b.n_block_cols()),
                 b.row_ptr().iter().chain(b.col_idx()).copied().collect(),
-                bits(&b.blocks().concat()),
+                bits(&b.blocks().flatten().copied().collect::<Vec<f64>>()),
             ),
             Delassus::Sparse(c) => (
                 format!("csr {}x{}", c.nrows(), c.ncols()),

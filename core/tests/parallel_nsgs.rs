@@ -33,7 +33,7 @@ fn piles(parts: &[FrictionProblem<'static>]) -> FrictionProblem<'static> {
         for i in 0..w.n_block_rows() {
             for k in w.row_ptr()[i]..w.row_ptr()[i + 1] {
                 cols.push(offset + w.col_idx()[k]);
-                blocks.push(w.blocks()[k]);
+                blocks.push(*w.block(k));
             }
             row_ptr.push(cols.len());
         }

@@ -33,7 +33,7 @@ fn side_by_side(a: &FrictionProblem<'_>, b: &FrictionProblem<'_>) -> FrictionPro
         for i in 0..w.n_block_rows() {
             for k in w.row_ptr()[i]..w.row_ptr()[i + 1] {
                 col_idx.push(w.col_idx()[k] + offset);
-                blocks.push(w.blocks()[k]);
+                blocks.push(*w.block(k));
             }
             row_ptr.push(col_idx.len());
         }

@@ -243,14 +243,19 @@ fn matrix_dims(m: &NumericsMatrix) -> CResult<(usize, usize)> {
     Ok((m.size0 as usize, m.size1 as usize))
 }
 
-/// The core view of a NumericsMatrix (dense storage is borrowed, not copied). Every number of
-/// the host's structs is checked before an array is read with it.
+/// The core view of a NumericsMatrix (dense and sparse-block storage are borrowed, not copied),
+/// every value checked finite. Every number of the host's structs is checked before an array
+/// is read with it.
 pub(crate) unsafe fn delassus_from_c<'a>(m: &'a NumericsMatrix) -> CResult<Delassus<'a>> {
-    delassus_from_c_blocks(m, 3)
+    let w = delassus_from_c_blocks(m, 3)?;
+    w.check_finite()?;
+    Ok(w)
 }
 
-/// [`delassus_from_c`] for the W of a problem of contact dimension `block`: a sparse-block W of
-/// 2x2 blocks (a 2D problem) is copied into a general sparse matrix.
+/// The W of a problem of contact dimension `block`, as [`delassus_from_c`] but, for a
+/// sparse-block W of 3x3 blocks, a view of the host's blocks whose values are not read here
+/// (see `Delassus::check_finite`); a sparse-block W of 2x2 blocks (a 2D problem) is copied into
+/// a general sparse matrix.
 pub(crate) unsafe fn delassus_from_c_blocks<'a>(
     m: &'a NumericsMatrix,
     block: usize,

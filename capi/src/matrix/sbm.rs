@@ -16,7 +16,7 @@ use crate::alloc::c_free;
 use crate::types::*;
 use crate::{ffi_guard, CError, CResult};
 use fc3d_core::error::{try_copy, try_vec};
-use fc3d_core::matrix::{BlockSparseMatrix, CsrMatrix};
+use fc3d_core::matrix::{BlockSparseMatrix, CsrMatrix, Shared};
 
 /// Checks cumulative block sizes: strictly increasing from a positive first size.
 fn check_block_sizes(bs: &[c_uint], what: &str) -> CResult<()> {
@@ -45,7 +45,7 @@ fn check_block_count(count: c_uint, what: &str) -> CResult<()> {
 /// The `blocknumber0 + 1` block-row pointers of a host SBM. Siconos' `filled1` counts the
 /// pointers up to the last block row that holds a block (`SBCM_to_SBM` sets it so, and to 2 for
 /// a grid without rows): the rows past it are empty.
-unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
+unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Shared<'_, usize>> {
     let nbr = s.blocknumber0 as usize;
     let given = s.filled1.min(nbr + 1);
     if s.filled1 > nbr + 1 && nbr > 0 || given == 0 && s.nbblocks != 0 {
@@ -56,9 +56,7 @@ unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
             s.nbblocks
         )));
     }
-    let declared = c_slice(s.index1_data, given, "SBM index1_data")?;
-    let mut ptr = try_vec(nbr + 1, 0usize, "SBM block row pointers")?;
-    ptr[..given].copy_from_slice(declared);
+    let declared: &[usize] = c_slice(s.index1_data, given, "SBM index1_data")?;
     let last = declared.last().copied().unwrap_or(0);
     // The rows up to filled1 - 1 hold every block.
     if last != s.filled2 {
@@ -68,8 +66,13 @@ unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
             s.filled2
         )));
     }
+    if given == nbr + 1 {
+        return Ok(Shared::Borrowed(declared));
+    }
+    let mut ptr = try_vec(nbr + 1, 0usize, "SBM block row pointers")?;
+    ptr[..given].copy_from_slice(declared);
     ptr[given..].iter_mut().for_each(|p| *p = last);
-    Ok(ptr)
+    Ok(ptr.into())
 }
 
 /// The checked structure of a host SBM with uniform `b x b` blocks covering `rows x cols`: block
@@ -77,8 +80,10 @@ unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Vec<usize>> {
 struct UniformSbm<'a> {
     nbr: usize,
     nbc: usize,
-    row_ptr: Vec<usize>,
-    col_idx: Vec<usize>,
+    /// The host's arrays when they can be used as they are (always for the column indices
+    /// of rows sorted by column), else fc3d's copies.
+    row_ptr: Shared<'a, usize>,
+    col_idx: Shared<'a, usize>,
     /// The host's block pointers, in its order.
     pointers: &'a [*mut c_double],
     /// Where block `k` (sorted order) is among `pointers`; `None` when the host's rows are
@@ -139,7 +144,7 @@ unsafe fn uniform_sbm<'a>(
             w[0], w[1]
         )));
     }
-    let given_cols = c_slice(s.index2_data, nb, "SBM index2_data")?;
+    let given_cols: &[usize] = c_slice(s.index2_data, nb, "SBM index2_data")?;
     let ptrs = c_slice(s.block as *const *mut c_double, nb, "SBM block array")?;
     // A Siconos SBM need not sort the blocks of a row (SBCM_to_SBM keeps their coordinate
     // order): the copy sorts them (stably), so that products sum in the same order whatever the
@@ -150,7 +155,7 @@ unsafe fn uniform_sbm<'a>(
             .all(|w| w[0] <= w[1])
     });
     let (col_idx, order) = if sorted {
-        (try_copy(given_cols, "SBM block columns")?, None)
+        (Shared::Borrowed(given_cols), None)
     } else {
         let mut order = try_vec(nb, 0usize, "SBM block order")?;
         order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
@@ -161,7 +166,7 @@ unsafe fn uniform_sbm<'a>(
         for (&k, c) in order.iter().zip(col_idx.iter_mut()) {
             *c = given_cols[k];
         }
-        (col_idx, Some(order))
+        (col_idx.into(), Some(order))
     };
     Ok(UniformSbm {
         nbr,
@@ -173,12 +178,20 @@ unsafe fn uniform_sbm<'a>(
     })
 }
 
-/// Validated block-sparse core copy of a Siconos SBM with uniform 3x3 blocks.
-pub(super) unsafe fn block_sparse_from_sbm(
-    s: &SparseBlockStructuredMatrix,
+/// A validated block-sparse core view of a Siconos SBM with uniform 3x3 blocks, reading the
+/// host's blocks in place: nothing is copied but the row pointers a short `filled1` leaves
+/// implicit, and, when a row is not sorted by column, the column indices and block references
+/// in sorted order. The checks read the index arrays and the table of block pointers only (each
+/// pointer non-NULL, aligned, its 9 doubles within the address space); the values themselves are
+/// read by the solve (see `Delassus::check_finite`).
+///
+/// Siconos and the core store a 3x3 block the same way (9 doubles, column-major), so a block
+/// pointer is used as it is, never transposed.
+pub(super) unsafe fn block_sparse_from_sbm<'a>(
+    s: &'a SparseBlockStructuredMatrix,
     rows: usize,
     cols: usize,
-) -> CResult<BlockSparseMatrix> {
+) -> CResult<BlockSparseMatrix<'a>> {
     let UniformSbm {
         nbr,
         nbc,
@@ -187,54 +200,40 @@ pub(super) unsafe fn block_sparse_from_sbm(
         pointers,
         order,
     } = uniform_sbm(s, rows, cols, 3)?;
-    // One pass over the host's blocks: each is read once, checked and stored (messages are
-    // formatted only on failure).
-    let storage = huge_page_buffer(9 * col_idx.len());
-    BlockSparseMatrix::from_block_fn(nbr, nbc, row_ptr, col_idx, storage, |k| {
-        let p = block_pointer(pointers, order.as_deref(), k);
-        // The checks of c_slice, inline (this runs once per block of W); its message on failure.
+    for (k, &p) in pointers.iter().enumerate() {
         if p.is_null() || !p.is_aligned() || (p as usize).checked_add(72).is_none() {
-            return Err(match c_slice(p, 9, "SBM block") {
+            return Err(match c_slice(p as *const c_double, 9, "SBM block") {
                 Err(e) => CError::new(e.code, format!("{} (block {k})", e.message)),
                 Ok(_) => storage_err(format!("SBM block {k} cannot be read")),
             });
         }
-        // SAFETY: p is non-NULL, aligned, and 9 doubles from it fit the address space; that they
-        // are readable is the host's promise, as for every array it hands over.
-        Ok(std::ptr::read(p as *const [f64; 9]))
-    })
-}
-
-/// An empty vector with room for `len` values, whose pages the kernel is asked to back with
-/// transparent huge pages (Linux `MADV_HUGEPAGE`) when it is large: the copy of a large W then
-/// takes a few hundred page faults instead of tens of thousands (page faults were most of the
-/// copy's cost at 10^5 contacts). Empty (the caller reserves) when the reservation fails; the
-/// advice is a hint, ignored where unsupported.
-fn huge_page_buffer(len: usize) -> Vec<f64> {
-    const HUGE_PAGE: usize = 2 << 20;
-    let mut v: Vec<f64> = Vec::new();
-    let bytes = len.saturating_mul(8);
-    if bytes < 4 * HUGE_PAGE || v.try_reserve_exact(len).is_err() {
-        return v;
     }
-    #[cfg(target_os = "linux")]
-    {
-        let start = v.as_ptr() as usize;
-        let aligned = start.next_multiple_of(HUGE_PAGE);
-        let end = (start + bytes) / HUGE_PAGE * HUGE_PAGE;
-        if end > aligned {
-            // SAFETY: [aligned, end) lies inside the allocation just reserved; the advice changes
-            // how the kernel backs the pages, not their contents or ownership.
-            unsafe {
-                libc::madvise(
-                    aligned as *mut libc::c_void,
-                    end - aligned,
-                    libc::MADV_HUGEPAGE,
-                );
-            }
+    let table: Shared<'a, &'a [f64; 9]> = match order {
+        // SAFETY: every pointer of `pointers` was checked above to be non-NULL, aligned for f64
+        // and followed by 9 doubles within the address space; that they are readable and left
+        // unchanged while the call lasts (`'a`, the borrow of the host's matrix) is the host's
+        // promise, as for every array it hands over. A `&[f64; 9]` is a thin pointer, laid out
+        // as the `*mut c_double` it is read from, so the table is the host's, reinterpreted.
+        None => Shared::Borrowed(std::slice::from_raw_parts(
+            pointers.as_ptr() as *const &'a [f64; 9],
+            pointers.len(),
+        )),
+        Some(order) => {
+            let mut t: Vec<&'a [f64; 9]> = Vec::new();
+            t.try_reserve_exact(order.len()).map_err(|_| {
+                fc3d_core::error::Fc3dError::OutOfMemory {
+                    what: "sorted SBM block table".into(),
+                    bytes: order.len().saturating_mul(8),
+                }
+            })?;
+            // SAFETY: as above, pointer by pointer.
+            t.extend(order.iter().map(|&k| &*(pointers[k] as *const [f64; 9])));
+            t.into()
         }
-    }
-    v
+    };
+    Ok(BlockSparseMatrix::from_block_table(
+        nbr, nbc, row_ptr, col_idx, table,
+    )?)
 }
 
 /// Validated general sparse copy of a Siconos SBM with uniform `b x b` blocks (the 2x2 blocks of

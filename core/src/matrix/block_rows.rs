@@ -1,32 +1,40 @@
 use std::sync::Arc;
 
+use super::block_sparse::NO_DIAGONAL;
+use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use super::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::error::Fc3dError;
 use crate::math::linalg::{block_vec_add, contact_of, Block};
 
 /// Block-row view of a square W with `D x D` blocks (`D` the contact dimension, 3 by default),
-/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block (row-major,
-/// owned) and the coupling blocks of its row.
+/// built once per solve for Gauss-Seidel sweeps: for each contact, its diagonal block and the
+/// coupling blocks of its row.
 ///
-/// On a sparse-block W the coupling blocks are W's own arrays, shared (reference-counted), not
-/// copied: preparing the view reads the indices and the diagonal blocks only, so it costs a small
-/// fraction of one sweep and no second copy of W. Rows may then hold their diagonal block among
-/// the others: the sweeps skip it (it is [`BlockRows::diagonal`]). From a dense or CSR W, the
+/// On a sparse-block W the blocks are W's own arrays, shared (reference-counted) or, when W is a
+/// view of a host's blocks, borrowed for `'a`: not copied. Preparing the view reads the indices
+/// only (where each contact's diagonal block is), so it costs a small fraction of one sweep and
+/// no second copy of W. Rows then hold their diagonal block among the others: the sweeps skip it
+/// there and read it through [`BlockRows::diagonal`]. From a dense or CSR W, the
 /// view is built in one pass, row by row, keeping only the blocks with a non-zero entry, so a
 /// scene that couples few contacts costs what it couples.
 #[derive(Debug, Clone)]
-pub struct BlockRows<const D: usize = 3> {
+pub struct BlockRows<'a, const D: usize = 3> {
     n_contacts: usize,
+    /// Each contact's diagonal block, row-major, when W's storage does not hold exactly one
+    /// per contact (a dense or CSR W, or a sparse-block W storing one twice); empty otherwise.
     diagonal: Vec<Block<D>>,
+    /// Where each contact's diagonal block is among `values`, when W stores exactly one per
+    /// contact (a sparse-block W): read from there, nothing gathered or copied.
+    diagonal_at: Arc<Vec<usize>>,
     n_off_diagonal: usize,
-    row_ptr: Arc<Vec<usize>>,
-    cols: Arc<Vec<usize>>,
+    row_ptr: Shared<'a, usize>,
+    cols: Shared<'a, usize>,
     /// `D * D` values per block, column-major, in row order.
-    values: Arc<Vec<f64>>,
+    values: BlockValues<'a>,
 }
 
-impl<const D: usize> BlockRows<D> {
-    pub fn from_delassus(w: &Delassus<'_>) -> Result<Self, Fc3dError> {
+impl<'a, const D: usize> BlockRows<'a, D> {
+    pub fn from_delassus(w: &Delassus<'a>) -> Result<Self, Fc3dError> {
         let n = w.nrows();
         if n != w.ncols() || n % D != 0 {
             return Err(Fc3dError::InvalidStructure(format!(
@@ -45,7 +53,7 @@ impl<const D: usize> BlockRows<D> {
     /// The view of a sparse-block W, sharing its arrays (no copy of the blocks): one pass over
     /// the block indices and the diagonal blocks. Duplicate blocks at one place are summed, as
     /// every other reader of W sums them.
-    pub fn from_block_sparse(s: &BlockSparseMatrix) -> Result<Self, Fc3dError> {
+    pub fn from_block_sparse(s: &BlockSparseMatrix<'a>) -> Result<Self, Fc3dError> {
         if D != 3 {
             return Err(Fc3dError::InvalidStructure(format!(
                 "a 3x3 sparse-block W cannot be cut into {D}x{D} contact blocks"
@@ -53,30 +61,32 @@ impl<const D: usize> BlockRows<D> {
         }
         let nc = s.n_block_rows();
         let (row_ptr, cols, values) = s.shared_parts();
-        let mut diagonal = vec![[[0.0; D]; D]; nc];
-        let mut n_off_diagonal = 0;
-        for (c, diag) in diagonal.iter_mut().enumerate() {
-            let mut found = false;
-            for k in row_ptr[c]..row_ptr[c + 1] {
-                if cols[k] == c {
-                    found = true;
-                    let b = &values[D * D * k..D * D * (k + 1)];
-                    for (i, row) in diag.iter_mut().enumerate() {
-                        for (j, v) in row.iter_mut().enumerate() {
-                            *v += b[i + D * j];
-                        }
-                    }
-                } else {
-                    n_off_diagonal += 1;
-                }
-            }
-            if !found {
-                return Err(Fc3dError::MissingDiagonalBlock { contact: c });
-            }
+        // Where each diagonal block is was found when W's structure was checked: nothing is
+        // read here; the blocks are read where they are, by the sweeps.
+        let (positions, repeated) = s.diagonal_positions();
+        if let Some(c) = positions.iter().position(|&k| k == NO_DIAGONAL) {
+            return Err(Fc3dError::MissingDiagonalBlock { contact: c });
+        }
+        let mut diagonal_at = Arc::clone(positions);
+        let mut n_off_diagonal = s.n_blocks() - nc;
+        let mut diagonal = Vec::new();
+        if repeated {
+            // A diagonal block stored twice: each contact's sum, copied once.
+            diagonal_at = Arc::new(Vec::new());
+            diagonal = crate::error::try_vec(nc, [[0.0; D]; D], "diagonal blocks")?;
+            sum_diagonals(s, &mut diagonal);
+            n_off_diagonal = (0..nc)
+                .map(|c| {
+                    (row_ptr[c]..row_ptr[c + 1])
+                        .filter(|&k| cols[k] != c)
+                        .count()
+                })
+                .sum();
         }
         Ok(BlockRows {
             n_contacts: nc,
             diagonal,
+            diagonal_at,
             n_off_diagonal,
             row_ptr,
             cols,
@@ -91,38 +101,31 @@ impl<const D: usize> BlockRows<D> {
     /// steps keeps its prepared rows this way. On a sparse-block W nothing is allocated: the
     /// diagonal blocks are refilled in place and W's arrays shared; a dense or CSR W is cut into
     /// rows again (one pass) and its pattern compared.
-    pub fn refill_from(&mut self, w: &Delassus<'_>) -> bool {
+    pub fn refill_from(&mut self, w: &Delassus<'a>) -> bool {
         let nc = self.n_contacts;
         if w.nrows() != D * nc || w.ncols() != D * nc {
             return false;
         }
         match w {
             Delassus::SparseBlock(s) => {
-                if D != 3
-                    || s.row_ptr() != self.row_ptr.as_slice()
-                    || s.col_idx() != self.cols.as_slice()
-                {
+                if D != 3 || s.row_ptr() != &*self.row_ptr || s.col_idx() != &*self.cols {
                     return false;
                 }
+                // Same pattern: the diagonal positions hold; summed diagonals are summed again.
+                if self.diagonal_at.is_empty() {
+                    sum_diagonals(s, &mut self.diagonal);
+                }
+                // The host's index arrays when W borrows them (equal to ours, checked above).
                 let (row_ptr, cols, values) = s.shared_parts();
-                for (c, diag) in self.diagonal.iter_mut().enumerate() {
-                    *diag = [[0.0; D]; D];
-                    for k in row_ptr[c]..row_ptr[c + 1] {
-                        if cols[k] == c {
-                            let b = &values[D * D * k..D * D * (k + 1)];
-                            for (i, row) in diag.iter_mut().enumerate() {
-                                for (j, v) in row.iter_mut().enumerate() {
-                                    *v += b[i + D * j];
-                                }
-                            }
-                        }
-                    }
+                if row_ptr.is_borrowed() {
+                    self.row_ptr = row_ptr;
+                    self.cols = cols;
                 }
                 self.values = values;
                 true
             }
             Delassus::Dense(_) | Delassus::Sparse(_) => match Self::from_delassus(w) {
-                Ok(fresh) if fresh.row_ptr == self.row_ptr && fresh.cols == self.cols => {
+                Ok(fresh) if *fresh.row_ptr == *self.row_ptr && *fresh.cols == *self.cols => {
                     *self = fresh;
                     true
                 }
@@ -162,18 +165,19 @@ impl<const D: usize> BlockRows<D> {
         BlockRows {
             n_contacts: nc,
             diagonal: vec![[[0.0; D]; D]; nc],
+            diagonal_at: Arc::new(Vec::new()),
             n_off_diagonal: 0,
-            row_ptr: Arc::new(Vec::new()),
-            cols: Arc::new(Vec::new()),
-            values: Arc::new(Vec::new()),
+            row_ptr: Shared::Owned(Arc::new(Vec::new())),
+            cols: Shared::Owned(Arc::new(Vec::new())),
+            values: BlockValues::Packed(Arc::new(Vec::new())),
         }
     }
 
     fn finish(mut self, row_ptr: Vec<usize>, cols: Vec<usize>, values: Vec<f64>) -> Self {
         self.n_off_diagonal = cols.len();
-        self.row_ptr = Arc::new(row_ptr);
-        self.cols = Arc::new(cols);
-        self.values = Arc::new(values);
+        self.row_ptr = row_ptr.into();
+        self.cols = cols.into();
+        self.values = BlockValues::Packed(Arc::new(values));
         self
     }
 
@@ -248,15 +252,28 @@ impl<const D: usize> BlockRows<D> {
     }
 
     #[inline]
-    pub fn diagonal(&self, c: usize) -> &Block<D> {
-        &self.diagonal[c]
+    pub fn diagonal(&self, c: usize) -> Block<D> {
+        if self.diagonal_at.is_empty() {
+            return self.diagonal[c];
+        }
+        let k = self.diagonal_at[c];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let m = &blocks.at(k)[..D * D];
+            let mut b = [[0.0; D]; D];
+            for (i, row) in b.iter_mut().enumerate() {
+                for (j, v) in row.iter_mut().enumerate() {
+                    *v = m[i + D * j];
+                }
+            }
+            b
+        })
     }
 
     /// `u <- W r + q` through the stored blocks (zero blocks skipped, so a dense W costs what
     /// its coupling costs).
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
-            let uc = block_vec_add(&self.diagonal[c], &contact_of(r, c), &self.local_q(c, q, r));
+            let uc = block_vec_add(&self.diagonal(c), &contact_of(r, c), &self.local_q(c, q, r));
             u[D * c..D * c + D].copy_from_slice(&uc);
         }
     }
@@ -282,21 +299,24 @@ impl<const D: usize> BlockRows<D> {
     /// (reactions shared between sweeping threads).
     #[inline]
     pub fn local_q_normal_by(&self, c: usize, q: &[f64], r_at: impl Fn(usize) -> f64) -> f64 {
-        let mut acc = q[D * c];
-        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let b = self.cols[k];
-            if b == c {
-                continue;
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        let cols = &self.cols[range.clone()];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let mut acc = q[D * c];
+            for (k, &b) in range.clone().zip(cols) {
+                if b == c {
+                    continue;
+                }
+                // Row 0 of the column-major block (cut to its length: no bounds checks below).
+                let m = &blocks.at(k)[..D * D];
+                let mut s = m[0] * r_at(D * b);
+                for j in 1..D {
+                    s += m[D * j] * r_at(D * b + j);
+                }
+                acc += s;
             }
-            // Row 0 of the column-major block.
-            let m = &self.values[D * D * k..D * D * (k + 1)];
-            let mut s = m[0] * r_at(D * b);
-            for j in 1..D {
-                s += m[D * j] * r_at(D * b + j);
-            }
-            acc += s;
-        }
-        acc
+            acc
+        })
     }
 
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
@@ -309,23 +329,77 @@ impl<const D: usize> BlockRows<D> {
     /// shared between sweeping threads).
     #[inline]
     pub fn local_q_by(&self, c: usize, q: &[f64], r_of: impl Fn(usize) -> [f64; D]) -> [f64; D] {
-        let mut acc = contact_of(q, c);
-        for k in self.row_ptr[c]..self.row_ptr[c + 1] {
-            let b = self.cols[k];
-            if b == c {
-                continue;
-            }
-            let rb: [f64; D] = r_of(b);
-            let m = &self.values[D * D * k..D * D * (k + 1)];
-            // Each component summed in the order of `block_vec_add` (same bits as a row-major
-            // block).
-            for (i, a) in acc.iter_mut().enumerate() {
-                for (j, x) in rb.iter().enumerate() {
-                    *a += m[i + D * j] * x;
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        let cols = &self.cols[range.clone()];
+        with_blocks!(&self.values, D * D, |blocks| {
+            let mut acc = contact_of(q, c);
+            for (k, &b) in range.clone().zip(cols) {
+                if b == c {
+                    continue;
+                }
+                let rb: [f64; D] = r_of(b);
+                let m = &blocks.at(k)[..D * D];
+                // Each component summed in the order of `block_vec_add` (same bits as a
+                // row-major block).
+                for (i, a) in acc.iter_mut().enumerate() {
+                    for (j, x) in rb.iter().enumerate() {
+                        *a += m[i + D * j] * x;
+                    }
                 }
             }
+            acc
+        })
+    }
+
+    /// The same rows with nothing borrowed, to be kept past the borrow (a workspace's, between
+    /// calls): borrowed index arrays are copied (once: a workspace then compares the next W's
+    /// pattern with its own copies), borrowed blocks dropped ([`BlockRows::refill_from`] takes
+    /// the next W's). `None` when the copy cannot be allocated.
+    pub fn into_detached(self) -> Option<BlockRows<'static, D>> {
+        let copy = |a: Shared<'a, usize>| -> Option<Shared<'static, usize>> {
+            Some(match a {
+                Shared::Owned(v) => Shared::Owned(v),
+                Shared::Borrowed(s) => {
+                    Shared::Owned(Arc::new(crate::error::try_copy(s, "block rows").ok()?))
+                }
+            })
+        };
+        let values = match self.values {
+            BlockValues::Packed(v) => BlockValues::Packed(v),
+            BlockValues::Table(_) => BlockValues::Packed(Arc::new(Vec::new())),
+        };
+        Some(BlockRows {
+            n_contacts: self.n_contacts,
+            diagonal: self.diagonal,
+            diagonal_at: self.diagonal_at,
+            n_off_diagonal: self.n_off_diagonal,
+            row_ptr: copy(self.row_ptr)?,
+            cols: copy(self.cols)?,
+            values,
+        })
+    }
+}
+
+/// Each contact's diagonal block of `s`, the sum of those stored (row-major).
+fn sum_diagonals<const D: usize>(s: &BlockSparseMatrix<'_>, diagonal: &mut [Block<D>]) {
+    let (row_ptr, cols) = (s.row_ptr(), s.col_idx());
+    for (c, diag) in diagonal.iter_mut().enumerate() {
+        *diag = [[0.0; D]; D];
+        for k in row_ptr[c]..row_ptr[c + 1] {
+            if cols[k] == c {
+                add_block(diag, s.block(k));
+            }
         }
-        acc
+    }
+}
+
+/// `diag += b` for a column-major block `b`.
+#[inline]
+fn add_block<const D: usize>(diag: &mut Block<D>, b: &[f64]) {
+    for (i, row) in diag.iter_mut().enumerate() {
+        for (j, v) in row.iter_mut().enumerate() {
+            *v += b[i + D * j];
+        }
     }
 }
 
@@ -334,7 +408,7 @@ mod tests {
     use super::*;
 
     /// 3 contacts, a chain: 0-1 coupled, 1-2 coupled, 0-2 not; block (0, 1) stored twice.
-    fn chain() -> BlockSparseMatrix {
+    fn chain() -> BlockSparseMatrix<'static> {
         let b = |s: f64| -> [f64; 9] { std::array::from_fn(|k| s + k as f64) };
         BlockSparseMatrix::new(
             3,
@@ -360,7 +434,11 @@ mod tests {
         let s = chain();
         let rows = BlockRows::<3>::from_block_sparse(&s).unwrap();
         // The coupling blocks are W's own arrays, not a copy.
-        assert!(Arc::ptr_eq(&rows.values, &s.shared_parts().2));
+        let (BlockValues::Packed(a), BlockValues::Packed(b)) = (&rows.values, &s.shared_parts().2)
+        else {
+            panic!("packed storage expected")
+        };
+        assert!(Arc::ptr_eq(a, b));
         assert_eq!(rows.n_off_diagonal(), 5);
         let sparse = Delassus::SparseBlock(s);
         let dense = Delassus::Dense(sparse.to_dense());

@@ -1,24 +1,44 @@
 use std::sync::Arc;
 
+use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::{mat3_from_col_major, Mat3};
 
 /// Square 3x3-block sparse matrix in block-CSR order, blocks stored column-major as in Siconos'
 /// `SparseBlockStructuredMatrix` (restricted to the uniform 3x3 blocks of fc3d).
 ///
-/// The arrays are reference-counted: the [`super::BlockRows`] view of a sweep shares them instead
-/// of copying W (a clone is cheap too; [`BlockSparseMatrix::scaled`] copies).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlockSparseMatrix {
+/// The arrays are fc3d's own, reference-counted (the [`super::BlockRows`] view of a sweep shares
+/// them instead of copying W; a clone is cheap too; [`BlockSparseMatrix::scaled`] copies), or a
+/// host's, borrowed for `'a` ([`BlockSparseMatrix::from_block_table`]: zero copy).
+#[derive(Debug, Clone)]
+pub struct BlockSparseMatrix<'a> {
     n_block_rows: usize,
     n_block_cols: usize,
-    row_ptr: Arc<Vec<usize>>,
-    col_idx: Arc<Vec<usize>>,
-    /// 9 values per block, column-major, blocks one after the other in storage order.
-    values: Arc<Vec<f64>>,
+    row_ptr: Shared<'a, usize>,
+    col_idx: Shared<'a, usize>,
+    /// 9 values per block, column-major, blocks in storage order.
+    values: BlockValues<'a>,
+    /// Where each block row's diagonal block is stored ([`NO_DIAGONAL`] when it has none),
+    /// found in the pass that checks the structure.
+    diagonal_at: Arc<Vec<usize>>,
+    /// Whether some block row stores its diagonal block more than once.
+    repeated_diagonal: bool,
 }
 
-impl BlockSparseMatrix {
+/// [`BlockSparseMatrix::diagonal_positions`] of a block row without a diagonal block.
+pub const NO_DIAGONAL: usize = usize::MAX;
+
+impl PartialEq for BlockSparseMatrix<'_> {
+    fn eq(&self, other: &Self) -> bool {
+        self.n_block_rows == other.n_block_rows
+            && self.n_block_cols == other.n_block_cols
+            && *self.row_ptr == *other.row_ptr
+            && *self.col_idx == *other.col_idx
+            && self.blocks().eq(other.blocks())
+    }
+}
+
+impl BlockSparseMatrix<'static> {
     /// `row_ptr` has `n_block_rows + 1` entries; block `k` sits at block row `i` for
     /// `row_ptr[i] <= k < row_ptr[i+1]`, block column `col_idx[k]`.
     pub fn new(
@@ -28,7 +48,8 @@ impl BlockSparseMatrix {
         col_idx: Vec<usize>,
         blocks: Vec<[f64; 9]>,
     ) -> Result<Self, Fc3dError> {
-        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
         if blocks.len() != nb {
             return Err(Fc3dError::dims("blocks", nb, blocks.len()));
@@ -39,18 +60,20 @@ impl BlockSparseMatrix {
         Ok(BlockSparseMatrix {
             n_block_rows,
             n_block_cols,
-            row_ptr: Arc::new(row_ptr),
-            col_idx: Arc::new(col_idx),
+            row_ptr: row_ptr.into(),
+            col_idx: col_idx.into(),
             // Same memory, seen as 9 n_blocks values: no copy.
-            values: Arc::new(blocks.into_flattened()),
+            values: BlockValues::Packed(Arc::new(blocks.into_flattened())),
+            diagonal_at,
+            repeated_diagonal,
         })
     }
 
     /// The matrix whose block `k` (storage order, column-major) is `block(k)`, built in one
     /// streaming pass: each block is checked finite as it is copied into storage allocated once,
-    /// fallibly (no zero-filled buffer first, no second pass). What a host's sparse-block W is
-    /// converted with. `storage` is where the values go (cleared first): a caller may hand a
-    /// buffer it prepared (reserved, or advised to the kernel), else `Vec::new()`.
+    /// fallibly (no zero-filled buffer first, no second pass). `storage` is where the values go
+    /// (cleared first): a caller may hand a buffer it prepared (reserved, or advised to the
+    /// kernel), else `Vec::new()`.
     pub fn from_block_fn<E: From<Fc3dError>>(
         n_block_rows: usize,
         n_block_cols: usize,
@@ -59,7 +82,8 @@ impl BlockSparseMatrix {
         storage: Vec<f64>,
         mut block: impl FnMut(usize) -> Result<[f64; 9], E>,
     ) -> Result<Self, E> {
-        check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
         let nb = col_idx.len();
         let mut values = storage;
         values.clear();
@@ -77,43 +101,108 @@ impl BlockSparseMatrix {
         Ok(BlockSparseMatrix {
             n_block_rows,
             n_block_cols,
-            row_ptr: Arc::new(row_ptr),
-            col_idx: Arc::new(col_idx),
-            values: Arc::new(values),
+            row_ptr: row_ptr.into(),
+            col_idx: col_idx.into(),
+            values: BlockValues::Packed(Arc::new(values)),
+            diagonal_at,
+            repeated_diagonal,
+        })
+    }
+}
+
+impl<'a> BlockSparseMatrix<'a> {
+    /// A view of blocks that live elsewhere (a host's, for the length of a call): block `k` is
+    /// `*blocks[k]`, nothing is copied. The structure is checked here (the index arrays only);
+    /// the values are not read: [`BlockSparseMatrix::check_finite`] does that when asked (a
+    /// solve asks when its error comes out non-finite, which a non-finite entry of W always
+    /// causes, since `NaN * 0` and `inf * 0` are NaN).
+    pub fn from_block_table(
+        n_block_rows: usize,
+        n_block_cols: usize,
+        row_ptr: Shared<'a, usize>,
+        col_idx: Shared<'a, usize>,
+        blocks: Shared<'a, &'a [f64; 9]>,
+    ) -> Result<Self, Fc3dError> {
+        let (diagonal_at, repeated_diagonal) =
+            check_structure(n_block_rows, n_block_cols, &row_ptr, &col_idx)?;
+        let nb = col_idx.len();
+        if blocks.len() != nb {
+            return Err(Fc3dError::dims("blocks", nb, blocks.len()));
+        }
+        Ok(BlockSparseMatrix {
+            n_block_rows,
+            n_block_cols,
+            row_ptr,
+            col_idx,
+            values: BlockValues::Table(blocks),
+            diagonal_at,
+            repeated_diagonal,
         })
     }
 
-    /// `alpha * self`, same block structure.
-    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix {
-        let mut m = self.clone();
-        Arc::make_mut(&mut m.values)
-            .iter_mut()
-            .for_each(|v| *v *= alpha);
+    /// Whether the blocks are borrowed (a view over a host's blocks).
+    pub fn is_borrowed(&self) -> bool {
+        self.values.is_borrowed()
+    }
+
+    /// Fails with [`Fc3dError::NonFinite`] naming the first block holding a NaN or an infinity.
+    pub fn check_finite(&self) -> Result<(), Fc3dError> {
+        for k in 0..self.n_blocks() {
+            check_block(k, self.block(k))?;
+        }
+        Ok(())
+    }
+
+    /// An owned copy (owned storage is shared, borrowed blocks are copied).
+    pub fn into_owned(self) -> BlockSparseMatrix<'static> {
+        let values = match self.values {
+            BlockValues::Packed(v) => v,
+            BlockValues::Table(t) => Arc::new(t.iter().flat_map(|b| b.iter().copied()).collect()),
+        };
+        BlockSparseMatrix {
+            n_block_rows: self.n_block_rows,
+            n_block_cols: self.n_block_cols,
+            row_ptr: self.row_ptr.into_owned(),
+            col_idx: self.col_idx.into_owned(),
+            values: BlockValues::Packed(values),
+            diagonal_at: self.diagonal_at,
+            repeated_diagonal: self.repeated_diagonal,
+        }
+    }
+
+    /// `alpha * self`, same block structure (owned).
+    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix<'static> {
+        let mut m = self.clone().into_owned();
+        if let BlockValues::Packed(v) = &mut m.values {
+            Arc::make_mut(v).iter_mut().for_each(|v| *v *= alpha);
+        }
         m
     }
 
     /// `(n_block_rows, n_block_cols, row_ptr, col_idx, values)` (9 column-major values per
-    /// block), without a copy unless the arrays are shared with a view still alive.
+    /// block), without a copy unless the arrays are shared with a view still alive or borrowed.
     #[allow(clippy::type_complexity)]
     pub fn into_parts(self) -> (usize, usize, Vec<usize>, Vec<usize>, Vec<f64>) {
-        let take = |a: Arc<Vec<usize>>| Arc::try_unwrap(a).unwrap_or_else(|a| (*a).clone());
-        let values = Arc::try_unwrap(self.values).unwrap_or_else(|a| (*a).clone());
+        let owned = self.into_owned();
+        let BlockValues::Packed(values) = owned.values else {
+            unreachable!("into_owned packs the values")
+        };
+        let values = Arc::try_unwrap(values).unwrap_or_else(|a| (*a).clone());
         (
-            self.n_block_rows,
-            self.n_block_cols,
-            take(self.row_ptr),
-            take(self.col_idx),
+            owned.n_block_rows,
+            owned.n_block_cols,
+            owned.row_ptr.into_vec(),
+            owned.col_idx.into_vec(),
             values,
         )
     }
 
-    /// The shared arrays `(row_ptr, col_idx, values)` (9 column-major values per block), for
-    /// views that must not copy W.
-    pub(crate) fn shared_parts(&self) -> (Arc<Vec<usize>>, Arc<Vec<usize>>, Arc<Vec<f64>>) {
+    /// The shared arrays `(row_ptr, col_idx, values)`, for views that must not copy W.
+    pub(crate) fn shared_parts(&self) -> (Shared<'a, usize>, Shared<'a, usize>, BlockValues<'a>) {
         (
-            Arc::clone(&self.row_ptr),
-            Arc::clone(&self.col_idx),
-            Arc::clone(&self.values),
+            self.row_ptr.clone(),
+            self.col_idx.clone(),
+            self.values.clone(),
         )
     }
 
@@ -138,16 +227,27 @@ impl BlockSparseMatrix {
     pub fn col_idx(&self) -> &[usize] {
         &self.col_idx
     }
+
+    /// Block `k` of the storage order, column-major.
+    #[inline]
+    pub fn block(&self, k: usize) -> &[f64; 9] {
+        match &self.values {
+            BlockValues::Packed(v) => v[9 * k..9 * (k + 1)]
+                .try_into()
+                .expect("9 values per block"),
+            BlockValues::Table(t) => t[k],
+        }
+    }
+
     /// Column-major 3x3 blocks in storage order.
-    pub fn blocks(&self) -> &[[f64; 9]] {
-        self.values.as_chunks::<9>().0
+    pub fn blocks(&self) -> impl ExactSizeIterator<Item = &[f64; 9]> + '_ {
+        (0..self.n_blocks()).map(move |k| self.block(k))
     }
 
     /// Iterates `(block_row, block_col, column-major block)`.
     pub fn iter_blocks(&self) -> impl Iterator<Item = (usize, usize, &[f64; 9])> + '_ {
         (0..self.n_block_rows).flat_map(move |i| {
-            (self.row_ptr[i]..self.row_ptr[i + 1])
-                .map(move |k| (i, self.col_idx[k], &self.blocks()[k]))
+            (self.row_ptr[i]..self.row_ptr[i + 1]).map(move |k| (i, self.col_idx[k], self.block(k)))
         })
     }
 
@@ -155,7 +255,7 @@ impl BlockSparseMatrix {
         let (bi, bj) = (i / 3, j / 3);
         (self.row_ptr[bi]..self.row_ptr[bi + 1])
             .filter(|&k| self.col_idx[k] == bj)
-            .map(|k| self.values[9 * k + (i % 3) + 3 * (j % 3)])
+            .map(|k| self.block(k)[(i % 3) + 3 * (j % 3)])
             .sum()
     }
 
@@ -164,7 +264,7 @@ impl BlockSparseMatrix {
         let mut found = None::<Mat3>;
         for k in self.row_ptr[c]..self.row_ptr[c + 1] {
             if self.col_idx[k] == c {
-                let b = mat3_from_col_major(&self.blocks()[k]);
+                let b = mat3_from_col_major(self.block(k));
                 found = Some(match found {
                     None => b,
                     Some(a) => {
@@ -182,29 +282,28 @@ impl BlockSparseMatrix {
         found
     }
 
+    /// `y <- y + W x`.
     pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
-        let blocks = self.blocks();
-        for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(self.n_block_rows) {
-            // The row's sums kept in registers; each entry gets its terms in the same order as
-            // block by block into y.
-            let mut acc = [ys[0], ys[1], ys[2]];
-            for k in self.row_ptr[bi]..self.row_ptr[bi + 1] {
-                let b = &blocks[k];
-                let bj = self.col_idx[k];
-                let xs = &x[3 * bj..3 * bj + 3];
-                for (c, &xc) in xs.iter().enumerate() {
-                    acc[0] += b[3 * c] * xc;
-                    acc[1] += b[3 * c + 1] * xc;
-                    acc[2] += b[3 * c + 2] * xc;
-                }
-            }
-            ys.copy_from_slice(&acc);
-        }
+        let (row_ptr, col_idx) = (&*self.row_ptr, &*self.col_idx);
+        with_blocks!(&self.values, 9, |blocks| mul_add_in(
+            &blocks,
+            self.n_block_rows,
+            row_ptr,
+            col_idx,
+            x,
+            y
+        ))
     }
 
     /// Whether block row `c` stores its diagonal block (indices only: no value is read).
     pub fn has_diagonal_block(&self, c: usize) -> bool {
-        self.col_idx[self.row_ptr[c]..self.row_ptr[c + 1]].contains(&c)
+        self.diagonal_at[c] != NO_DIAGONAL
+    }
+
+    /// Per block row, where its diagonal block is stored ([`NO_DIAGONAL`] when it has none; the
+    /// last one when it has several), and whether some row has several.
+    pub fn diagonal_positions(&self) -> (&Arc<Vec<usize>>, bool) {
+        (&self.diagonal_at, self.repeated_diagonal)
     }
 
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
@@ -218,12 +317,43 @@ impl BlockSparseMatrix {
     }
 }
 
+/// `y <- y + W x` over blocks of any storage (the one product of a sparse-block W).
+fn mul_add_in(
+    blocks: &impl BlockAt,
+    n_block_rows: usize,
+    row_ptr: &[usize],
+    col_idx: &[usize],
+    x: &[f64],
+    y: &mut [f64],
+) {
+    for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(n_block_rows) {
+        // The row's sums kept in registers; each entry gets its terms in the same order as
+        // block by block into y.
+        let mut acc = [ys[0], ys[1], ys[2]];
+        for k in row_ptr[bi]..row_ptr[bi + 1] {
+            // A fixed-size view: no bounds check on the 9 values below.
+            let b: &[f64; 9] = blocks.at(k).first_chunk().expect("9 values per block");
+            let bj = col_idx[k];
+            let xs = &x[3 * bj..3 * bj + 3];
+            for (c, &xc) in xs.iter().enumerate() {
+                acc[0] += b[3 * c] * xc;
+                acc[1] += b[3 * c + 1] * xc;
+                acc[2] += b[3 * c + 2] * xc;
+            }
+        }
+        ys.copy_from_slice(&acc);
+    }
+}
+
+/// Checks the block structure and finds each block row's diagonal block in the same pass over
+/// the column indices: returns the positions ([`NO_DIAGONAL`] where none) and whether a row
+/// stores its diagonal block more than once.
 fn check_structure(
     n_block_rows: usize,
     n_block_cols: usize,
     row_ptr: &[usize],
     col_idx: &[usize],
-) -> Result<(), Fc3dError> {
+) -> Result<(Arc<Vec<usize>>, bool), Fc3dError> {
     if row_ptr.len() != n_block_rows + 1 {
         return Err(Fc3dError::dims(
             "block row pointers",
@@ -240,13 +370,23 @@ fn check_structure(
     if col_idx.len() != nb {
         return Err(Fc3dError::dims("block column indices", nb, col_idx.len()));
     }
-    if let Some(k) = col_idx.iter().position(|&c| c >= n_block_cols) {
-        return Err(Fc3dError::InvalidStructure(format!(
-            "block {k} has column {} >= {n_block_cols}",
-            col_idx[k]
-        )));
+    let mut diagonal_at = crate::error::try_vec(n_block_rows, NO_DIAGONAL, "diagonal positions")?;
+    let mut repeated = false;
+    for (i, at) in diagonal_at.iter_mut().enumerate() {
+        for k in row_ptr[i]..row_ptr[i + 1] {
+            let c = col_idx[k];
+            if c >= n_block_cols {
+                return Err(Fc3dError::InvalidStructure(format!(
+                    "block {k} has column {c} >= {n_block_cols}"
+                )));
+            }
+            if c == i {
+                repeated |= *at != NO_DIAGONAL;
+                *at = k;
+            }
+        }
     }
-    Ok(())
+    Ok((Arc::new(diagonal_at), repeated))
 }
 
 #[inline]

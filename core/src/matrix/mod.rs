@@ -13,11 +13,13 @@ mod block_rows;
 mod block_sparse;
 mod csr;
 mod dense;
+pub(crate) mod storage;
 
 pub use block_rows::BlockRows;
 pub use block_sparse::BlockSparseMatrix;
 pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
+pub use storage::{BlockValues, Shared};
 
 use crate::error::Fc3dError;
 use crate::math::linalg::Mat3;
@@ -31,7 +33,7 @@ pub const SPARSE_VIEW_MAX_FILL: f64 = 0.5;
 #[derive(Debug, Clone, PartialEq)]
 pub enum Delassus<'a> {
     Dense(DenseMatrix<'a>),
-    SparseBlock(BlockSparseMatrix),
+    SparseBlock(BlockSparseMatrix<'a>),
     Sparse(CsrMatrix),
 }
 
@@ -112,7 +114,7 @@ impl<'a> Delassus<'a> {
     }
 
     /// The block-row form used by Gauss-Seidel sweeps (built once per solve).
-    pub fn block_rows(&self) -> Result<BlockRows, Fc3dError> {
+    pub fn block_rows(&self) -> Result<BlockRows<'a>, Fc3dError> {
         BlockRows::from_delassus(self)
     }
 
@@ -138,7 +140,7 @@ impl<'a> Delassus<'a> {
 
     /// A sparse-block copy (3x3 blocks) holding every block with a non-zero entry and every
     /// diagonal block. W must be square with a size divisible by 3.
-    pub fn to_block_sparse(&self) -> Result<BlockSparseMatrix, Fc3dError> {
+    pub fn to_block_sparse(&self) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
         let n = self.nrows();
         if n != self.ncols() || n % 3 != 0 {
             return Err(Fc3dError::InvalidStructure(format!(
@@ -176,7 +178,7 @@ impl<'a> Delassus<'a> {
     /// storage: every block with a non-zero entry and every diagonal block, values unchanged.
     /// `None` for other storages and for dense matrices that are not mostly zero. Two passes
     /// over the dense values, column by column; memory in proportion to the non-zero blocks.
-    pub fn sparse_block_view(&self) -> Option<BlockSparseMatrix> {
+    pub fn sparse_block_view(&self) -> Option<BlockSparseMatrix<'static>> {
         let Delassus::Dense(d) = self else {
             return None;
         };
@@ -233,6 +235,22 @@ impl<'a> Delassus<'a> {
             }
         }
         BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks).ok()
+    }
+
+    /// Fails with [`Fc3dError::NonFinite`] when W holds a NaN or an infinity. Only a view over a
+    /// host's blocks ([`BlockSparseMatrix::from_block_table`]) can: every other storage is
+    /// checked when it is built, so this returns at once for them.
+    pub fn check_finite(&self) -> Result<(), Fc3dError> {
+        match self {
+            Delassus::SparseBlock(m) if m.is_borrowed() => m.check_finite(),
+            _ => Ok(()),
+        }
+    }
+
+    /// Whether W's values were not read when it was built (a view over a host's blocks: see
+    /// [`Delassus::check_finite`]).
+    pub fn is_borrowed_view(&self) -> bool {
+        matches!(self, Delassus::SparseBlock(m) if m.is_borrowed())
     }
 
     /// max |W - W^T| / max |W| (0 for a zero matrix): how far W is from symmetric.

@@ -241,7 +241,7 @@ pub(super) mod tests {
         };
         let mut out: Vec<u64> = w.row_ptr().iter().map(|&k| k as u64).collect();
         out.extend(w.col_idx().iter().map(|&k| k as u64));
-        out.extend(w.blocks().iter().flatten().map(|v| v.to_bits()));
+        out.extend(w.blocks().flatten().map(|v| v.to_bits()));
         out.extend(p.q().iter().map(|v| v.to_bits()));
         out.extend(p.mu().iter().map(|v| v.to_bits()));
         out

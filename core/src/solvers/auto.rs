@@ -190,13 +190,13 @@ impl NormalRows {
                 (nc * nc) as f64
             }
             Delassus::SparseBlock(b) => {
-                let (row_ptr, cols, blocks) = (b.row_ptr(), b.col_idx(), b.blocks());
+                let (row_ptr, cols) = (b.row_ptr(), b.col_idx());
                 for c in 0..nc {
                     let mut diag = [[0.0; 3]; 3];
                     let mut off = 0.0;
                     for k in row_ptr[c]..row_ptr[c + 1] {
                         // Column-major: the normal row is entries 0, 3, 6.
-                        let block = &blocks[k];
+                        let block = b.block(k);
                         if cols[k] == c {
                             for (a, row) in diag.iter_mut().enumerate() {
                                 for (b, v) in row.iter_mut().enumerate() {
@@ -595,8 +595,8 @@ impl AutoChoice {
 /// for the problem solved) and the choice to resume from (only when the pattern is unchanged).
 /// After the solve, `choice` is where this solve ended and the structures are handed back.
 #[derive(Default)]
-pub(crate) struct AutoCarry {
-    pub sweep: Option<PreparedSweep>,
+pub(crate) struct AutoCarry<'a> {
+    pub sweep: Option<PreparedSweep<'a>>,
     pub newton: Option<NewtonSolver>,
     pub resume: Option<AutoChoice>,
     pub choice: Option<AutoChoice>,
@@ -605,14 +605,14 @@ pub(crate) struct AutoCarry {
 }
 
 /// Runs AUTO with what a workspace kept (see [`AutoCarry`]).
-pub(crate) fn auto_with(
-    problem: &FrictionProblem<'_>,
+pub(crate) fn auto_with<'a>(
+    problem: &FrictionProblem<'a>,
     options: &AutoOptions,
     limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
-    carry: &mut AutoCarry,
+    carry: &mut AutoCarry<'a>,
 ) -> Result<SolverOutcome, Fc3dError> {
     auto(problem, options, limits, r, u, observer, carry)
 }
@@ -664,14 +664,14 @@ fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> L
     }
 }
 
-fn auto(
-    problem: &FrictionProblem<'_>,
+fn auto<'a>(
+    problem: &FrictionProblem<'a>,
     options: &AutoOptions,
     limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
-    carry: &mut AutoCarry,
+    carry: &mut AutoCarry<'a>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let run = limits.start();

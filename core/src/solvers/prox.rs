@@ -166,7 +166,7 @@ fn shifted(w: &Delassus<'_>, shift: f64) -> Result<Delassus<'static>, Fc3dError>
             Delassus::Dense(DenseMatrix::new(n, n, data)?)
         }
         Delassus::SparseBlock(s) => {
-            let mut blocks = s.blocks().to_vec();
+            let mut blocks: Vec<[f64; 9]> = s.blocks().copied().collect();
             for bi in 0..s.n_block_rows() {
                 let (start, end) = (s.row_ptr()[bi], s.row_ptr()[bi + 1]);
                 // Column-major 3x3: the diagonal is entries 0, 4, 8. Added to the first

@@ -278,7 +278,7 @@ pub fn read_sbm<R: Read>(
     mut input: R,
     len: Option<u64>,
     label: &str,
-) -> Result<(BlockSparseMatrix, u64), Fc3dError> {
+) -> Result<(BlockSparseMatrix<'static>, u64), Fc3dError> {
     let mut r = Reader::from_stream(&mut input, len, label, "M");
     let m = parse_sparse_block(&mut r, None, false)?;
     Ok((m, r.consumed_bytes()))
@@ -348,12 +348,15 @@ fn matrix(r: &mut Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
 /// `SBM_new_from_file` returns NULL there). Blocks must be 3x3: other block sizes give
 /// [`Fc3dError::Unsupported`] naming `label`; other defects are [`Fc3dError::Parse`] errors.
 /// Whatever follows the body is ignored.
-pub fn parse_sbm(text: &str, label: &str) -> Result<BlockSparseMatrix, Fc3dError> {
+pub fn parse_sbm(text: &str, label: &str) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
     parse_sbm_prefix(text, label).map(|(m, _)| m)
 }
 
 /// [`parse_sbm`], also returning the length in bytes of the body and the whitespace after it.
-pub fn parse_sbm_prefix(text: &str, label: &str) -> Result<(BlockSparseMatrix, usize), Fc3dError> {
+pub fn parse_sbm_prefix(
+    text: &str,
+    label: &str,
+) -> Result<(BlockSparseMatrix<'static>, usize), Fc3dError> {
     let mut r = Reader::new(text, label, "M");
     let m = parse_sparse_block(&mut r, None, false)?;
     Ok((m, byte_offset(r.consumed_bytes())))

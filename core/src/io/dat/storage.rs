@@ -136,7 +136,7 @@ pub(super) fn parse_sparse_block(
     r: &mut Reader<'_>,
     shape: Option<(usize, usize)>,
     require_diagonal: bool,
-) -> Result<BlockSparseMatrix, Fc3dError> {
+) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
     let mut blocks: Vec<[f64; 9]> = Vec::new();
     let layout = parse_sparse_block_with(r, shape, require_diagonal, DIMENSION, |r, values| {
         if blocks.capacity() == 0 {

@@ -65,7 +65,7 @@ pub fn write_sbm<W: Write>(m: &BlockSparseMatrix, out: &mut W) -> io::Result<()>
     write_usizes_line(out, m.row_ptr().iter().copied())?;
     write_usizes_line(out, m.col_idx().iter().copied())?;
     // Blocks are stored in block-CSR order, so storage index k is the number Siconos expects.
-    for (k, block) in m.blocks().iter().enumerate() {
+    for (k, block) in m.blocks().enumerate() {
         writeln!(out, "{k}")?;
         for v in block {
             writeln!(out, "{v:e}")?;

@@ -188,7 +188,7 @@ struct Island<'a> {
     contacts: &'a [usize],
     /// `s_I` of [`Island::error`] (1 when q = 0).
     scale: f64,
-    rows: &'a BlockRows,
+    rows: &'a BlockRows<'a>,
     q: &'a [f64],
     mu: &'a [f64],
 }
@@ -232,7 +232,7 @@ impl Island<'_> {
         for &c in self.contacts {
             let rc: [f64; 3] = reactions.contact(c);
             let lq = Reactions::<3>::local_q(reactions, self.rows, c, self.q);
-            let uc = block_vec_add(self.rows.diagonal(c), &rc, &lq);
+            let uc = block_vec_add(&self.rows.diagonal(c), &rc, &lq);
             res += contact_residual_sq_d(&rc, &uc, self.mu[c]);
         }
         res.sqrt() / self.scale

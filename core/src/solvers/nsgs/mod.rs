@@ -131,23 +131,23 @@ pub(crate) fn nsgs(
 /// What a Gauss-Seidel run prepares from W's block pattern and a workspace keeps from one time
 /// step to the next while the pattern holds: the block rows and, once a coloured sweep ran, its
 /// colouring.
-pub(crate) struct PreparedSweep {
-    pub rows: crate::matrix::BlockRows,
+pub(crate) struct PreparedSweep<'a> {
+    pub rows: crate::matrix::BlockRows<'a>,
     pub colouring: Option<Colouring>,
 }
 
 /// [`nsgs`] over block rows of `problem`'s W prepared earlier (with the colouring of their
 /// pattern, when known): they are moved into the sweeper and handed back with the outcome, so
 /// that a workspace keeps them for the next step.
-pub(crate) fn nsgs_on_rows(
-    problem: &FrictionProblem<'_>,
+pub(crate) fn nsgs_on_rows<'a>(
+    problem: &FrictionProblem<'a>,
     options: &NsgsOptions,
     limits: &Limits,
-    prepared: PreparedSweep,
+    prepared: PreparedSweep<'a>,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
-) -> (Result<SolverOutcome, Fc3dError>, Option<PreparedSweep>) {
+) -> (Result<SolverOutcome, Fc3dError>, Option<PreparedSweep<'a>>) {
     if let Err(e) = options.validate() {
         return (Err(e), Some(prepared));
     }
@@ -198,7 +198,7 @@ pub(crate) struct SweepSchedule {
 /// has been checked, so nothing fails once `r` is touched.
 pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
     problem: &P,
-    sweeper: &mut GaussSeidel<D, S>,
+    sweeper: &mut GaussSeidel<'_, D, S>,
     options: &SweepSchedule,
     limits: &Limits,
     r: &mut [f64],

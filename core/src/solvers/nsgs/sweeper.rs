@@ -12,7 +12,7 @@ use crate::matrix::BlockRows;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::Arc;
 
 use super::parallel::{
@@ -99,26 +99,53 @@ pub trait ContactStep<const D: usize>: Sync {
     }
 }
 
-/// The 3D step: the configured local solver with each contact's penalty parameters (they depend
-/// on `W_cc` only, so they are computed once per problem).
+/// The 3D step: the configured local solver with each contact's penalty parameters. They depend
+/// on `W_cc` only, so each is computed once per problem, at the contact's first update, from the
+/// diagonal block the update reads anyway: preparing a solve does not visit every diagonal block
+/// of W (on a host's W, one allocation each, that pass cost a fifth of a sweep at 10^5 contacts).
 pub struct LocalStep {
     options: LocalSolverOptions,
-    rho: Vec<(f64, f64)>,
+    /// Per contact, the bits of `(rho_N, rho_T)`; NaN until computed. Atomics (relaxed: each
+    /// contact is updated by one thread at a time, sweeps are ordered by barriers) so that the
+    /// threads of a coloured sweep share the step.
+    rho: Vec<[AtomicU64; 2]>,
     deadline: Option<Instant>,
 }
 
 impl LocalStep {
     fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
-        let solver = AnyLocalSolver::new(options);
-        let mut rho = crate::error::try_vec(rows.n_contacts(), (0.0, 0.0), "local penalties")?;
-        for (c, rc) in rho.iter_mut().enumerate() {
-            *rc = solver.rho(rows.diagonal(c));
-        }
+        let nc = rows.n_contacts();
+        let mut rho = Vec::new();
+        rho.try_reserve_exact(nc)
+            .map_err(|_| Fc3dError::OutOfMemory {
+                what: "local penalties".into(),
+                bytes: nc.saturating_mul(16),
+            })?;
+        rho.extend((0..nc).map(|_| {
+            [
+                AtomicU64::new(f64::NAN.to_bits()),
+                AtomicU64::new(f64::NAN.to_bits()),
+            ]
+        }));
         Ok(LocalStep {
             options: *options,
             rho,
             deadline: None,
         })
+    }
+
+    /// Contact `c`'s penalty parameters for its diagonal block `w` (computed at first use).
+    #[inline]
+    fn rho_of(&self, solver: &AnyLocalSolver, c: usize, w: &Block<3>) -> (f64, f64) {
+        let [n, t] = &self.rho[c];
+        let rn = f64::from_bits(n.load(Ordering::Relaxed));
+        if !rn.is_nan() {
+            return (rn, f64::from_bits(t.load(Ordering::Relaxed)));
+        }
+        let (rn, rt) = solver.rho(w);
+        n.store(rn.to_bits(), Ordering::Relaxed);
+        t.store(rt.to_bits(), Ordering::Relaxed);
+        (rn, rt)
     }
 }
 
@@ -144,7 +171,8 @@ impl ContactStep<3> for LocalStep {
     ) {
         let p = LocalProblem { w, q: *q, mu };
         let old = *r;
-        solver.solve_in_sweep(&p, self.rho[c], memory, r);
+        let rho = self.rho_of(solver, c, w);
+        solver.solve_in_sweep(&p, rho, memory, r);
         if !r.iter().all(|v| v.is_finite()) {
             *r = old;
         }
@@ -232,8 +260,8 @@ impl SweepPlan {
 /// One Gauss-Seidel sweep's state for contacts of dimension `D`, prepared once per problem: the
 /// block-row view of W, the one-contact step `S` and the sweep options. A sweep allocates
 /// nothing.
-pub struct GaussSeidel<const D: usize, S: ContactStep<D>> {
-    rows: BlockRows<D>,
+pub struct GaussSeidel<'a, const D: usize, S: ContactStep<D>> {
+    rows: BlockRows<'a, D>,
     step: S,
     /// The calling thread's worker (sequential sweeps and thread 0 of a coloured one).
     worker: S::Worker,
@@ -309,12 +337,12 @@ impl ColouredPlan {
 
 /// The 3D sweep with a local solver (public so that benchmarks and hosts that drive their own
 /// loop can sweep without re-preparing).
-pub type Sweeper = GaussSeidel<3, LocalStep>;
+pub type Sweeper<'a> = GaussSeidel<'a, 3, LocalStep>;
 
-impl Sweeper {
+impl<'a> Sweeper<'a> {
     /// A plain sweeper: contacts in index order, no relaxation, no freezing.
     pub fn new(
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'a>,
         local: &LocalSolverOptions,
     ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
@@ -336,7 +364,7 @@ impl Sweeper {
     /// bookkeeping Dumont's criterion needs, a coloured decomposition); `tolerance` is the
     /// run's, against which freezing judges a contact still. Rejects options out of range.
     pub fn with_options(
-        problem: &FrictionProblem<'_>,
+        problem: &FrictionProblem<'a>,
         options: &NsgsOptions,
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
@@ -349,7 +377,7 @@ impl Sweeper {
     /// one time step to the next) and, for a coloured sweep, the colouring of their pattern
     /// when it is known; `options` must have been validated.
     pub(crate) fn with_rows(
-        rows: BlockRows,
+        rows: BlockRows<'a>,
         options: &NsgsOptions,
         tolerance: f64,
         colouring: Option<Colouring>,
@@ -406,7 +434,7 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
         None => {
             let lq = *local_q.get_or_insert_with(|| r.local_q(rows, c, q));
             let mut rc = old;
-            step.solve(worker, c, w, &lq, mu[c], memory, &mut rc);
+            step.solve(worker, c, &w, &lq, mu[c], memory, &mut rc);
             rc
         }
     };
@@ -422,11 +450,11 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
     (rc, old, local_q)
 }
 
-impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
+impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
     /// A sweeper over the block rows `rows` with the one-contact step `step`; `tolerance` is the
     /// run's, against which freezing judges a contact still.
     pub fn from_parts(
-        rows: BlockRows<D>,
+        rows: BlockRows<'a, D>,
         step: S,
         options: &SweepOptions,
         tolerance: f64,
@@ -456,7 +484,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
 
     /// What an island sweep needs: the block rows, the step, each contact's step state and
     /// the relaxation factor.
-    pub(crate) fn island_parts(&mut self) -> (&BlockRows<D>, &S, &mut [f64], Option<f64>) {
+    pub(crate) fn island_parts(&mut self) -> (&BlockRows<'a, D>, &S, &mut [f64], Option<f64>) {
         (
             &self.rows,
             &self.step,
@@ -519,7 +547,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
         }
         r[D * c..D * c + D].copy_from_slice(&rc);
         if let Some(lq) = local_q.filter(|_| track) {
-            let uc = block_vec_add(self.rows.diagonal(c), &rc, &lq);
+            let uc = block_vec_add(&self.rows.diagonal(c), &rc, &lq);
             self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
         }
         d_sq
@@ -527,7 +555,7 @@ impl<const D: usize, S: ContactStep<D>> GaussSeidel<D, S> {
 
     /// Gives the block rows and the colouring of their pattern back (to be kept for the next
     /// problem with the same pattern).
-    pub(crate) fn into_prepared(self) -> (BlockRows<D>, Option<Colouring>) {
+    pub(crate) fn into_prepared(self) -> (BlockRows<'a, D>, Option<Colouring>) {
         (self.rows, self.coloured.map(|c| c.colouring))
     }
 

@@ -64,7 +64,7 @@ pub(crate) struct RunOutcome {
 /// with the same W (the proximal point method solves a sequence of them).
 pub(crate) struct NewtonSolver {
     options: NsnOptions,
-    w: BlockSparseMatrix,
+    w: BlockSparseMatrix<'static>,
     matrix: NewtonMatrix,
     data: Vec<ContactData>,
     a: Vec<Mat3>,

@@ -119,11 +119,11 @@ impl NewtonMatrix {
         w_shift: f64,
         regularization: f64,
     ) {
-        let (row_ptr, col_idx, blocks) = (w.row_ptr(), w.col_idx(), w.blocks());
+        let (row_ptr, col_idx) = (w.row_ptr(), w.col_idx());
         for c in 0..self.diagonal_block.len() {
             let bc = &b[c];
             for k in row_ptr[c]..row_ptr[c + 1] {
-                let wk = &blocks[k]; // column-major
+                let wk = w.block(k); // column-major
                 for i in 0..3 {
                     for j in 0..3 {
                         let v = bc[i][0] * wk[3 * j]

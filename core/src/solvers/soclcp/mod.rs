@@ -96,7 +96,7 @@ pub(crate) fn soclcp_sweep(
         if let Some(s) = shift {
             lq[0] += s[c];
         }
-        let w = rows.diagonal(c);
+        let w = &rows.diagonal(c);
         let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
         let hint = (old[1] != 0.0 || old[2] != 0.0).then(|| old[2].atan2(old[1]));
         let mut new = solve_local_soclcp(w, &lq, mu[c], hint)

@@ -24,8 +24,8 @@ pub(crate) enum TrescaMode {
 }
 
 /// Work space of the Tresca sub-problem solvers, allocated once per solve.
-pub(crate) struct TrescaWorkspace {
-    pub rows: BlockRows,
+pub(crate) struct TrescaWorkspace<'a> {
+    pub rows: BlockRows<'a>,
     /// Cylinder radii `mu_c s_c`.
     pub radius: Vec<f64>,
     u: Vec<f64>,
@@ -43,8 +43,8 @@ pub(crate) struct TrescaWorkspace {
 const ARMIJO_SIGMA: f64 = 1e-4;
 const MAX_LINE_SEARCH: usize = 60;
 
-impl TrescaWorkspace {
-    pub fn new(problem: &FrictionProblem<'_>) -> Result<Self, Fc3dError> {
+impl<'a> TrescaWorkspace<'a> {
+    pub fn new(problem: &FrictionProblem<'a>) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
         let n = problem.size();
         let max_diag = (0..rows.n_contacts())
@@ -99,7 +99,7 @@ impl TrescaWorkspace {
             let mut increment_sq = 0.0;
             for c in 0..self.rows.n_contacts() {
                 let lq = self.rows.local_q(c, q, r);
-                let w = self.rows.diagonal(c);
+                let w = &self.rows.diagonal(c);
                 let old = [r[3 * c], r[3 * c + 1], r[3 * c + 2]];
                 let mut new = match mode {
                     TrescaMode::Full => solve_local_tresca(w, &lq, self.radius[c]),
