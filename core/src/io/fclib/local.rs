@@ -143,7 +143,7 @@ pub(super) fn blocks_of(
     nc: usize,
     entries: &[(usize, usize, f64)],
     drop_zeros: bool,
-) -> Result<BlockSparseMatrix, Fc3dError> {
+) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
     const WHAT: &str = "the 3x3 blocks of W";
     let d = DIMENSION;
     let mut order = try_collect(0..entries.len(), WHAT)?;

@@ -90,7 +90,6 @@ fn blocks_of_matches_the_map_based_assembly() {
         assert_eq!(got, expected);
         let bits = |m: &BlockSparseMatrix| {
             m.blocks()
-                .iter()
                 .flat_map(|b| b.map(f64::to_bits))
                 .collect::<Vec<_>>()
         };

@@ -134,7 +134,7 @@ impl CompressedRows {
                     let blocks = b.row_ptr()[block_row]..b.row_ptr()[block_row + 1];
                     for r in 0..DIMENSION {
                         for k in blocks.clone() {
-                            let block = &b.blocks()[k];
+                            let block = b.block(k);
                             for c in 0..DIMENSION {
                                 i.push((DIMENSION * b.col_idx()[k] + c) as i32);
                                 x.push(block[r + DIMENSION * c]);
