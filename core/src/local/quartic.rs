@@ -169,7 +169,14 @@ fn monic_real_roots(a: &[f64], out: &mut [f64; 4]) -> usize {
     let mut fujiwara = 0.0f64;
     for (k, &ak) in a.iter().enumerate().skip(1) {
         let v = if k == d { 0.5 * ak.abs() } else { ak.abs() };
-        fujiwara = fujiwara.max(v.powf(1.0 / k as f64));
+        // |v|^(1/k) by roots rather than powf (this runs for every slide enumeration).
+        let root = match k {
+            1 => v,
+            2 => v.sqrt(),
+            3 => v.cbrt(),
+            _ => v.sqrt().sqrt(),
+        };
+        fujiwara = fujiwara.max(root);
     }
     let bound = (2.0 * fujiwara * (1.0 + 1e-12) + f64::MIN_POSITIVE).min(ROOT_CAP);
     let mut ends = [0.0; 5];
