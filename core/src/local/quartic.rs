@@ -28,6 +28,7 @@
 use super::{local_rho, AlartCurnierNewton, LocalOutcome, LocalProblem, LocalSolver};
 use crate::local::{LocalSolverKind, LocalSolverOptions, RhoRule};
 use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
+use crate::measure::contact_residual_sq;
 
 pub struct Quartic {
     tolerance: f64,
@@ -67,10 +68,10 @@ fn slide_equation(p: &LocalProblem<'_>) -> [f64; 5] {
     [a, b, c, d, e]
 }
 
-/// Value and derivative in theta of the slide equation at `d = (cos theta, sin theta)`.
+/// Value and derivative in theta of the slide equation at the unit direction
+/// `d = (c, s) = (cos theta, sin theta)`.
 #[inline]
-fn slide_eq_theta(k: &[f64; 5], theta: f64) -> (f64, f64) {
-    let (s, c) = theta.sin_cos();
+fn slide_eq_at(k: &[f64; 5], [c, s]: [f64; 2]) -> (f64, f64) {
     let f = k[0] * c * c + k[1] * c * s + k[2] * s * s + k[3] * c + k[4] * s;
     // d/dtheta: c' = -s, s' = c.
     let df =
@@ -168,7 +169,14 @@ fn monic_real_roots(a: &[f64], out: &mut [f64; 4]) -> usize {
     let mut fujiwara = 0.0f64;
     for (k, &ak) in a.iter().enumerate().skip(1) {
         let v = if k == d { 0.5 * ak.abs() } else { ak.abs() };
-        fujiwara = fujiwara.max(v.powf(1.0 / k as f64));
+        // |v|^(1/k) by roots rather than powf (this runs for every slide enumeration).
+        let root = match k {
+            1 => v,
+            2 => v.sqrt(),
+            3 => v.cbrt(),
+            _ => v.sqrt().sqrt(),
+        };
+        fujiwara = fujiwara.max(root);
     }
     let bound = (2.0 * fujiwara * (1.0 + 1e-12) + f64::MIN_POSITIVE).min(ROOT_CAP);
     let mut ends = [0.0; 5];
@@ -232,8 +240,8 @@ fn bracketed_root(eval: &dyn Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, p_
     t
 }
 
-/// The slide candidate along `d` with its natural-map residual, if admissible.
-fn slide_candidate(p: &LocalProblem<'_>, d: [f64; 2]) -> Option<Vec3> {
+/// The slide candidate along the unit direction `d` and its velocity, if admissible.
+fn slide_candidate(p: &LocalProblem<'_>, d: [f64; 2]) -> Option<(Vec3, Vec3)> {
     let a = p.w[0][0] - p.mu * (p.w[0][1] * d[0] + p.w[0][2] * d[1]);
     let rn = -p.q[0] / a;
     if !(rn > 0.0 && rn.is_finite()) {
@@ -245,34 +253,77 @@ fn slide_candidate(p: &LocalProblem<'_>, d: [f64; 2]) -> Option<Vec3> {
     if u[1] * d[0] + u[2] * d[1] < 0.0 {
         return None;
     }
-    Some(r)
+    Some((r, u))
+}
+
+/// The unit slide direction of `t = tan(theta / 2)`, without trigonometric functions.
+#[inline]
+fn direction_of_half_angle_tangent(t: f64) -> [f64; 2] {
+    let t2 = t * t;
+    let inv = 1.0 / (1.0 + t2);
+    [(1.0 - t2) * inv, 2.0 * t * inv]
+}
+
+/// A candidate reaction with its squared natural-map residual.
+#[derive(Clone, Copy)]
+struct Candidate {
+    r: Vec3,
+    residual_sq: f64,
 }
 
 impl Quartic {
-    /// The enumerated solution with the smallest residual (None if no case applies).
-    fn enumerate(&self, p: &LocalProblem<'_>) -> Option<Vec3> {
+    /// Squared local tolerance relative to the scale of `p` at `r` (`p.scale(r)` squared, without
+    /// its square roots).
+    #[inline]
+    fn tolerance_sq(&self, p: &LocalProblem<'_>, r: &Vec3) -> f64 {
+        let norm_sq = |v: &Vec3| v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        let scale_sq = norm_sq(r).max(norm_sq(&p.q));
+        self.tolerance * self.tolerance * scale_sq
+    }
+
+    /// The enumerated solution with the smallest residual (None if no case applies). A
+    /// candidate that solves the contact to the local tolerance ends the enumeration.
+    fn enumerate(&self, p: &LocalProblem<'_>) -> Option<Candidate> {
         if p.q[0] >= 0.0 {
-            return Some([0.0; 3]);
+            // Take-off: `ũ = (q_N + mu ||q_T||, q_T)` lies in the dual cone, the residual is 0.
+            return Some(Candidate {
+                r: [0.0; 3],
+                residual_sq: 0.0,
+            });
         }
-        let mut best: Option<(f64, Vec3)> = None;
-        let mut consider = |r: Vec3| {
-            let res = p.residual(&r);
-            if res.is_finite() && best.is_none_or(|b| res < b.0) {
-                best = Some((res, r));
+        let mut best: Option<Candidate> = None;
+        let mut consider = |r: Vec3, u: &Vec3| {
+            let residual_sq = contact_residual_sq(&r, u, p.mu);
+            let candidate = Candidate { r, residual_sq };
+            if residual_sq.is_finite() && best.is_none_or(|b| residual_sq < b.residual_sq) {
+                best = Some(candidate);
             }
+            candidate
         };
         if let Some(r) = solve3(p.w, &[-p.q[0], -p.q[1], -p.q[2]]) {
-            if r[0] >= 0.0 && norm2(r[1], r[2]) <= p.mu * r[0] {
-                // As in Siconos, a stick that solves the contact ends the enumeration.
-                if p.residual(&r) <= self.tolerance * p.scale(&r) {
-                    return Some(r);
+            if r[0] >= 0.0 && r[1] * r[1] + r[2] * r[2] <= p.mu * p.mu * r[0] * r[0] {
+                // As in Siconos, a stick that solves the contact ends the enumeration. With r in
+                // K, P_K(r) = r and P_K is 1-Lipschitz, so the residual is at most ||ũ||, and
+                // ||ũ||^2 <= 2 u_N^2 + (1 + 2 mu^2) ||u_T||^2: a test without projection or root.
+                let u = p.velocity(&r);
+                let ut_sq = u[1] * u[1] + u[2] * u[2];
+                let bound_sq = 2.0 * u[0] * u[0] + (1.0 + 2.0 * p.mu * p.mu) * ut_sq;
+                let tolerance_sq = self.tolerance_sq(p, &r);
+                if bound_sq <= tolerance_sq {
+                    return Some(Candidate {
+                        r,
+                        residual_sq: bound_sq,
+                    });
                 }
-                consider(r);
+                if consider(r, &u).residual_sq <= tolerance_sq {
+                    return best;
+                }
             }
         }
         if p.mu == 0.0 {
-            consider([(-p.q[0] / p.w[0][0]).max(0.0), 0.0, 0.0]);
-            return best.map(|b| b.1);
+            let r = [(-p.q[0] / p.w[0][0]).max(0.0), 0.0, 0.0];
+            consider(r, &p.velocity(&r));
+            return best;
         }
         let k = slide_equation(p);
         let poly = [
@@ -283,18 +334,18 @@ impl Quartic {
             k[0] + k[3],
         ];
         let (roots, n) = real_roots(poly);
-        let mut thetas = [std::f64::consts::PI; 5];
-        for i in 0..n {
-            thetas[i] = 2.0 * roots[i].atan();
-        }
-        for &theta0 in thetas.iter().take(n + 1) {
-            let theta = polish_slide_angle(&k, theta0);
-            let (s, c) = theta.sin_cos();
-            if let Some(r) = slide_candidate(p, [c, s]) {
-                consider(r);
+        // The roots, then t = infinity (d = (-1, 0)).
+        for i in 0..=n {
+            let d0 = if i < n {
+                direction_of_half_angle_tangent(roots[i])
+            } else {
+                [-1.0, 0.0]
+            };
+            if let Some((r, u)) = slide_candidate(p, polish_slide_direction(&k, d0)) {
+                consider(r, &u);
             }
         }
-        best.map(|b| b.1)
+        best
     }
 
     /// Within a sweep a sliding contact usually slides on in nearly the same direction: the
@@ -302,37 +353,40 @@ impl Quartic {
     /// on the slide equation, when it solves the contact to the local tolerance. The
     /// enumeration gives the same point (a solution is verified, not assumed) in more time.
     fn warm_slide(&self, p: &LocalProblem<'_>, previous: &Vec3) -> Option<Vec3> {
-        let norm_t = norm2(previous[1], previous[2]);
-        let on_boundary = (norm_t - p.mu * previous[0]).abs() <= 1e-9 * norm_t;
-        if p.q[0] >= 0.0 || p.mu == 0.0 || !(previous[0] > 0.0 && norm_t > 0.0 && on_boundary) {
+        if p.q[0] >= 0.0 || p.mu == 0.0 || !(previous[0] > 0.0) {
             return None;
         }
-        let theta0 = (-previous[2]).atan2(-previous[1]);
-        let theta = polish_slide_angle(&slide_equation(p), theta0);
-        let (s, c) = theta.sin_cos();
-        let r = slide_candidate(p, [c, s])?;
-        (p.residual(&r) <= self.tolerance * p.scale(&r)).then_some(r)
+        let norm_t = norm2(previous[1], previous[2]);
+        let on_boundary = (norm_t - p.mu * previous[0]).abs() <= 1e-9 * norm_t;
+        if !(norm_t > 0.0 && on_boundary) {
+            return None;
+        }
+        let d0 = [-previous[1] / norm_t, -previous[2] / norm_t];
+        let (r, u) = slide_candidate(p, polish_slide_direction(&slide_equation(p), d0))?;
+        (contact_residual_sq(&r, &u, p.mu) <= self.tolerance_sq(p, &r)).then_some(r)
     }
 }
 
-/// Newton on the slide equation in theta from `theta`, at most 8 steps of at most 0.5.
-fn polish_slide_angle(k: &[f64; 5], mut theta: f64) -> f64 {
+/// Newton on the slide equation in theta from the unit direction `d`, at most 8 steps of at
+/// most 0.5. A step `delta` moves `d` to `(d + delta d_perp) / sqrt(1 + delta^2)`, a turn by
+/// `atan(delta)`: the same quadratic convergence as a turn by `delta`, without sine or cosine.
+fn polish_slide_direction(k: &[f64; 5], mut d: [f64; 2]) -> [f64; 2] {
     for _ in 0..8 {
-        let (f, df) = slide_eq_theta(k, theta);
+        let (f, df) = slide_eq_at(k, d);
         if df == 0.0 || f == 0.0 {
             break;
         }
-        let next = theta - f / df;
-        if !next.is_finite() || (next - theta).abs() > 0.5 {
+        let delta = -f / df;
+        if !delta.is_finite() || delta.abs() > 0.5 {
             break;
         }
-        let converged = (next - theta).abs() <= 4.0 * f64::EPSILON * (1.0 + theta.abs());
-        theta = next;
-        if converged {
+        let inv = 1.0 / (1.0 + delta * delta).sqrt();
+        d = [(d[0] - delta * d[1]) * inv, (d[1] + delta * d[0]) * inv];
+        if delta.abs() <= 4.0 * f64::EPSILON {
             break;
         }
     }
-    theta
+    d
 }
 
 impl LocalSolver for Quartic {
@@ -353,16 +407,16 @@ impl LocalSolver for Quartic {
                 iterations: 1,
             };
         }
-        if let Some(x) = self.enumerate(p) {
-            if p.residual(&x) <= self.tolerance * p.scale(&x) {
-                *r = x;
+        if let Some(best) = self.enumerate(p) {
+            if best.residual_sq <= self.tolerance_sq(p, &best.r) {
+                *r = best.r;
                 return LocalOutcome {
                     converged: true,
                     iterations: 1,
                 };
             }
-            if p.residual(&x) < p.residual(r) {
-                *r = x;
+            if best.residual_sq.sqrt() < p.residual(r) {
+                *r = best.r;
             }
         }
         let out = self.fallback.solve_with_rho(p, rho, r);
