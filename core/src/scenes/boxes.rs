@@ -50,15 +50,6 @@ fn pyramid_contacts(n: usize) -> usize {
         .sum()
 }
 
-/// The smallest base whose full pyramid has at least `contacts` contacts.
-fn base_for(contacts: usize) -> usize {
-    let mut n = 1;
-    while pyramid_contacts(n) < contacts {
-        n += 1;
-    }
-    n
-}
-
 /// Generates the box scene of `spec` (sparse-block W).
 pub fn box_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError> {
     Ok(box_world(spec)?.problem(super::Storage::SparseBlock))
@@ -71,8 +62,8 @@ pub(super) fn box_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     let pitch = 2.0 * HALF_WIDTH + GAP;
     let mut x_origin = 0.0;
     for pile in 0..spec.piles {
-        let budget = spec.contacts / spec.piles + usize::from(pile < spec.contacts % spec.piles);
-        let n = base_for(budget);
+        let budget = spec.pile_contacts(pile);
+        let n = super::granular::base_for(budget, pyramid_contacts);
         // One friction coefficient per pile, in [0.3, 0.5].
         let mu = 0.4 + 0.1 * random.symmetric();
         build_pile(&mut world, &mut random, n, budget, x_origin, mu);

@@ -40,6 +40,11 @@ pub struct PileSpec {
 }
 
 impl PileSpec {
+    /// The contacts of pile `pile`: the count shared out, the first piles taking the remainder.
+    pub(super) fn pile_contacts(&self, pile: usize) -> usize {
+        self.contacts / self.piles + usize::from(pile < self.contacts % self.piles)
+    }
+
     /// Parses `contacts=N,piles=P,seed=S` (any order; `piles` defaults to 1, `seed` to 1).
     pub fn parse(text: &str) -> Result<PileSpec, Fc3dError> {
         super::parse_spec(text, false).map(|scene| scene.pile)
@@ -94,8 +99,9 @@ fn pyramid_contacts(n: usize) -> usize {
         .sum()
 }
 
-/// The smallest base whose full pyramid has at least `contacts` contacts.
-fn base_for(contacts: usize) -> usize {
+/// The smallest base `n` whose full pyramid has at least `contacts` contacts, for a shape whose
+/// full pyramid of base `n` has `pyramid_contacts(n)`.
+pub(super) fn base_for(contacts: usize, pyramid_contacts: fn(usize) -> usize) -> usize {
     let mut n = 1;
     while pyramid_contacts(n) < contacts {
         n += 1;
@@ -115,8 +121,8 @@ fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     let spacing = 2.0 * RADIUS;
     let mut x_origin = 0.0;
     for pile in 0..spec.piles {
-        let budget = spec.contacts / spec.piles + usize::from(pile < spec.contacts % spec.piles);
-        let n = base_for(budget);
+        let budget = spec.pile_contacts(pile);
+        let n = base_for(budget, pyramid_contacts);
         // One friction coefficient per pile, in [0.3, 0.5].
         let mu = 0.4 + 0.1 * random.symmetric();
         build_pile(&mut world, &mut random, n, budget, x_origin, mu);

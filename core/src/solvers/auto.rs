@@ -558,7 +558,7 @@ impl Family for AutoOptions {
         u: &mut [f64],
         observer: &mut Observer<'_>,
     ) -> Result<SolverOutcome, Fc3dError> {
-        auto(
+        auto_with(
             problem,
             self,
             limits,
@@ -602,19 +602,6 @@ pub(crate) struct AutoCarry<'a> {
     pub choice: Option<AutoChoice>,
     /// The solve resumed from `resume` (same tolerance and budget).
     pub resumed: bool,
-}
-
-/// Runs AUTO with what a workspace kept (see [`AutoCarry`]).
-pub(crate) fn auto_with<'a>(
-    problem: &FrictionProblem<'a>,
-    options: &AutoOptions,
-    limits: &Limits,
-    r: &mut [f64],
-    u: &mut [f64],
-    observer: &mut Observer<'_>,
-    carry: &mut AutoCarry<'a>,
-) -> Result<SolverOutcome, Fc3dError> {
-    auto(problem, options, limits, r, u, observer, carry)
 }
 
 /// The sweeps to run before the next measurement of the error: those the contraction seen over
@@ -664,7 +651,8 @@ fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> L
     }
 }
 
-fn auto<'a>(
+/// Runs AUTO; a workspace hands in what it kept and gets it back in `carry` (see [`AutoCarry`]).
+pub(crate) fn auto_with<'a>(
     problem: &FrictionProblem<'a>,
     options: &AutoOptions,
     limits: &Limits,
