@@ -286,8 +286,12 @@ fn grows_where_no_solution_is(
         }
     }
     let null = (RAY_NULL * error.max(f64::EPSILON)).min(RAY_NULL_CAP);
-    sums.iter().any(|&[rr, qq, qr, wr, diag, _]| {
-        if !(rr > 0.0) {
+    // The reaction that grows along a ray is the one that makes the relative error small: an
+    // island whose reactions are negligible next to the largest carries none (a contact taking
+    // off with |r| ~ 1e-17 has an arbitrary direction d, and u - q = W r rounds to 0 there).
+    let largest = sums.iter().fold(0.0_f64, |m, s| m.max(s[LARGEST]));
+    sums.iter().any(|&[rr, qq, qr, wr, diag, l]| {
+        if !(rr > 0.0) || l < RAY_SHARE * largest {
             return false;
         }
         // d = (r_I / largest_I) / sqrt(rr).
@@ -303,6 +307,9 @@ const RAY_NULL: f64 = 100.0;
 const RAY_NULL_CAP: f64 = 1e-3;
 /// `q_I·d <= -RAY_PUSH ||q_I||`: q pushes along d.
 const RAY_PUSH: f64 = 1e-3;
+/// An island is tested when its largest |r| entry is at least this fraction of the largest of
+/// all.
+const RAY_SHARE: f64 = 1e-2;
 
 /// Solves the 2D `problem` with a Siconos `fc2d` solver from the initial guess in `r` (NSGS uses
 /// it; CPG, Lemke and enumeration start from zero as Siconos' do). On success `r` and
@@ -409,5 +416,29 @@ fn report_measured(
         final_rho: None,
         stages: outcome.stages,
         fill: outcome.fill,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::grows_where_no_solution_is;
+    use crate::matrix::{Delassus, DenseMatrix};
+    use crate::problem::FrictionProblem;
+
+    /// Two independent contacts (W = I): the first pushed apart by q and carrying the
+    /// reaction, the second taking off with a left-over reaction of 1e-17, along which q
+    /// pushes and whose W r rounds to 0 in u - q. The second carries nothing of the reaction:
+    /// not a ray (Siconos' ADMM test 58 on Capsules-i122-1617 was reported unbounded this way).
+    #[test]
+    fn an_island_with_a_negligible_reaction_is_not_a_ray() {
+        let mut w = vec![0.0; 36];
+        (0..6).for_each(|i| w[i + 6 * i] = 1.0);
+        let w = Delassus::Dense(DenseMatrix::new(6, 6, w).unwrap());
+        let q = vec![-1.0, 0.0, 0.0, -1.0, 0.0, 0.0];
+        let p = FrictionProblem::new(w, q.clone(), vec![0.5, 0.5]).unwrap();
+        let r = vec![1.0, 0.0, 0.0, 1e-17, 0.0, 0.0];
+        let u: Vec<f64> = r.iter().zip(&q).map(|(ri, qi)| ri + qi).collect();
+        assert_eq!(u[3] - q[3], 0.0, "W r rounds to 0 on the second contact");
+        assert!(!grows_where_no_solution_is(&p, &r, &u, 1e-6));
     }
 }
