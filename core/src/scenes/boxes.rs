@@ -20,7 +20,7 @@
 //! box by box, contact by contact, until its share is reached (the last box may keep only part of
 //! its contacts), so the count is exact. Same seed, same bits: see [`super::granular`].
 
-use super::granular::Random;
+use super::granular::{piles_side_by_side, random_motion, walk_pyramid, Pile, Random};
 use super::{yaw, Body, World, E_Z};
 use crate::error::Fc3dError;
 use crate::problem::FrictionProblem;
@@ -56,21 +56,9 @@ pub fn box_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError>
 }
 
 pub(super) fn box_world(spec: &PileSpec) -> Result<World, Fc3dError> {
-    spec.check()?;
-    let mut world = World::new();
-    let mut random = Random(spec.seed);
     let pitch = 2.0 * HALF_WIDTH + GAP;
-    let mut x_origin = 0.0;
-    for pile in 0..spec.piles {
-        let budget = spec.pile_contacts(pile);
-        let n = super::granular::base_for(budget, pyramid_contacts);
-        // One friction coefficient per pile, in [0.3, 0.5].
-        let mu = 0.4 + 0.1 * random.symmetric();
-        build_pile(&mut world, &mut random, n, budget, x_origin, mu);
-        // Three box widths of empty ground between piles: they never touch.
-        x_origin += n as f64 * pitch + 6.0 * HALF_WIDTH;
-    }
-    Ok(world)
+    // Three box widths of empty ground between piles.
+    piles_side_by_side(spec, pyramid_contacts, pitch, 6.0 * HALF_WIDTH, build_pile)
 }
 
 /// A box as placed: centre and horizontal half-widths.
@@ -81,81 +69,39 @@ struct Placed {
     half: [f64; 2],
 }
 
-/// Adds one stepped pyramid of base `n` with its left front corner at `x = x_origin, y = 0`,
-/// bottom-up, stopping after exactly `budget` contacts.
-fn build_pile(
-    world: &mut World,
-    random: &mut Random,
-    n: usize,
-    budget: usize,
-    x_origin: f64,
-    mu: f64,
-) {
+/// Adds one stepped pyramid of boxes with its left front corner at `x = x_origin, y = 0`.
+fn build_pile(world: &mut World, random: &mut Random, pile: &Pile) {
     let pitch = 2.0 * HALF_WIDTH + GAP;
     let jitter = 1e-3 * HALF_WIDTH;
-    let mut added = 0usize;
-    // The boxes of the previous layer (grid order), `None` when not built.
-    let mut below: Vec<Option<Placed>> = Vec::new();
-    for layer in 0..n {
-        let m = n - layer;
-        let mut current: Vec<Option<Placed>> = vec![None; m * m];
+    walk_pyramid(pile.base, pile.contacts, |budget, cell| {
+        let (layer, i, j) = (cell.layer, cell.i, cell.j);
         let offset = 0.5 * pitch * layer as f64;
-        for j in 0..m {
-            for i in 0..m {
-                if added == budget {
-                    return;
+        let x = [
+            pile.x_origin + 0.5 * pitch + offset + pitch * i as f64 + jitter * random.symmetric(),
+            0.5 * pitch + offset + pitch * j as f64 + jitter * random.symmetric(),
+            HALF_HEIGHT * (1 + 2 * layer) as f64,
+        ];
+        let half = [
+            HALF_WIDTH * (1.0 + 0.02 * random.symmetric()),
+            HALF_WIDTH * (1.0 + 0.02 * random.symmetric()),
+        ];
+        let mass = MASS * (1.0 + 0.2 * random.symmetric());
+        let (v, omega) = random_motion(random);
+        let h = [half[0], half[1], HALF_HEIGHT];
+        let body = world.add_body(Body::cuboid(x, mass, h, yaw(0.0), v, omega, false));
+        let placed = Placed { body, x, half };
+        // The footprints this box rests on: the ground, or the 4 boxes below; boxes of a layer
+        // never touch each other.
+        'supports: for support in cell.supports {
+            for point in face_contact_points(&placed, support.as_ref()) {
+                if !budget.take() {
+                    break 'supports;
                 }
-                let x = [
-                    x_origin
-                        + 0.5 * pitch
-                        + offset
-                        + pitch * i as f64
-                        + jitter * random.symmetric(),
-                    0.5 * pitch + offset + pitch * j as f64 + jitter * random.symmetric(),
-                    HALF_HEIGHT * (1 + 2 * layer) as f64,
-                ];
-                let half = [
-                    HALF_WIDTH * (1.0 + 0.02 * random.symmetric()),
-                    HALF_WIDTH * (1.0 + 0.02 * random.symmetric()),
-                ];
-                let mass = MASS * (1.0 + 0.2 * random.symmetric());
-                let v = [
-                    0.05 * random.symmetric(),
-                    0.05 * random.symmetric(),
-                    0.05 * random.symmetric() - 0.05,
-                ];
-                let omega = [
-                    0.5 * random.symmetric(),
-                    0.5 * random.symmetric(),
-                    0.5 * random.symmetric(),
-                ];
-                let h = [half[0], half[1], HALF_HEIGHT];
-                let body = world.add_body(Body::cuboid(x, mass, h, yaw(0.0), v, omega, false));
-                let placed = Placed { body, x, half };
-                current[i + m * j] = Some(placed);
-                // The footprints this box rests on: the ground, or the 4 boxes below.
-                let mut supports: Vec<Option<Placed>> = Vec::with_capacity(4);
-                if layer == 0 {
-                    supports.push(None);
-                } else {
-                    let mb = m + 1;
-                    for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                        supports.extend(below[(i + di) + mb * (j + dj)].map(Some));
-                    }
-                }
-                for support in supports {
-                    for point in face_contact_points(&placed, support.as_ref()) {
-                        if added == budget {
-                            return;
-                        }
-                        world.add_contact(body, support.map(|s| s.body), point, E_Z, mu);
-                        added += 1;
-                    }
-                }
+                world.add_contact(body, support.map(|s| s.body), point, E_Z, pile.mu);
             }
         }
-        below = current;
-    }
+        placed
+    });
 }
 
 /// The 4 corners of the overlap of box `a`'s bottom face with `b`'s top face (the ground when

@@ -99,14 +99,125 @@ fn pyramid_contacts(n: usize) -> usize {
         .sum()
 }
 
-/// The smallest base `n` whose full pyramid has at least `contacts` contacts, for a shape whose
-/// full pyramid of base `n` has `pyramid_contacts(n)`.
-pub(super) fn base_for(contacts: usize, pyramid_contacts: fn(usize) -> usize) -> usize {
-    let mut n = 1;
-    while pyramid_contacts(n) < contacts {
-        n += 1;
+/// One pile as [`piles_side_by_side`] lays it out: the base of its pyramid, its share of the
+/// contacts, where it starts along x and its friction coefficient.
+pub(super) struct Pile {
+    pub(super) base: usize,
+    pub(super) contacts: usize,
+    pub(super) x_origin: f64,
+    pub(super) mu: f64,
+}
+
+/// Lays out the piles of `spec` along x, for a shape whose full pyramid of base `n` has
+/// `pyramid_contacts(n)` contacts and whose cells are `pitch` apart: per pile the smallest base
+/// holding its share of the contacts, one friction coefficient in [0.3, 0.5], and `gap` of empty
+/// ground before the next pile (so that piles never touch). `build` adds one pile to the world.
+pub(super) fn piles_side_by_side(
+    spec: &PileSpec,
+    pyramid_contacts: fn(usize) -> usize,
+    pitch: f64,
+    gap: f64,
+    mut build: impl FnMut(&mut World, &mut Random, &Pile),
+) -> Result<World, Fc3dError> {
+    spec.check()?;
+    let mut world = World::new();
+    let mut random = Random(spec.seed);
+    let mut x_origin = 0.0;
+    for pile in 0..spec.piles {
+        let contacts = spec.pile_contacts(pile);
+        let mut base = 1;
+        while pyramid_contacts(base) < contacts {
+            base += 1;
+        }
+        let mu = 0.4 + 0.1 * random.symmetric();
+        build(&mut world, &mut random, &Pile { base, contacts, x_origin, mu });
+        x_origin += base as f64 * pitch + gap;
     }
-    n
+    Ok(world)
+}
+
+/// The contacts a pile may still add: [`walk_pyramid`] stops at the first cell after it is spent,
+/// and a cell stops adding contacts when `take` says no, so the count is exact.
+pub(super) struct ContactBudget(usize);
+
+impl ContactBudget {
+    /// Takes one contact; false when none is left.
+    pub(super) fn take(&mut self) -> bool {
+        let left = self.0 > 0;
+        self.0 = self.0.saturating_sub(1);
+        left
+    }
+}
+
+/// A cell of a stepped pyramid as [`walk_pyramid`] hands it over: its layer and grid position
+/// (layer `L` has `(n - L) x (n - L)` cells), what it rests on (`None` is the ground: layer 0
+/// only; above, the cells of the layer below that were built, of the 4 under it) and its left and
+/// back neighbours in its layer, when built.
+pub(super) struct Cell<'a, T> {
+    pub(super) layer: usize,
+    pub(super) i: usize,
+    pub(super) j: usize,
+    pub(super) supports: &'a [Option<T>],
+    pub(super) left: Option<T>,
+    pub(super) back: Option<T>,
+}
+
+/// Builds a stepped pyramid of base `n` bottom-up, layer by layer, row by row: `place` puts one
+/// body in a cell, adds its contacts while `budget` allows, and returns what later cells need of
+/// it. Stops at the first cell after the budget of `contacts` is spent.
+pub(super) fn walk_pyramid<T: Copy>(
+    n: usize,
+    contacts: usize,
+    mut place: impl FnMut(&mut ContactBudget, &Cell<'_, T>) -> T,
+) {
+    let mut budget = ContactBudget(contacts);
+    let mut supports: Vec<Option<T>> = Vec::with_capacity(4);
+    let mut below: Vec<Option<T>> = Vec::new();
+    for layer in 0..n {
+        let m = n - layer;
+        let mut current: Vec<Option<T>> = vec![None; m * m];
+        for j in 0..m {
+            for i in 0..m {
+                if budget.0 == 0 {
+                    return;
+                }
+                supports.clear();
+                if layer == 0 {
+                    supports.push(None);
+                } else {
+                    let mb = m + 1;
+                    for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                        supports.extend(below[(i + di) + mb * (j + dj)].map(Some));
+                    }
+                }
+                let cell = Cell {
+                    layer,
+                    i,
+                    j,
+                    supports: &supports,
+                    left: if i > 0 { current[(i - 1) + m * j] } else { None },
+                    back: if j > 0 { current[i + m * (j - 1)] } else { None },
+                };
+                current[i + m * j] = Some(place(&mut budget, &cell));
+            }
+        }
+        below = current;
+    }
+}
+
+/// A small random velocity and spin (a settling pile), drawn in a fixed order.
+pub(super) fn random_motion(random: &mut Random) -> ([f64; 3], [f64; 3]) {
+    let v = [
+        0.05 * random.symmetric(),
+        0.05 * random.symmetric(),
+        0.05 * random.symmetric() - 0.05,
+    ];
+    let omega = [
+        0.5 * random.symmetric(),
+        0.5 * random.symmetric(),
+        0.5 * random.symmetric(),
+    ];
+    (v, omega)
 }
 
 /// Generates the scene of `spec` (sparse-block W).
@@ -115,116 +226,55 @@ pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dErr
 }
 
 fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
-    spec.check()?;
-    let mut world = World::new();
-    let mut random = Random(spec.seed);
-    let spacing = 2.0 * RADIUS;
-    let mut x_origin = 0.0;
-    for pile in 0..spec.piles {
-        let budget = spec.pile_contacts(pile);
-        let n = base_for(budget, pyramid_contacts);
-        // One friction coefficient per pile, in [0.3, 0.5].
-        let mu = 0.4 + 0.1 * random.symmetric();
-        build_pile(&mut world, &mut random, n, budget, x_origin, mu);
-        // Three radii of empty ground between piles: they never touch.
-        x_origin += n as f64 * spacing + 6.0 * RADIUS;
-    }
-    Ok(world)
+    // Three radii of empty ground between piles.
+    piles_side_by_side(spec, pyramid_contacts, 2.0 * RADIUS, 6.0 * RADIUS, build_pile)
 }
 
-/// Adds one pyramid of base `n` with its left front corner at `x = x_origin, y = 0`, bottom-up,
-/// stopping after exactly `budget` contacts.
-fn build_pile(
-    world: &mut World,
-    random: &mut Random,
-    n: usize,
-    budget: usize,
-    x_origin: f64,
-    mu: f64,
-) {
+/// Adds one pyramid of spheres with its left front corner at `x = x_origin, y = 0`.
+fn build_pile(world: &mut World, random: &mut Random, pile: &Pile) {
     let spacing = 2.0 * RADIUS;
     let layer_height = spacing / 2f64.sqrt();
     let jitter = 1e-3 * RADIUS;
-    let mut added = 0usize;
-    // Body index of every sphere of the previous and current layer (grid order), `None` when
-    // not built.
-    let mut below: Vec<Option<usize>> = Vec::new();
-    for layer in 0..n {
-        let m = n - layer;
-        let mut current: Vec<Option<usize>> = vec![None; m * m];
-        let offset = 0.5 * spacing * layer as f64;
-        for j in 0..m {
-            for i in 0..m {
-                if added == budget {
-                    return;
-                }
-                let mut jitter3 = || jitter * random.symmetric();
-                let x = [
-                    x_origin + RADIUS + offset + spacing * i as f64 + jitter3(),
-                    RADIUS + offset + spacing * j as f64 + jitter3(),
-                    RADIUS + layer_height * layer as f64 + if layer == 0 { 0.0 } else { jitter3() },
-                ];
-                let mass = MASS * (1.0 + 0.2 * random.symmetric());
-                let v = [
-                    0.05 * random.symmetric(),
-                    0.05 * random.symmetric(),
-                    0.05 * random.symmetric() - 0.05,
-                ];
-                let omega = [
-                    0.5 * random.symmetric(),
-                    0.5 * random.symmetric(),
-                    0.5 * random.symmetric(),
-                ];
-                let body = world.add_body(Body::sphere(x, mass, RADIUS, v, omega));
-                current[i + m * j] = Some(body);
-                // The supports first (ground or the 4 below), then the left and back neighbours.
-                let mut others: Vec<Option<usize>> = Vec::with_capacity(6);
-                if layer == 0 {
-                    others.push(None);
-                } else {
-                    let mb = m + 1;
-                    for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                        if let Some(b) = below[(i + di) + mb * (j + dj)] {
-                            others.push(Some(b));
-                        }
-                    }
-                }
-                if i > 0 {
-                    others.extend(current[(i - 1) + m * j].map(Some));
-                }
-                if j > 0 {
-                    others.extend(current[i + m * (j - 1)].map(Some));
-                }
-                for other in others {
-                    if added == budget {
-                        return;
-                    }
-                    match other {
-                        None => world.add_contact(body, None, [x[0], x[1], 0.0], E_Z, mu),
-                        Some(b) => {
-                            let xb = world.bodies[b].x;
-                            let normal = normalize(&[x[0] - xb[0], x[1] - xb[1], x[2] - xb[2]]);
-                            // Midway between the two surfaces.
-                            let gap = ((x[0] - xb[0]).powi(2)
-                                + (x[1] - xb[1]).powi(2)
-                                + (x[2] - xb[2]).powi(2))
-                            .sqrt()
-                                - 2.0 * RADIUS;
-                            let reach = RADIUS + 0.5 * gap;
-                            let point = [
-                                xb[0] + reach * normal[0],
-                                xb[1] + reach * normal[1],
-                                xb[2] + reach * normal[2],
-                            ];
-                            world.add_contact(body, Some(b), point, normal, mu);
-                        }
-                    }
-                    added += 1;
+    walk_pyramid::<usize>(pile.base, pile.contacts, |budget, cell| {
+        let (layer, i, j) = (cell.layer, cell.i, cell.j);
+        let mut jitter3 = || jitter * random.symmetric();
+        let x = [
+            pile.x_origin + RADIUS + 0.5 * spacing * layer as f64 + spacing * i as f64 + jitter3(),
+            RADIUS + 0.5 * spacing * layer as f64 + spacing * j as f64 + jitter3(),
+            RADIUS + layer_height * layer as f64 + if layer == 0 { 0.0 } else { jitter3() },
+        ];
+        let mass = MASS * (1.0 + 0.2 * random.symmetric());
+        let (v, omega) = random_motion(random);
+        let body = world.add_body(Body::sphere(x, mass, RADIUS, v, omega));
+        // The supports first (ground or the 4 below), then the left and back neighbours.
+        let neighbours = [cell.left, cell.back].into_iter().flatten().map(Some);
+        for other in cell.supports.iter().copied().chain(neighbours) {
+            if !budget.take() {
+                break;
+            }
+            match other {
+                None => world.add_contact(body, None, [x[0], x[1], 0.0], E_Z, pile.mu),
+                Some(b) => {
+                    let xb = world.bodies[b].x;
+                    let normal = normalize(&[x[0] - xb[0], x[1] - xb[1], x[2] - xb[2]]);
+                    // Midway between the two surfaces.
+                    let gap = ((x[0] - xb[0]).powi(2)
+                        + (x[1] - xb[1]).powi(2)
+                        + (x[2] - xb[2]).powi(2))
+                    .sqrt()
+                        - 2.0 * RADIUS;
+                    let reach = RADIUS + 0.5 * gap;
+                    let point = [
+                        xb[0] + reach * normal[0],
+                        xb[1] + reach * normal[1],
+                        xb[2] + reach * normal[2],
+                    ];
+                    world.add_contact(body, Some(b), point, normal, pile.mu);
                 }
             }
         }
-        below = current;
-    }
+        body
+    });
 }
 
 #[cfg(test)]
