@@ -130,7 +130,16 @@ pub(super) fn piles_side_by_side(
             base += 1;
         }
         let mu = 0.4 + 0.1 * random.symmetric();
-        build(&mut world, &mut random, &Pile { base, contacts, x_origin, mu });
+        build(
+            &mut world,
+            &mut random,
+            &Pile {
+                base,
+                contacts,
+                x_origin,
+                mu,
+            },
+        );
         x_origin += base as f64 * pitch + gap;
     }
     Ok(world)
@@ -195,8 +204,16 @@ pub(super) fn walk_pyramid<T: Copy>(
                     i,
                     j,
                     supports: &supports,
-                    left: if i > 0 { current[(i - 1) + m * j] } else { None },
-                    back: if j > 0 { current[i + m * (j - 1)] } else { None },
+                    left: if i > 0 {
+                        current[(i - 1) + m * j]
+                    } else {
+                        None
+                    },
+                    back: if j > 0 {
+                        current[i + m * (j - 1)]
+                    } else {
+                        None
+                    },
                 };
                 current[i + m * j] = Some(place(&mut budget, &cell));
             }
@@ -227,7 +244,13 @@ pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dErr
 
 fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     // Three radii of empty ground between piles.
-    piles_side_by_side(spec, pyramid_contacts, 2.0 * RADIUS, 6.0 * RADIUS, build_pile)
+    piles_side_by_side(
+        spec,
+        pyramid_contacts,
+        2.0 * RADIUS,
+        6.0 * RADIUS,
+        build_pile,
+    )
 }
 
 /// Adds one pyramid of spheres with its left front corner at `x = x_origin, y = 0`.
@@ -258,11 +281,10 @@ fn build_pile(world: &mut World, random: &mut Random, pile: &Pile) {
                     let xb = world.bodies[b].x;
                     let normal = normalize(&[x[0] - xb[0], x[1] - xb[1], x[2] - xb[2]]);
                     // Midway between the two surfaces.
-                    let gap = ((x[0] - xb[0]).powi(2)
-                        + (x[1] - xb[1]).powi(2)
-                        + (x[2] - xb[2]).powi(2))
-                    .sqrt()
-                        - 2.0 * RADIUS;
+                    let gap =
+                        ((x[0] - xb[0]).powi(2) + (x[1] - xb[1]).powi(2) + (x[2] - xb[2]).powi(2))
+                            .sqrt()
+                            - 2.0 * RADIUS;
                     let reach = RADIUS + 0.5 * gap;
                     let point = [
                         xb[0] + reach * normal[0],
