@@ -5,7 +5,7 @@
 use std::time::Duration;
 
 use crate::contract::Limits;
-use crate::error::{require_setting, Fc3dError};
+use crate::error::Fc3dError;
 
 /// What a list of methods (one problem kind's solver ids) gives its configuration.
 pub trait MethodChoice {
@@ -41,6 +41,7 @@ impl<M: MethodChoice> MethodConfig<M> {
         }
     }
 
+    /// The limits the method runs under.
     pub fn limits(&self) -> Limits {
         Limits {
             tolerance: self.tolerance,
@@ -49,13 +50,9 @@ impl<M: MethodChoice> MethodConfig<M> {
         }
     }
 
+    /// Checks the limits and the method's own settings.
     pub fn validate(&self) -> Result<(), Fc3dError> {
-        require_setting(
-            self.tolerance >= 0.0 && self.tolerance.is_finite(),
-            "tolerance",
-            self.tolerance,
-            "finite and >= 0",
-        )?;
+        self.limits().validate()?;
         self.method.validate()
     }
 }

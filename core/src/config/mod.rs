@@ -17,7 +17,7 @@ pub use rolling::RollingConfig;
 use std::time::Duration;
 
 use crate::contract::Limits;
-use crate::error::{require_setting, Fc3dError};
+use crate::error::Fc3dError;
 
 /// Which solver to run and how far.
 ///
@@ -90,16 +90,7 @@ impl SolverConfig {
 
     /// Checks every setting against its documented range.
     pub fn validate(&self) -> Result<(), Fc3dError> {
-        let t = self.tolerance;
-        require_setting(t >= 0.0 && t.is_finite(), "tolerance", t, "finite and >= 0")?;
-        if let Some(b) = self.time_budget {
-            require_setting(
-                !b.is_zero(),
-                "time_budget",
-                format!("{b:?}"),
-                "positive (None: no budget)",
-            )?;
-        }
+        self.limits().validate()?;
         self.method.family().validate()
     }
 

@@ -3,6 +3,7 @@
 use std::time::{Duration, Instant};
 
 use super::SolverOutcome;
+use crate::error::{require_setting, Fc3dError};
 
 /// The limits every family honours. Their defaults depend on the family (Siconos' defaults):
 /// [`crate::SolverConfig::new`] fills them in.
@@ -18,6 +19,22 @@ pub struct Limits {
 }
 
 impl Limits {
+    /// Checks the limits against their documented ranges: a finite tolerance >= 0, a positive
+    /// budget when there is one (any iteration limit is valid).
+    pub fn validate(&self) -> Result<(), Fc3dError> {
+        let t = self.tolerance;
+        require_setting(t >= 0.0 && t.is_finite(), "tolerance", t, "finite and >= 0")?;
+        if let Some(b) = self.time_budget {
+            require_setting(
+                !b.is_zero(),
+                "time_budget",
+                format!("{b:?}"),
+                "positive (None: no budget)",
+            )?;
+        }
+        Ok(())
+    }
+
     /// Starts a run: the deadline is fixed now.
     pub(crate) fn start(&self) -> Run {
         Run {
@@ -143,5 +160,46 @@ impl BestIterate {
             self.restore(r);
         }
         better
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::{MethodConfig, PlanarConfig, RollingConfig};
+    use crate::{PlanarMethod, RollingMethod, SolverConfig};
+
+    #[test]
+    fn every_config_rejects_the_same_bad_limits() {
+        let bad = [
+            (f64::NAN, None),
+            (-1e-4, None),
+            (f64::INFINITY, None),
+            (1e-4, Some(Duration::ZERO)),
+        ];
+        for (tolerance, time_budget) in bad {
+            let limits = Limits {
+                tolerance,
+                max_iter: 10,
+                time_budget,
+            };
+            assert!(limits.validate().is_err(), "{limits:?}");
+            let mut solver = SolverConfig::default();
+            (solver.tolerance, solver.time_budget) = (tolerance, time_budget);
+            assert!(solver.validate().is_err(), "{limits:?}");
+            let mut planar: PlanarConfig = MethodConfig::new(PlanarMethod::Cpg);
+            (planar.tolerance, planar.time_budget) = (tolerance, time_budget);
+            assert!(planar.validate().is_err(), "{limits:?}");
+            let mut rolling: RollingConfig =
+                MethodConfig::new(RollingMethod::Nsgs(Default::default()));
+            (rolling.tolerance, rolling.time_budget) = (tolerance, time_budget);
+            assert!(rolling.validate().is_err(), "{limits:?}");
+        }
+        let good = Limits {
+            tolerance: 0.0,
+            max_iter: 0,
+            time_budget: Some(Duration::from_nanos(1)),
+        };
+        assert!(good.validate().is_ok());
     }
 }
