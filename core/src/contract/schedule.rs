@@ -45,7 +45,8 @@ pub(crate) struct Test {
     pub tested: bool,
     /// [`ErrorEvaluation::LightWithFullFinal`]: the cheap test passed but the full error is above
     /// the tolerance, and the cheap tolerance tightened to 0 (the iteration left r unchanged).
-    /// Siconos' NSGS stops there; a deterministic sweep from the same r can only repeat.
+    /// Siconos' NSGS stops there; a deterministic sweep from the same r can only repeat. Also set
+    /// when the measured error is not finite.
     pub stalled: bool,
 }
 
@@ -150,6 +151,11 @@ impl ErrorSchedule {
                 (e, false, e <= tol)
             }
         };
+        // A non-finite measured error (a NaN or infinity in W or q reaches every error through
+        // W r + q) cannot improve by iterating: stop at once rather than at the iteration limit.
+        if (full || self.evaluation == ErrorEvaluation::DumontCriterion) && !error.is_finite() {
+            stalled = true;
+        }
         self.last_tested = error;
         Test {
             error,
