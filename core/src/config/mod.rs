@@ -111,3 +111,43 @@ impl Default for SolverConfig {
         SolverConfig::new(Method::default())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{PlanarMethod, RollingMethod};
+
+    #[test]
+    fn every_config_rejects_the_same_bad_limits() {
+        let bad = [
+            (f64::NAN, None),
+            (-1e-4, None),
+            (f64::INFINITY, None),
+            (1e-4, Some(Duration::ZERO)),
+        ];
+        for (tolerance, time_budget) in bad {
+            let limits = Limits {
+                tolerance,
+                max_iter: 10,
+                time_budget,
+            };
+            assert!(limits.validate().is_err(), "{limits:?}");
+            let mut solver = SolverConfig::default();
+            (solver.tolerance, solver.time_budget) = (tolerance, time_budget);
+            assert!(solver.validate().is_err(), "{limits:?}");
+            let mut planar: PlanarConfig = MethodConfig::new(PlanarMethod::Cpg);
+            (planar.tolerance, planar.time_budget) = (tolerance, time_budget);
+            assert!(planar.validate().is_err(), "{limits:?}");
+            let mut rolling: RollingConfig =
+                MethodConfig::new(RollingMethod::Nsgs(Default::default()));
+            (rolling.tolerance, rolling.time_budget) = (tolerance, time_budget);
+            assert!(rolling.validate().is_err(), "{limits:?}");
+        }
+        let good = Limits {
+            tolerance: 0.0,
+            max_iter: 0,
+            time_budget: Some(Duration::from_nanos(1)),
+        };
+        assert!(good.validate().is_ok());
+    }
+}
