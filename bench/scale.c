@@ -3,15 +3,18 @@
  * bench/siconos_compare.c is. scripts/scale-bench.sh builds both and runs them on generated piles.
  *
  * Modes (each prints one line of "key value" pairs):
- *   setup <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]
- *       Times are CPU seconds of the process (see now_seconds).
+ *   setup [--threads N] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]
+ *       Times are CPU seconds of the process (see now_seconds). With --threads N (fc3d only,
+ *       NSGS 500): fc3d's coloured decomposition on N threads (iparam[FC3D_IPARAM_NSGS_
+ *       DECOMPOSITION] = FC3D_NSGS_COLOURED, iparam[FC3D_IPARAM_NSGS_THREADS] = N), timed in
+ *       wall-clock seconds (CPU time would sum the threads); the line then says clock wall.
  *       Reads the problem (peak RSS of the read measured alone), then times fc3d_driver calls
  *       from r = 0 limited to 1 and to 1 + <sweeps> iterations (<reps> each, medians):
  *       sweep = (t(1 + sweeps) - t(1)) / sweeps, setup = t(1) - sweep: what a call costs on top of
  *       its sweeps. Peak RSS of the solving part measured alone (VmHWM reset through
  *       /proc/self/clear_refs after the read). Prints
  *         contacts C blocks B rss_before_kb R0 peak_read_kb P1 rss_after_read_kb R1
- *         peak_solve_kb P2 call1_s T1 callN_s TN sweep_s S setup_s U stream_bytes Y
+ *         peak_solve_kb P2 call1_s T1 callN_s TN sweep_s S setup_s U stream_bytes Y clock cpu|wall
  *       stream_bytes: what one sweep must read at least (every block, its column index, the block
  *       row pointers, q, r and mu).
  *       Then, for each tolerance (loosest first), solves on from where the previous one stopped
@@ -53,6 +56,25 @@ static double wall_seconds(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Threads of fc3d's coloured NSGS (0: the library's defaults, one thread, CPU time). */
+static int threads = 0;
+
+/* The clock of the timings: CPU time of the process, or wall time for a threaded run. */
+static double clock_seconds(void) { return threads > 0 ? wall_seconds() : now_seconds(); }
+
+/* Options of `solver` with Siconos' defaults, and the coloured decomposition on `threads`
+ * threads when asked. */
+static SolverOptions* create_options(int solver) {
+  SolverOptions* options = solver_options_create(solver);
+#ifdef FC3D_IPARAM_NSGS_DECOMPOSITION
+  if (threads > 0) {
+    options->iparam[FC3D_IPARAM_NSGS_DECOMPOSITION] = FC3D_NSGS_COLOURED;
+    options->iparam[FC3D_IPARAM_NSGS_THREADS] = threads;
+  }
+#endif
+  return options;
 }
 
 static int cmp_double(const void* a, const void* b) {
@@ -100,12 +122,12 @@ static double call(FrictionContactProblem* problem, int solver, double tol, int 
   int n = 3 * problem->numberOfContacts;
   memset(r, 0, (size_t)n * sizeof(double));
   memset(u, 0, (size_t)n * sizeof(double));
-  SolverOptions* options = solver_options_create(solver);
+  SolverOptions* options = create_options(solver);
   options->dparam[SICONOS_DPARAM_TOL] = tol;
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
-  double t0 = now_seconds();
+  double t0 = clock_seconds();
   *info = fc3d_driver(problem, r, u, options);
-  double t = now_seconds() - t0;
+  double t = clock_seconds() - t0;
   *iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
   *error = options->dparam[SICONOS_DPARAM_RESIDU];
   solver_options_delete(options);
@@ -128,8 +150,25 @@ static double median_call(FrictionContactProblem* problem, int solver, int max_i
 }
 
 static int mode_setup(int argc, char** argv) {
+  if (argc >= 4 && strcmp(argv[2], "--threads") == 0) {
+    threads = atoi(argv[3]);
+#ifndef FC3D_IPARAM_NSGS_DECOMPOSITION
+    fprintf(stderr, "--threads: this library has no coloured NSGS (fc3d only)\n");
+    return 2;
+#endif
+    if (threads < 1) {
+      fprintf(stderr, "--threads needs a positive count\n");
+      return 2;
+    }
+    /* The rest as without the option. */
+    argv[3] = argv[1];
+    argv[2] = argv[0];
+    argv += 2;
+    argc -= 2;
+  }
   if (argc < 6 || argc == 7) {
-    fprintf(stderr, "usage: %s setup <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]\n", argv[0]);
+    fprintf(stderr, "usage: %s setup [--threads N] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]\n",
+            argv[0]);
     return 2;
   }
   int solver = atoi(argv[3]), sweeps = atoi(argv[4]), reps = atoi(argv[5]);
@@ -154,8 +193,9 @@ static int mode_setup(int argc, char** argv) {
   double sweep = (tn - t1) / sweeps;
   double stream_bytes = (double)blocks * (72.0 + 8.0) + (double)nc * (8.0 + 3 * 8.0 * 2 + 8.0);
   printf("contacts %d blocks %ld rss_before_kb %ld peak_read_kb %ld rss_after_read_kb %ld peak_solve_kb %ld "
-         "call1_s %.6e callN_s %.6e sweep_s %.6e setup_s %.6e stream_bytes %.0f\n",
-         nc, blocks, rss_before, peak_read, rss_after_read, peak_solve, t1, tn, sweep, t1 - sweep, stream_bytes);
+         "call1_s %.6e callN_s %.6e sweep_s %.6e setup_s %.6e stream_bytes %.0f clock %s\n",
+         nc, blocks, rss_before, peak_read, rss_after_read, peak_solve, t1, tn, sweep, t1 - sweep, stream_bytes,
+         threads > 0 ? "wall" : "cpu");
   fflush(stdout);
   if (argc > 7) {
     int max_iter = atoi(argv[6]), total_iter = 0;
@@ -164,12 +204,12 @@ static int mode_setup(int argc, char** argv) {
     memset(u, 0, (size_t)n * sizeof(double));
     for (int k = 7; k < argc; k++) {
       double tol = atof(argv[k]);
-      SolverOptions* options = solver_options_create(solver);
+      SolverOptions* options = create_options(solver);
       options->dparam[SICONOS_DPARAM_TOL] = tol;
       options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter - total_iter;
-      double t0 = now_seconds();
+      double t0 = clock_seconds();
       int info = fc3d_driver(problem, r, u, options);
-      total += now_seconds() - t0;
+      total += clock_seconds() - t0;
       total_iter += options->iparam[SICONOS_IPARAM_ITER_DONE];
       printf("tol %g info %d iterations %d error %.6e seconds %.6e\n", tol, info, total_iter,
              options->dparam[SICONOS_DPARAM_RESIDU], total);

@@ -12,15 +12,15 @@ use std::ffi::c_char;
 use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
-use super::alloc::{c_box, c_copy, c_free};
+use super::alloc::{c_box, c_copy, c_free, CStore};
 use super::matrix::{
-    c_slice, delassus_from_c_blocks, matrix_into_c, matrix_to_c, nm_clear_impl, nm_duplicate,
-    nm_scale_in_place,
+    c_slice, delassus_from_c_blocks, matrix_from_read, matrix_to_c, nm_clear_impl, nm_duplicate,
+    nm_scale_in_place, read_from_stream,
 };
-use super::stream::{c_filename, write_file, write_stream, CStream};
+use super::stream::{c_filename, write_file, write_stream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
-use fc3d_core::io::dat::DatProblem;
+use fc3d_core::io::dat::{read_dat_file_into, read_dat_into, ReadProblem};
 use fc3d_core::matrix::{Delassus, DenseMatrix};
 use fc3d_core::problem::{FrictionProblem, FrictionProblem2d};
 
@@ -144,42 +144,43 @@ pub(crate) unsafe fn parts_from_c<'a, const D: usize>(
     Ok((w, q, mu))
 }
 
-/// A C-allocated problem holding a copy of a problem read from a file.
-fn dat_problem_to_c(p: DatProblem) -> CResult<*mut FrictionContactProblem> {
-    match p {
-        DatProblem::Spatial(p) => problem_into_c(p),
-        DatProblem::Planar(p) => problem_into_c(p),
-    }
-}
-
-/// As [`problem_to_c`], consuming `p`: q and mu are copied first, then W is moved over to C and
-/// released as it goes (a reader holds one copy of W at a time).
-fn problem_into_c<const D: usize>(
-    p: FrictionProblem<'_, D>,
-) -> CResult<*mut FrictionContactProblem> {
-    let nc = c_int::try_from(p.n_contacts())
-        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
-    let (w, q, mu) = p.into_parts();
-    let q = c_copy(&q)?;
-    let mu = c_copy(&mu).inspect_err(|_| unsafe { c_free(q) })?;
-    let release = |ptrs: &[*mut c_double]| unsafe {
-        for &x in ptrs {
-            c_free(x);
-        }
-    };
-    let m = matrix_into_c(w).inspect_err(|_| release(&[q, mu]))?;
-    c_box(FrictionContactProblem {
-        dimension: D as c_int,
-        numberOfContacts: nc,
-        M: m,
+/// The C problem of a problem a reader stored in C arrays: q, mu and W's storage become the
+/// problem's as they are (see `matrix_from_read`), so that a read holds one copy of everything.
+/// Everything is freed on failure.
+fn problem_from_read(p: ReadProblem<CStore>) -> CResult<*mut FrictionContactProblem> {
+    let ReadProblem {
+        dimension,
+        w,
         q,
         mu,
-    })
-    .inspect_err(|_| unsafe {
-        release(&[q, mu]);
-        super::matrix::nm_clear_impl(m);
-        c_free(m);
-    })
+    } = p;
+    let nc = c_int::try_from(mu.len())
+        .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, "too many contacts for a C int"))?;
+    let dimension = c_int::try_from(dimension)
+        .map_err(|_| CError::new(FC3D_ERR_INVALID_PROBLEM, "invalid dimension"))?;
+    let out = c_box(FrictionContactProblem {
+        dimension,
+        numberOfContacts: nc,
+        M: null_mut(),
+        q: null_mut(),
+        mu: null_mut(),
+    })?;
+    match matrix_from_read(w) {
+        Ok(m) => {
+            // SAFETY: out is the fresh problem allocated above; q and mu are handed over.
+            unsafe {
+                (*out).M = m;
+                (*out).q = q.into_raw();
+                (*out).mu = mu.into_raw();
+            }
+            Ok(out)
+        }
+        Err(e) => {
+            // SAFETY: out owns nothing yet.
+            unsafe { c_free(out) };
+            Err(e)
+        }
+    }
 }
 
 /// A C-allocated problem holding a copy of `p` (W in the same storage; a 2D problem's W, held as
@@ -372,8 +373,8 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
             if super::fclib::is_fclib_file(path) {
                 return super::fclib::read_fclib_problem(path);
             }
-            let p = fc3d_core::io::dat::read_dat_file_any(std::path::Path::new(path))?;
-            dat_problem_to_c(p)
+            let p = read_dat_file_into::<CStore>(std::path::Path::new(path))?;
+            problem_from_read(p)
         },
     )
 }
@@ -394,18 +395,11 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
         "frictionContact_newFromFile",
         |_| null_mut(),
         || {
-            let mut stream = CStream::new(file)?;
-            let len = stream.len_hint();
-            match fc3d_core::io::dat::read_dat_any(&mut stream, len, "<FILE stream>") {
-                Ok((p, used)) => {
-                    stream.finish(Some(used));
-                    dat_problem_to_c(p)
-                }
-                Err(e) => {
-                    stream.finish(None);
-                    Err(e.into())
-                }
-            }
+            read_from_stream(
+                file,
+                |stream, len| read_dat_into::<CStore, _>(stream, len, "<FILE stream>"),
+                problem_from_read,
+            )
         },
     )
 }

@@ -5,12 +5,15 @@ use std::ffi::c_char;
 use std::os::raw::c_int;
 use std::ptr::null_mut;
 
-use super::sbm::sbm_to_c;
-use super::{delassus_from_c, matrix_to_c, NM_SPARSE_BLOCK};
+use super::sbm::sbm_from_parts;
+use super::{delassus_from_c, matrix_from_read, storage_err, NM_SPARSE_BLOCK};
+use crate::alloc::CStore;
 use crate::stream::{c_filename, write_file, write_stream, CStream};
 use crate::types::*;
 use crate::{ffi_guard, CError, CResult};
-use fc3d_core::io::dat::{read_matrix, read_matrix_file, read_sbm, write_matrix};
+use fc3d_core::io::dat::{
+    read_matrix_file_into, read_matrix_into, read_sbm_into, write_matrix, ReadMatrix,
+};
 use fc3d_core::matrix::Delassus;
 
 // ---------------------------------------------------------------------------------------------
@@ -20,19 +23,19 @@ use fc3d_core::matrix::Delassus;
 const STREAM_LABEL: &str = "<FILE stream>";
 
 /// Reads a value from `file` with `read` (which pulls the stream in chunks and returns the value
-/// and the number of bytes it used), then converts it with `to_c`. The stream is read only up
-/// to the end of the value (never to the end of a stream that goes on), then left just after
-/// it on success and put back where it was on failure (see `CStream`).
-unsafe fn read_from_stream<T, U>(
+/// and the number of bytes it used), then makes the host's structure of it with `to_c`. The
+/// stream is read only up to the end of the value (never to the end of a stream that goes on),
+/// then left just after it on success and put back where it was on failure (see `CStream`).
+pub(crate) unsafe fn read_from_stream<T, U>(
     file: *mut libc::FILE,
     read: impl FnOnce(&mut CStream, Option<u64>) -> Result<(T, u64), fc3d_core::error::Fc3dError>,
-    to_c: impl FnOnce(&T) -> CResult<U>,
+    to_c: impl FnOnce(T) -> CResult<U>,
 ) -> CResult<U> {
     let mut stream = CStream::new(file)?;
     let len = stream.len_hint();
     let result = read(&mut stream, len)
         .map_err(CError::from)
-        .and_then(|(value, used)| to_c(&value).map(|c| (c, used)));
+        .and_then(|(value, used)| to_c(value).map(|c| (c, used)));
     match result {
         Ok((c, used)) => {
             stream.finish(Some(used));
@@ -70,8 +73,8 @@ pub unsafe extern "C" fn NM_new_from_file(file: *mut libc::FILE) -> *mut Numeric
         || {
             read_from_stream(
                 file,
-                |stream, len| read_matrix(stream, len, STREAM_LABEL),
-                |w| matrix_to_c(w),
+                |stream, len| read_matrix_into::<CStore, _>(stream, len, STREAM_LABEL),
+                matrix_from_read,
             )
         },
     )
@@ -87,8 +90,7 @@ pub unsafe extern "C" fn NM_new_from_filename(filename: *const c_char) -> *mut N
         |_| null_mut(),
         || {
             let path = c_filename(filename)?;
-            let w = read_matrix_file(std::path::Path::new(path))?;
-            matrix_to_c(&w)
+            matrix_from_read(read_matrix_file_into::<CStore>(std::path::Path::new(path))?)
         },
     )
 }
@@ -191,8 +193,17 @@ pub unsafe extern "C" fn SBM_new_from_file(
         || {
             read_from_stream(
                 file,
-                |stream, len| read_sbm(stream, len, STREAM_LABEL),
-                sbm_to_c,
+                |stream, len| read_sbm_into::<CStore, _>(stream, len, STREAM_LABEL),
+                |m| match m {
+                    ReadMatrix::SparseBlock {
+                        block_rows,
+                        block_cols,
+                        row_ptr,
+                        col_idx,
+                        blocks,
+                    } => sbm_from_parts(block_rows, block_cols, row_ptr, col_idx, blocks),
+                    _ => Err(storage_err("the sparse-block reader made another storage")),
+                },
             )
         },
     )

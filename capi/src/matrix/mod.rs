@@ -32,11 +32,13 @@ use std::borrow::Cow;
 use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
-use super::alloc::{c_calloc, c_free};
+use super::alloc::{c_calloc, c_free, CStore};
 use super::types::*;
 use super::{CError, CResult, FC3D_ERR_INVALID_SIZE, FC3D_ERR_INVALID_STORAGE};
 use csparse::{csc_to_c, csr_from_cs, empty_nsm, nsm_clear};
+use fc3d_core::io::dat::ReadMatrix;
 use fc3d_core::matrix::{Delassus, DenseMatrix};
+pub(crate) use file::read_from_stream;
 use sbm::{
     block_sparse_from_sbm, check_sbm_clearable, csr_from_uniform_sbm, sbm_clear_impl, sbm_to_c,
 };
@@ -339,25 +341,54 @@ fn c_size(n: usize) -> CResult<c_int> {
     })
 }
 
-/// As [`matrix_to_c`], consuming `w`: a sparse-block W is released as it is copied (see
-/// `sbm_into_c`), so that a reader never holds two copies of it.
-pub(crate) fn matrix_into_c(w: Delassus<'_>) -> CResult<*mut NumericsMatrix> {
-    let Delassus::SparseBlock(b) = w else {
-        return matrix_to_c(&w);
-    };
+/// The C NumericsMatrix of a matrix a reader stored in C arrays ([`CStore`]): a dense matrix's
+/// values and a sparse-block matrix's index arrays and blocks become the matrix's storage as
+/// they are (no copy); a matrix the reader built as fc3d's own (sparse) is copied. Everything
+/// is freed on failure.
+pub(crate) fn matrix_from_read(w: ReadMatrix<CStore>) -> CResult<*mut NumericsMatrix> {
     let mut m = null_matrix();
-    m.size0 = c_size(b.nrows())?;
-    m.size1 = c_size(b.ncols())?;
-    let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
-    m.storageType = NM_SPARSE_BLOCK;
-    m.matrix1 = sbm::sbm_into_c(b)?;
+    match w {
+        ReadMatrix::Built(w) => return matrix_to_c(&w),
+        ReadMatrix::Dense { rows, cols, values } => {
+            m.size0 = c_size(rows)?;
+            m.size1 = c_size(cols)?;
+            if rows.checked_mul(cols) != Some(values.len()) {
+                return Err(size_err(format!(
+                    "a dense {rows}x{cols} matrix read with {} values",
+                    values.len()
+                )));
+            }
+            let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
+            m.storageType = NM_DENSE;
+            m.matrix0 = values.into_raw();
+            Ok(finish_matrix(out, m))
+        }
+        ReadMatrix::SparseBlock {
+            block_rows,
+            block_cols,
+            row_ptr,
+            col_idx,
+            blocks,
+        } => {
+            m.size0 = c_size(block_rows.saturating_mul(3))?;
+            m.size1 = c_size(block_cols.saturating_mul(3))?;
+            let out = CBuf::<NumericsMatrix>::zeroed(1, "matrix")?;
+            m.storageType = NM_SPARSE_BLOCK;
+            m.matrix1 = sbm::sbm_from_parts(block_rows, block_cols, row_ptr, col_idx, blocks)?;
+            Ok(finish_matrix(out, m))
+        }
+    }
+}
+
+/// Writes `m` into `out` (a fresh allocation) and hands it over.
+fn finish_matrix(out: CBuf<NumericsMatrix>, m: NumericsMatrix) -> *mut NumericsMatrix {
     let out = out.into_raw();
     // SAFETY: out is a fresh allocation for one NumericsMatrix.
     unsafe {
         out.write(m);
         own_destructible(out);
     }
-    Ok(out)
+    out
 }
 
 /// A C-allocated NumericsMatrix holding a copy of `w` in the same storage

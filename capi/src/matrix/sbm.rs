@@ -12,7 +12,7 @@ use std::os::raw::{c_double, c_int, c_uint};
 use std::ptr::null_mut;
 
 use super::{c_slice, check_heap_len, size_err, storage_err, CBuf};
-use crate::alloc::c_free;
+use crate::alloc::{c_free, CArray, CBlocks};
 use crate::types::*;
 use crate::{ffi_guard, CError, CResult};
 use fc3d_core::error::{try_copy, try_vec};
@@ -358,48 +358,35 @@ pub(super) unsafe fn sbm_get(s: &SparseBlockStructuredMatrix, i: usize, j: usize
 /// A C-allocated SBM copy of a core block-sparse matrix (blocks malloc'd one by one, as
 /// Siconos); nothing is left allocated on failure.
 pub(crate) fn sbm_to_c(b: &BlockSparseMatrix) -> CResult<*mut SparseBlockStructuredMatrix> {
-    let (nbr, nbc) = (b.n_block_rows(), b.n_block_cols());
-    sbm_to_c_with(nbr, nbc, b.row_ptr(), b.col_idx(), |slots| {
-        for (slot, v) in slots.iter_mut().zip(b.blocks()) {
-            *slot = CBuf::copy(v, "SBM block")?.into_raw();
-        }
-        Ok(())
-    })
+    let row_ptr = CArray::copy(b.row_ptr(), "SBM index1_data")?;
+    let col_idx = CArray::copy(b.col_idx(), "SBM index2_data")?;
+    let mut blocks = CBlocks::with_capacity(b.n_blocks(), "SBM blocks")?;
+    for v in b.blocks() {
+        blocks.push(v, "SBM blocks")?;
+    }
+    sbm_from_parts(b.n_block_rows(), b.n_block_cols(), row_ptr, col_idx, blocks)
 }
 
-/// Blocks copied to C per release step of [`sbm_into_c`] (4.5 MiB of W).
-const RELEASE_CHUNK: usize = 1 << 16;
-
-/// As [`sbm_to_c`], consuming `b`: its blocks are copied from the last to the first and its
-/// storage shrunk behind the copy every [`RELEASE_CHUNK`] blocks, so that the two copies of W
-/// never coexist (a reader's peak memory stays near one W, not two).
-pub(crate) fn sbm_into_c(b: BlockSparseMatrix) -> CResult<*mut SparseBlockStructuredMatrix> {
-    let (nbr, nbc, row_ptr, col_idx, mut values) = b.into_parts();
-    sbm_to_c_with(nbr, nbc, &row_ptr, &col_idx, |slots| {
-        let mut end = slots.len();
-        while end > 0 {
-            let start = end.saturating_sub(RELEASE_CHUNK);
-            for (k, slot) in slots.iter_mut().enumerate().take(end).skip(start) {
-                *slot = CBuf::copy(&values[9 * k..9 * k + 9], "SBM block")?.into_raw();
-            }
-            values.truncate(9 * start);
-            values.shrink_to_fit();
-            end = start;
-        }
-        Ok(())
-    })
-}
-
-/// The C SBM of the given structure whose block pointers `fill_blocks` sets (the slots start
-/// NULL; on failure every non-NULL one is freed with the rest).
-fn sbm_to_c_with(
+/// The C SBM of `nbr x nbc` 3x3 blocks made of the given arrays, handed over to it as they are
+/// (no copy: a reader fills them where the host will own them); the block sizes are added. The structure must be consistent (`row_ptr`: `nbr + 1` non-decreasing
+/// entries from 0 to the number of blocks, block columns below `nbc`). On failure everything
+/// given is freed.
+pub(crate) fn sbm_from_parts(
     nbr: usize,
     nbc: usize,
-    row_ptr: &[usize],
-    col_idx: &[usize],
-    fill_blocks: impl FnOnce(&mut [*mut c_double]) -> CResult<()>,
+    row_ptr: CArray<usize>,
+    col_idx: CArray<usize>,
+    blocks: CBlocks,
 ) -> CResult<*mut SparseBlockStructuredMatrix> {
     let nb = col_idx.len();
+    if row_ptr.len() != nbr + 1 || row_ptr.last() != Some(&nb) || blocks.len() != nb {
+        return Err(storage_err(format!(
+            "inconsistent sparse-block structure: {} row pointers for {nbr} block rows, {nb} \
+             block columns, {} blocks",
+            row_ptr.len(),
+            blocks.len()
+        )));
+    }
     let count = |n: usize, what: &str| -> CResult<c_uint> {
         c_uint::try_from(n.saturating_mul(3))
             .map(|_| n as c_uint)
@@ -412,53 +399,35 @@ fn sbm_to_c_with(
             .map_err(|_| size_err(format!("{nb} blocks do not fit a C unsigned int")))?,
     );
     let out = CBuf::<SparseBlockStructuredMatrix>::zeroed(1, "sparse-block matrix")?;
-    let mut s = empty_sbm();
-    let filled = (|| -> CResult<()> {
-        let mut slots = CBuf::<*mut c_double>::zeroed(nb, "SBM block array")?;
-        let filled = fill_blocks(slots.as_mut_slice());
-        s.block = slots.into_raw();
-        // Every slot is a block or NULL: clearing nb of them frees exactly what was made.
-        s.nbblocks = nb_u;
-        filled?;
-        s.blocknumber0 = nbr_u;
-        s.blocknumber1 = nbc_u;
-        let mut bs0 = CBuf::<c_uint>::zeroed(nbr, "SBM blocksize0")?;
-        for (k, v) in bs0.as_mut_slice().iter_mut().enumerate() {
-            *v = 3 * (k as c_uint + 1);
-        }
-        s.blocksize0 = bs0.into_raw();
-        let mut bs1 = CBuf::<c_uint>::zeroed(nbc, "SBM blocksize1")?;
-        for (k, v) in bs1.as_mut_slice().iter_mut().enumerate() {
-            *v = 3 * (k as c_uint + 1);
-        }
-        s.blocksize1 = bs1.into_raw();
-        s.index1_data = CBuf::copy(row_ptr, "SBM index1_data")?.into_raw();
-        s.filled1 = nbr + 1;
-        s.index2_data = CBuf::copy(col_idx, "SBM index2_data")?.into_raw();
-        s.filled2 = nb;
-        let mut diag = CBuf::<c_uint>::zeroed(nbr, "SBM diagonal_blocks")?;
-        for (i, d) in diag.as_mut_slice().iter_mut().enumerate() {
-            *d = (row_ptr[i]..row_ptr[i + 1])
-                .find(|&k| col_idx[k] == i)
-                .map_or(c_uint::MAX, |k| k as c_uint);
-        }
-        s.diagonal_blocks = diag.into_raw();
-        Ok(())
-    })();
-    match filled {
-        Ok(()) => {
-            let out = out.into_raw();
-            // SAFETY: out is a fresh allocation for one SBM.
-            unsafe { out.write(s) };
-            Ok(out)
-        }
-        Err(e) => {
-            // SAFETY: s holds only what was allocated above (its nbblocks slots are blocks or
-            // NULL).
-            unsafe { sbm_clear_impl(&mut s, true) };
-            Err(e)
-        }
+    let mut bs0 = CBuf::<c_uint>::zeroed(nbr, "SBM blocksize0")?;
+    for (k, v) in bs0.as_mut_slice().iter_mut().enumerate() {
+        *v = 3 * (k as c_uint + 1);
     }
+    let mut bs1 = CBuf::<c_uint>::zeroed(nbc, "SBM blocksize1")?;
+    for (k, v) in bs1.as_mut_slice().iter_mut().enumerate() {
+        *v = 3 * (k as c_uint + 1);
+    }
+    // Nothing can fail from here on.
+    let s = SparseBlockStructuredMatrix {
+        nbblocks: nb_u,
+        block: blocks.into_raw(),
+        blocknumber0: nbr_u,
+        blocknumber1: nbc_u,
+        blocksize0: bs0.into_raw(),
+        blocksize1: bs1.into_raw(),
+        filled1: nbr + 1,
+        filled2: nb,
+        index1_data: row_ptr.into_raw(),
+        index2_data: col_idx.into_raw(),
+        // As Siconos' readers leave it: computed on demand by its `SBM_diagonal_block_indices`
+        // (fc3d's solvers find the diagonal blocks themselves), so a read holds no more.
+        diagonal_blocks: null_mut(),
+        version: NumericsDataVersion::default(),
+    };
+    let out = out.into_raw();
+    // SAFETY: out is a fresh allocation for one SBM.
+    unsafe { out.write(s) };
+    Ok(out)
 }
 
 pub(super) fn empty_sbm() -> SparseBlockStructuredMatrix {

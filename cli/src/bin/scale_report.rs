@@ -1,9 +1,13 @@
 //! `scale_report RESULTS.csv [--picture OUT.svg]`: the report of `scripts/scale-bench.sh`.
 //!
-//! Prints a Markdown table (one row per size and library: sweep time next to its memory-bandwidth
-//! floor, per-call set-up in seconds and in sweeps, peak RSS of reading and of solving, bytes per
-//! contact, time and sweeps to each tolerance) and, with `--picture`, draws time per sweep and
-//! per-call set-up against contacts on log-log axes (SVG, and PNG next to it).
+//! Prints a Markdown table (one row per size and library: sweep time, its ratio to Siconos' sweep
+//! at the same size and its memory-bandwidth floor, per-call set-up in seconds and in sweeps,
+//! peak RSS of reading, what solving adds, the peak of both, bytes per contact, time and sweeps
+//! to each tolerance) and,
+//! with `--picture`, draws time per sweep and per-call set-up against contacts on log-log axes
+//! (SVG, and PNG next to it), one series per library (the threaded fc3d rows, library
+//! `fc3d-coloured-Nt`, are a series of their own). Times are CPU seconds, but for rows whose
+//! `clock` column says `wall` (threaded runs: CPU time would sum the threads).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -69,13 +73,37 @@ fn mb(kb: Option<f64>) -> String {
     kb.map_or("–".into(), |v| format!("{:.0}", v / 1024.0))
 }
 
+/// The library whose sweep the others are compared with.
+const REFERENCE_LIBRARY: &str = "siconos";
+
+/// A row's library, marked when its times are wall-clock seconds.
+fn library_label(r: &Row) -> String {
+    match r.fields.get("clock").map(String::as_str) {
+        Some("wall") => format!("{} (wall)", r.library),
+        _ => r.library.clone(),
+    }
+}
+
+/// The row's sweep time over the reference library's at the same size.
+fn sweep_ratio(rows: &[Row], r: &Row) -> String {
+    let reference = rows
+        .iter()
+        .find(|x| x.library == REFERENCE_LIBRARY && x.contacts == r.contacts)
+        .and_then(|x| x.num("sweep_s"));
+    match (r.num("sweep_s"), reference) {
+        (Some(s), Some(s0)) if s0 > 0.0 => format!("{:.2}", s / s0),
+        _ => "–".into(),
+    }
+}
+
 fn table(rows: &[Row], tols: &[String]) -> String {
     let mut out = String::new();
-    let mut head =
-        "| contacts | library | sweep ms | floor ms | set-up ms | set-up / sweep | peak read MB | \
-                    held after read MB | solve adds MB | bytes / contact |"
-            .to_string();
-    let mut rule = "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|".to_string();
+    let mut head = format!(
+        "| contacts | library | sweep ms | sweep / {REFERENCE_LIBRARY} | floor ms | set-up ms | \
+         set-up / sweep | peak read MB | held after read MB | solve adds MB | peak read + solve MB \
+         | bytes / contact |"
+    );
+    let mut rule = "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|".to_string();
     for t in tols {
         head.push_str(&format!(" to {t}: s (sweeps) |"));
         rule.push_str("---:|");
@@ -96,21 +124,29 @@ fn table(rows: &[Row], tols: &[String]) -> String {
             (Some(p), Some(h)) => Some(p - h),
             _ => None,
         };
+        // The process's peak over the read and the solve (VmHWM was reset to the RSS after the
+        // read, so the solve's peak is absolute).
+        let peak_all = match (r.num("peak_read_kb"), r.num("peak_solve_kb")) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        };
         let per_contact = match (held, r.num("rss_before_kb")) {
             (Some(h), Some(b)) => format!("{:.0}", (h - b) * 1024.0 / r.contacts),
             _ => "–".into(),
         };
         let mut line = format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.contacts,
-            r.library,
+            library_label(r),
             ms(sweep),
+            sweep_ratio(rows, r),
             ms(r.num("floor_s")),
             ms(setup),
             ratio,
             mb(r.num("peak_read_kb")),
             mb(held),
             mb(adds),
+            mb(peak_all),
             per_contact
         );
         for t in tols {
@@ -127,6 +163,7 @@ fn table(rows: &[Row], tols: &[String]) -> String {
     out
 }
 
+/// The libraries' colours, then the floor's (grey).
 const COLORS: [RGBColor; 5] = [
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
@@ -134,6 +171,7 @@ const COLORS: [RGBColor; 5] = [
     RGBColor(204, 121, 167),
     RGBColor(127, 127, 127),
 ];
+const FLOOR_COLOR: RGBColor = COLORS[COLORS.len() - 1];
 
 /// The series of the picture: (legend, colour, dashed, points).
 type Series = (String, RGBColor, bool, Vec<(f64, f64)>);
@@ -142,9 +180,16 @@ fn series(rows: &[Row]) -> Vec<Series> {
     let mut out = Vec::new();
     let mut libraries: Vec<&str> = rows.iter().map(|r| r.library.as_str()).collect();
     libraries.dedup();
-    libraries.sort_unstable();
+    // The single-thread libraries first (their colours as before threaded rows existed).
+    libraries.sort_unstable_by_key(|l| (l.contains("coloured"), *l));
     libraries.dedup();
     for (k, lib) in libraries.iter().enumerate() {
+        // Beyond the palette the colours repeat (the dashes still tell set-up from sweep).
+        let color = COLORS[k % (COLORS.len() - 1)];
+        let label = rows
+            .iter()
+            .find(|r| r.library == *lib)
+            .map_or_else(|| lib.to_string(), library_label);
         let of = |key: &str| -> Vec<(f64, f64)> {
             rows.iter()
                 .filter(|r| r.library == *lib)
@@ -152,14 +197,14 @@ fn series(rows: &[Row]) -> Vec<Series> {
                 .collect()
         };
         out.push((
-            format!("{lib}: time per sweep"),
-            COLORS[k],
+            format!("{label}: time per sweep"),
+            color,
             false,
             of("sweep_s"),
         ));
         out.push((
-            format!("{lib}: set-up per call"),
-            COLORS[k],
+            format!("{label}: set-up per call"),
+            color,
             true,
             of("setup_s"),
         ));
@@ -171,7 +216,7 @@ fn series(rows: &[Row]) -> Vec<Series> {
         .collect();
     out.push((
         "memory-bandwidth floor of a sweep".into(),
-        COLORS[4],
+        FLOOR_COLOR,
         false,
         floor,
     ));
@@ -296,6 +341,15 @@ fn main() -> ExitCode {
         }
     };
     print!("{}", table(&rows, &tols));
+    if rows
+        .iter()
+        .any(|r| r.fields.get("clock").is_some_and(|c| c == "wall"))
+    {
+        println!(
+            "\nTimes are CPU seconds of the process, but for the rows marked (wall): threaded \
+             runs, timed in wall-clock seconds (their CPU time sums the threads)."
+        );
+    }
     if let Some(bw) = rows.first().and_then(|r| r.num("bandwidth_gbs")) {
         println!(
             "\nFloor: bytes a sweep must read (W's blocks and column indices, row pointers, q, r, \

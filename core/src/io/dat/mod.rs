@@ -59,6 +59,7 @@ mod csparse;
 mod parse;
 mod scan;
 mod storage;
+mod store;
 #[cfg(test)]
 mod tests;
 mod tokens;
@@ -66,10 +67,12 @@ mod write;
 
 pub use parse::{
     parse_dat, parse_dat_any, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix,
-    read_dat, read_dat_any, read_dat_file, read_dat_file_any, read_matrix, read_matrix_file,
-    read_sbm, DatProblem,
+    read_dat, read_dat_any, read_dat_file, read_dat_file_any, read_dat_file_into, read_dat_into,
+    read_matrix, read_matrix_file, read_matrix_file_into, read_matrix_into, read_sbm,
+    read_sbm_into, DatProblem,
 };
 pub use parse::{parse_rolling_dat, read_rolling_dat, read_rolling_dat_file, RollingDatProblem};
+pub use store::{BlockArray, DatStore, OwnStore, ReadArray, ReadMatrix, ReadProblem};
 pub use write::{write_dat, write_dat_file, write_matrix, write_rolling_dat, write_sbm};
 
 #[cfg(doc)]

@@ -5,6 +5,7 @@ use std::io::Read;
 use std::path::Path;
 
 use super::storage::{parse_matrix_body, parse_sparse_block};
+use super::store::{DatStore, OwnStore, ReadArray, ReadMatrix, ReadProblem};
 use super::tokens::{try_push, Reader};
 use super::STORAGE_DENSE;
 use crate::error::Fc3dError;
@@ -106,20 +107,66 @@ fn problem(r: &mut Reader<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
 fn problem_body<const D: usize>(
     r: &mut Reader<'_>,
 ) -> Result<FrictionProblem<'static, D>, Fc3dError> {
-    let (w, q, mu, storage_index) = problem_parts::<D>(r, 0)?;
-    // Everything `FrictionProblem::new` checks has been checked token by token above; this only
-    // catches what slipped through, pointing at the matrix it concerns.
-    FrictionProblem::<D>::from_parts(w, q, mu)
+    let (w, q, mu, storage_index) = problem_parts::<D, OwnStore>(r, 0)?;
+    own_problem(r, w, q, mu, storage_index)
+}
+
+/// The problem of parts read into fc3d's own storage. Everything `FrictionProblem::new` checks
+/// has been checked token by token; this only catches what slipped through, pointing at the
+/// matrix it concerns.
+fn own_problem<const D: usize>(
+    r: &Reader<'_>,
+    w: ReadMatrix<OwnStore>,
+    q: Vec<f64>,
+    mu: Vec<f64>,
+    storage_index: usize,
+) -> Result<FrictionProblem<'static, D>, Fc3dError> {
+    w.into_delassus()
+        .and_then(|w| FrictionProblem::<D>::from_parts(w, q, mu))
         .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))
+}
+
+/// [`read_dat_any`] into the caller's storage `S` (see [`DatStore`]): q, mu, a dense W's values
+/// and a sparse-block W's index arrays and blocks are stored in `S`'s arrays as they are read,
+/// so that nothing is held twice; a sparse W, or the sparse-block W of a 2D problem, comes as
+/// fc3d's own matrix ([`ReadMatrix::Built`]). The same checks as [`read_dat_any`], token by
+/// token; returns the problem and the number of bytes it takes (see [`read_dat`]).
+pub fn read_dat_into<S: DatStore, R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    file_label: &str,
+) -> Result<(ReadProblem<S>, u64), Fc3dError> {
+    let mut r = Reader::from_stream(&mut input, len, file_label, "W");
+    let (dim_index, dim) = r.usize("the problem dimension")?;
+    let (w, q, mu, _) = match dim {
+        DIMENSION => problem_parts::<DIMENSION, S>(&mut r, 0)?,
+        2 => problem_parts::<2, S>(&mut r, 0)?,
+        _ => return Err(r.error_at(dim_index, "the problem dimension must be 2 or 3")),
+    };
+    let problem = ReadProblem {
+        dimension: dim,
+        w,
+        q,
+        mu,
+    };
+    Ok((problem, r.consumed_bytes()))
+}
+
+/// [`read_dat_into`] on a file (see [`read_dat_file`]).
+pub fn read_dat_file_into<S: DatStore>(path: &Path) -> Result<ReadProblem<S>, Fc3dError> {
+    let label = path.display().to_string();
+    let (file, len) = open(path, &label)?;
+    read_dat_into(file, len, &label).map(|(p, _)| p)
 }
 
 /// W, q and mu after the dimension token, for contacts of dimension `D`, and the index of W's
 /// storage token; `more_per_contact` values per contact are still to come after mu (the rolling
 /// coefficients), so a size the input cannot hold fails before anything is allocated.
-fn problem_parts<const D: usize>(
+#[allow(clippy::type_complexity)]
+fn problem_parts<const D: usize, S: DatStore>(
     r: &mut Reader<'_>,
     more_per_contact: usize,
-) -> Result<(Delassus<'static>, Vec<f64>, Vec<f64>, usize), Fc3dError> {
+) -> Result<(ReadMatrix<S>, S::Reals, S::Reals, usize), Fc3dError> {
     let (nc_index, nc) = r.usize("the number of contacts")?;
     let n = nc
         .checked_mul(D)
@@ -148,17 +195,18 @@ fn problem_parts<const D: usize>(
         "W, q and mu",
     )?;
     // The solvers need the diagonal block of every contact: a sparse-block W must store them all.
-    let body = parse_matrix_body(r, storage_index, storage, n, n, true, D)?;
+    let body = parse_matrix_body::<S>(r, storage_index, storage, n, n, true, D)?;
 
-    let q = r.reals(n, "q")?;
+    let q = r.reals::<S::Reals>(n, "q")?;
     r.ensure_remaining(nc, "the friction coefficients mu")?;
-    let mut mu = r.vec_for(nc, 1, "the friction coefficients mu")?;
+    let what = "the friction coefficients mu";
+    let mut mu = S::Reals::with_capacity(r.capacity_for(nc, 1), what)?;
     for _ in 0..nc {
         let (index, m) = r.real("a friction coefficient")?;
         if m < 0.0 {
             return Err(r.error_at(index, "friction coefficients must be >= 0"));
         }
-        try_push(&mut mu, m, "the friction coefficients mu")?;
+        mu.push(m, what)?;
     }
     // A sparse W is compressed now that q, one value per row, has been read: its row pointers
     // are bounded by the input even when its length is unknown.
@@ -214,7 +262,10 @@ pub fn parse_rolling_dat(text: &str, file_label: &str) -> Result<RollingDatProbl
 fn rolling_body<const D: usize>(
     r: &mut Reader<'_>,
 ) -> Result<RollingProblem<'static, D>, Fc3dError> {
-    let (w, q, mu, storage_index) = problem_parts::<D>(r, 1)?;
+    let (w, q, mu, storage_index) = problem_parts::<D, OwnStore>(r, 1)?;
+    let w = w
+        .into_delassus()
+        .map_err(|e| r.error_at(storage_index, format!("invalid problem: {e}")))?;
     let nc = mu.len();
     r.ensure_remaining(nc, "the rolling coefficients mu_r")?;
     let mut mu_r = r.vec_for(nc, 1, "the rolling coefficients mu_r")?;
@@ -255,19 +306,34 @@ pub fn read_dat_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError>
 /// Reads a matrix file (`NM_write_in_filename`'s, see [`parse_matrix`]) in chunks, up to the end
 /// of the matrix; what follows is not read. Errors as [`parse_matrix`]'s, with the path as label.
 pub fn read_matrix_file(path: &Path) -> Result<Delassus<'static>, Fc3dError> {
+    read_matrix_file_into::<OwnStore>(path)?.into_delassus()
+}
+
+/// [`read_matrix_file`] into the caller's storage `S` (see [`read_dat_into`]).
+pub fn read_matrix_file_into<S: DatStore>(path: &Path) -> Result<ReadMatrix<S>, Fc3dError> {
     let label = path.display().to_string();
     let (file, len) = open(path, &label)?;
-    read_matrix(file, len, &label).map(|(w, _)| w)
+    read_matrix_into(file, len, &label).map(|(w, _)| w)
 }
 
 /// [`parse_matrix_prefix`] on a stream read in chunks, stopping after the matrix (see
 /// [`read_dat`] for `len` and what is read past the end). Returns the matrix and the number of
 /// bytes of the matrix text and the whitespace after it.
 pub fn read_matrix<R: Read>(
-    mut input: R,
+    input: R,
     len: Option<u64>,
     label: &str,
 ) -> Result<(Delassus<'static>, u64), Fc3dError> {
+    let (w, used) = read_matrix_into::<OwnStore, R>(input, len, label)?;
+    Ok((w.into_delassus()?, used))
+}
+
+/// [`read_matrix`] into the caller's storage `S` (see [`read_dat_into`]).
+pub fn read_matrix_into<S: DatStore, R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    label: &str,
+) -> Result<(ReadMatrix<S>, u64), Fc3dError> {
     let mut r = Reader::from_stream(&mut input, len, label, "M");
     let w = matrix(&mut r)?;
     Ok((w, r.consumed_bytes()))
@@ -275,12 +341,30 @@ pub fn read_matrix<R: Read>(
 
 /// [`parse_sbm_prefix`] on a stream read in chunks, stopping after the body (see [`read_dat`]).
 pub fn read_sbm<R: Read>(
-    mut input: R,
+    input: R,
     len: Option<u64>,
     label: &str,
 ) -> Result<(BlockSparseMatrix<'static>, u64), Fc3dError> {
+    let (m, used) = read_sbm_into::<OwnStore, R>(input, len, label)?;
+    Ok((own_sbm(m)?, used))
+}
+
+fn own_sbm(m: ReadMatrix<OwnStore>) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
+    match m.into_delassus()? {
+        Delassus::SparseBlock(m) => Ok(m),
+        _ => unreachable!("the sparse-block reader makes a sparse-block matrix"),
+    }
+}
+
+/// [`read_sbm`] into the caller's storage `S` (see [`read_dat_into`]): always a
+/// [`ReadMatrix::SparseBlock`].
+pub fn read_sbm_into<S: DatStore, R: Read>(
+    mut input: R,
+    len: Option<u64>,
+    label: &str,
+) -> Result<(ReadMatrix<S>, u64), Fc3dError> {
     let mut r = Reader::from_stream(&mut input, len, label, "M");
-    let m = parse_sparse_block(&mut r, None, false)?;
+    let m = parse_sparse_block::<S>(&mut r, None, false)?;
     Ok((m, r.consumed_bytes()))
 }
 
@@ -310,7 +394,7 @@ pub fn parse_matrix_prefix(
     label: &str,
 ) -> Result<(Delassus<'static>, usize), Fc3dError> {
     let mut r = Reader::new(text, label, "M");
-    let w = matrix(&mut r)?;
+    let w = matrix::<OwnStore>(&mut r)?.into_delassus()?;
     Ok((w, byte_offset(r.consumed_bytes())))
 }
 
@@ -319,7 +403,7 @@ fn byte_offset(consumed: u64) -> usize {
     usize::try_from(consumed).unwrap_or(usize::MAX)
 }
 
-fn matrix(r: &mut Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
+fn matrix<S: DatStore>(r: &mut Reader<'_>) -> Result<ReadMatrix<S>, Fc3dError> {
     let (storage_index, storage) = r.usize("the storage type of the matrix")?;
     r.remember(storage_index);
     let (rows_index, rows) = r.usize("the number of rows of the matrix (size0)")?;
@@ -358,6 +442,6 @@ pub fn parse_sbm_prefix(
     label: &str,
 ) -> Result<(BlockSparseMatrix<'static>, usize), Fc3dError> {
     let mut r = Reader::new(text, label, "M");
-    let m = parse_sparse_block(&mut r, None, false)?;
+    let m = own_sbm(parse_sparse_block::<OwnStore>(&mut r, None, false)?)?;
     Ok((m, byte_offset(r.consumed_bytes())))
 }

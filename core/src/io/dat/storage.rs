@@ -2,25 +2,26 @@
 //! sparse-block body (the sparse storage, a CSparse dump, is in `csparse`).
 
 use super::csparse::{parse_sparse, SparseEntries};
+use super::store::{BlockArray, DatStore, ReadArray, ReadMatrix};
 use super::tokens::{reserve, token_count, try_push, Reader};
 use super::{STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
-use crate::error::{try_vec, Fc3dError};
-use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
+use crate::error::Fc3dError;
+use crate::matrix::{CsrMatrix, Delassus};
 use crate::problem::DIMENSION;
 
 /// A matrix body as read: complete, or the entries of a sparse matrix whose compressed form
 /// (one pointer per row) is built by [`MatrixBody::finish`]. A problem reader finishes it after
 /// q has been read, so that the per-row storage is bounded by values the input holds.
-pub(super) enum MatrixBody {
-    Done(Delassus<'static>),
+pub(super) enum MatrixBody<S: DatStore> {
+    Done(ReadMatrix<S>),
     Sparse(SparseEntries),
 }
 
-impl MatrixBody {
-    pub(super) fn finish(self, r: &Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
+impl<S: DatStore> MatrixBody<S> {
+    pub(super) fn finish(self, r: &Reader<'_>) -> Result<ReadMatrix<S>, Fc3dError> {
         match self {
             MatrixBody::Done(w) => Ok(w),
-            MatrixBody::Sparse(entries) => entries.finish(r),
+            MatrixBody::Sparse(entries) => entries.finish(r).map(ReadMatrix::Built),
         }
     }
 }
@@ -31,7 +32,7 @@ impl MatrixBody {
 /// `block`: the side of the sparse-block matrix's blocks, the contact dimension (3, or 2 for a
 /// 2D problem, whose 2x2 blocks are stored as a general sparse W: the sparse-block storage of
 /// the core holds 3x3 blocks).
-pub(super) fn parse_matrix_body(
+pub(super) fn parse_matrix_body<S: DatStore>(
     r: &mut Reader<'_>,
     storage_index: usize,
     storage: usize,
@@ -39,15 +40,14 @@ pub(super) fn parse_matrix_body(
     cols: usize,
     require_diagonal: bool,
     block: usize,
-) -> Result<MatrixBody, Fc3dError> {
+) -> Result<MatrixBody<S>, Fc3dError> {
     match storage {
         STORAGE_DENSE => parse_dense(r, rows, cols).map(MatrixBody::Done),
         STORAGE_SPARSE_BLOCK if block == DIMENSION => {
-            parse_sparse_block(r, Some((rows, cols)), require_diagonal)
-                .map(|m| MatrixBody::Done(Delassus::SparseBlock(m)))
+            parse_sparse_block(r, Some((rows, cols)), require_diagonal).map(MatrixBody::Done)
         }
         STORAGE_SPARSE_BLOCK => parse_sparse_block_as_csr(r, (rows, cols), require_diagonal, block)
-            .map(|m| MatrixBody::Done(Delassus::Sparse(m))),
+            .map(|m| MatrixBody::Done(ReadMatrix::Built(Delassus::Sparse(m)))),
         STORAGE_SPARSE => parse_sparse(r, rows, cols).map(MatrixBody::Sparse),
         _ => Err(r.error_at(
             storage_index,
@@ -59,11 +59,11 @@ pub(super) fn parse_matrix_body(
     }
 }
 
-fn parse_dense(
+fn parse_dense<S: DatStore>(
     r: &mut Reader<'_>,
     rows: usize,
     cols: usize,
-) -> Result<Delassus<'static>, Fc3dError> {
+) -> Result<ReadMatrix<S>, Fc3dError> {
     let name = r.name;
     // The dense body repeats the sizes (Siconos reads them again and trusts the second pair).
     for (what, n) in [("rows", rows), ("columns", cols)] {
@@ -81,8 +81,7 @@ fn parse_dense(
         return Err(r.error_at(start, format!("the dense {name} is too large")));
     };
     let values = r.reals(len, &format!("the dense {name}"))?;
-    // The values were counted and checked finite one by one: this cannot fail.
-    Ok(Delassus::Dense(DenseMatrix::new(rows, cols, values)?))
+    Ok(ReadMatrix::Dense { rows, cols, values })
 }
 
 /// Reads `count` cumulative block sizes that must be `block`, `2 block`, `3 block`, ..., up to
@@ -130,30 +129,47 @@ fn parse_block_sizes(
     }
 }
 
-/// A sparse-block body of 3x3 blocks. `shape`: the declared `(rows, cols)` (None: the block
-/// sizes tell). `require_diagonal`: every diagonal block must be stored (the W of a problem).
-pub(super) fn parse_sparse_block(
+/// A sparse-block body of 3x3 blocks, stored in `S`. `shape`: the declared `(rows, cols)`
+/// (None: the block sizes tell). `require_diagonal`: every diagonal block must be stored (the W
+/// of a problem).
+pub(super) fn parse_sparse_block<S: DatStore>(
     r: &mut Reader<'_>,
     shape: Option<(usize, usize)>,
     require_diagonal: bool,
-) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
-    let mut blocks: Vec<[f64; 9]> = Vec::new();
-    let layout = parse_sparse_block_with(r, shape, require_diagonal, DIMENSION, |r, values| {
-        if blocks.capacity() == 0 {
-            blocks = r.vec_for(values.1, 1 + 9, &format!("the blocks of {}", r.name))?;
-        }
-        let mut block = [0.0; 9];
-        block.copy_from_slice(values.0);
-        try_push(&mut blocks, block, "the blocks")
-    })?;
-    BlockSparseMatrix::new(
-        layout.block_rows,
-        layout.block_cols,
-        layout.row_ptr,
-        layout.col_idx,
+) -> Result<ReadMatrix<S>, Fc3dError> {
+    let mut blocks: Option<S::Blocks> = None;
+    let layout = parse_sparse_block_with::<S::Indices>(
+        r,
+        shape,
+        require_diagonal,
+        DIMENSION,
+        |r, values| {
+            let blocks = match &mut blocks {
+                Some(b) => b,
+                None => {
+                    let what = format!("the blocks of {}", r.name);
+                    blocks.insert(S::Blocks::with_capacity(
+                        r.capacity_for(values.1, 1 + 9),
+                        &what,
+                    )?)
+                }
+            };
+            let mut block = [0.0; 9];
+            block.copy_from_slice(values.0);
+            blocks.push(&block, "the blocks")
+        },
+    )?;
+    let blocks = match blocks {
+        Some(b) => b,
+        None => S::Blocks::with_capacity(0, "the blocks")?,
+    };
+    Ok(ReadMatrix::SparseBlock {
+        block_rows: layout.block_rows,
+        block_cols: layout.block_cols,
+        row_ptr: layout.row_ptr,
+        col_idx: layout.col_idx,
         blocks,
-    )
-    .map_err(|e| r.error_at(layout.nbblocks_index, e.to_string()))
+    })
 }
 
 /// A sparse-block body of `block x block` blocks (the 2x2 blocks of a 2D problem's W) as a
@@ -165,16 +181,17 @@ fn parse_sparse_block_as_csr(
     block: usize,
 ) -> Result<CsrMatrix, Fc3dError> {
     let mut values: Vec<f64> = Vec::new();
-    let layout = parse_sparse_block_with(r, Some(shape), require_diagonal, block, |r, b| {
-        if values.capacity() == 0 {
-            let what = format!("the blocks of {}", r.name);
-            values = r.vec_for(b.1.saturating_mul(block * block), 1, &what)?;
-        }
-        for &v in b.0 {
-            try_push(&mut values, v, "the blocks")?;
-        }
-        Ok(())
-    })?;
+    let layout =
+        parse_sparse_block_with::<Vec<usize>>(r, Some(shape), require_diagonal, block, |r, b| {
+            if values.capacity() == 0 {
+                let what = format!("the blocks of {}", r.name);
+                values = r.vec_for(b.1.saturating_mul(block * block), 1, &what)?;
+            }
+            for &v in b.0 {
+                try_push(&mut values, v, "the blocks")?;
+            }
+            Ok(())
+        })?;
     let mut triplets = Vec::new();
     reserve(&mut triplets, values.len(), "the entries of W")?;
     let mut k = 0;
@@ -194,23 +211,23 @@ fn parse_sparse_block_as_csr(
 }
 
 /// The block structure of a sparse-block body.
-struct BlockLayout {
+struct BlockLayout<I> {
     nbblocks_index: usize,
     block_rows: usize,
     block_cols: usize,
-    row_ptr: Vec<usize>,
-    col_idx: Vec<usize>,
+    row_ptr: I,
+    col_idx: I,
 }
 
 /// Reads a sparse-block body of `block x block` blocks, handing each block's values
 /// (column-major) and the number of blocks to `on_block` in file order; returns the structure.
-fn parse_sparse_block_with(
+fn parse_sparse_block_with<I: ReadArray<usize>>(
     r: &mut Reader<'_>,
     shape: Option<(usize, usize)>,
     require_diagonal: bool,
     block: usize,
     mut on_block: impl FnMut(&Reader<'_>, (&[f64], usize)) -> Result<(), Fc3dError>,
-) -> Result<BlockLayout, Fc3dError> {
+) -> Result<BlockLayout<I>, Fc3dError> {
     let name = r.name;
     let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
     r.remember(nbblocks_index);
@@ -234,13 +251,17 @@ fn parse_sparse_block_with(
             )));
         }
         // The size is declared, not given by values: the row pointers are allocated fallibly.
-        let row_ptr = try_vec(rows / block + 1, 0, "the block-row pointers")?;
+        let what = "the block-row pointers";
+        let mut row_ptr = I::with_capacity(rows / block + 1, what)?;
+        for _ in 0..=rows / block {
+            row_ptr.push(0, what)?;
+        }
         return Ok(BlockLayout {
             nbblocks_index,
             block_rows: rows / block,
             block_cols: cols / block,
             row_ptr,
-            col_idx: Vec::new(),
+            col_idx: I::with_capacity(0, "the block columns")?,
         });
     }
     let (rows_index, block_rows) = r.usize("the number of block rows")?;
@@ -284,8 +305,7 @@ fn parse_sparse_block_with(
 
     let index1_start = r.pos;
     // block_rows + 1 >= filled1 entries; block_rows cumulative sizes have been read.
-    let mut row_ptr = Vec::new();
-    reserve(&mut row_ptr, block_rows + 1, "the block-row pointers")?;
+    let mut row_ptr = I::with_capacity(block_rows + 1, "the block-row pointers")?;
     // The texts of index1_data not written as their value prints (a sign, leading zeros), for a
     // message about a missing diagonal block.
     let mut unusual_texts = Vec::new();
@@ -301,7 +321,7 @@ fn parse_sparse_block_with(
         if r.text() != p.to_string() {
             unusual_texts.push((k, r.text().to_string()));
         }
-        row_ptr.push(p);
+        row_ptr.push(p, "the block-row pointers")?;
     }
     if row_ptr.last() != Some(&filled2) {
         return Err(r.error_at(
@@ -310,9 +330,14 @@ fn parse_sparse_block_with(
         ));
     }
     // Siconos may stop index1_data after the last non-empty block row; the rows after it are empty.
-    row_ptr.resize(block_rows + 1, filled2);
+    for _ in filled1..block_rows + 1 {
+        row_ptr.push(filled2, "the block-row pointers")?;
+    }
 
-    let mut col_idx = r.vec_for(filled2, 1, "the block columns (index2_data)")?;
+    let mut col_idx = I::with_capacity(
+        r.capacity_for(filled2, 1),
+        "the block columns (index2_data)",
+    )?;
     for _ in 0..filled2 {
         let (index, c) = r.usize("a block column (index2_data)")?;
         if c >= block_cols {
@@ -321,7 +346,7 @@ fn parse_sparse_block_with(
                 format!("block column {c} is out of range ({name} has {block_cols} block columns)"),
             ));
         }
-        try_push(&mut col_idx, c, "the block columns (index2_data)")?;
+        col_idx.push(c, "the block columns (index2_data)")?;
     }
     if require_diagonal {
         // The diagonal block of every contact is needed by the solvers: name the row that lacks it.

@@ -16,6 +16,7 @@ use std::collections::VecDeque;
 use std::io::Read;
 
 use super::scan::{Bytes, ScanError, MAX_GAP_BYTES, MAX_TOKEN_BYTES};
+use super::store::ReadArray;
 use crate::error::Fc3dError;
 pub(super) use crate::io::alloc::{ensure_headroom, reserve, try_push};
 
@@ -339,12 +340,18 @@ impl<'t> Reader<'t> {
         tokens_per_item: usize,
         what: &str,
     ) -> Result<Vec<T>, Fc3dError> {
+        let mut v = Vec::new();
+        reserve(&mut v, self.capacity_for(declared, tokens_per_item), what)?;
+        Ok(v)
+    }
+
+    /// The capacity [`Reader::vec_for`] gives: `declared`, bounded by what the rest of the
+    /// input can hold (at most [`UNBOUNDED_START_CAPACITY`] when its size is unknown).
+    pub(super) fn capacity_for(&self, declared: usize, tokens_per_item: usize) -> usize {
         let bound = self
             .remaining_bound()
             .map_or(UNBOUNDED_START_CAPACITY, |b| b / tokens_per_item.max(1));
-        let mut v = Vec::new();
-        reserve(&mut v, declared.min(bound), what)?;
-        Ok(v)
+        declared.min(bound)
     }
 
     pub(super) fn usize(&mut self, what: &str) -> Result<(usize, usize), Fc3dError> {
@@ -373,14 +380,18 @@ impl<'t> Reader<'t> {
         }
     }
 
-    /// `count` finite reals.
-    pub(super) fn reals(&mut self, count: usize, what: &str) -> Result<Vec<f64>, Fc3dError> {
+    /// `count` finite reals, in an array of the caller's storage.
+    pub(super) fn reals<A: ReadArray<f64>>(
+        &mut self,
+        count: usize,
+        what: &str,
+    ) -> Result<A, Fc3dError> {
         self.ensure_remaining(count, what)?;
-        let mut values = self.vec_for(count, 1, what)?;
+        let mut values = A::with_capacity(self.capacity_for(count, 1), what)?;
         let item = format!("a value of {what}");
         for _ in 0..count {
             let v = self.real(&item)?.1;
-            try_push(&mut values, v, what)?;
+            values.push(v, what)?;
         }
         Ok(values)
     }
