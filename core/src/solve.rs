@@ -23,7 +23,12 @@ fn check_iterate(n: usize, r: &[f64], u: &[f64]) -> Result<(), Fc3dError> {
 /// Solves `problem` from the initial guess in `r`; on success `r` and `u = W r + q` hold the
 /// result and the report holds the error measured on them.
 ///
-/// On `Err`, `r` and `u` are left untouched.
+/// On an `Err` found before the run (dimensions, settings, a non-finite initial reaction), `r`
+/// and `u` are left untouched. An error found during or after the run leaves intermediate values
+/// in them: running out of memory in a factorization, or a non-finite entry of a W that is a
+/// view of a host's blocks (looked for only when the error comes out non-finite, see
+/// [`Delassus::check_finite`](crate::matrix::Delassus::check_finite)). A caller that needs them
+/// intact solves into copies, as the C API does.
 pub fn solve(
     problem: &FrictionProblem<'_>,
     config: &SolverConfig,
@@ -314,7 +319,7 @@ const RAY_SHARE: f64 = 1e-2;
 /// Solves the 2D `problem` with a Siconos `fc2d` solver from the initial guess in `r` (NSGS uses
 /// it; CPG, Lemke and enumeration start from zero as Siconos' do). On success `r` and
 /// `u = W r + q` hold the result and the report the natural-map error measured on them (the 2D
-/// cone); on `Err`, `r` and `u` are left untouched.
+/// cone); on `Err`, `r` and `u` are left as [`solve`] leaves them.
 pub fn solve_planar(
     problem: &FrictionProblem2d<'_>,
     config: &PlanarConfig,
@@ -353,7 +358,7 @@ pub fn solve_planar_with_observer(
 /// -epsilon`, Siconos' trivial case) the answer is `r = 0`, `u = q` after no iteration. On
 /// success `r` and `u = W r + q` hold the result and the report the natural-map error with the
 /// rolling cone measured on them (Siconos' `rolling_fc3d_compute_error`); on `Err`, `r` and `u`
-/// are left untouched.
+/// are left as [`solve`] leaves them.
 pub fn solve_rolling<const D: usize>(
     problem: &RollingProblem<'_, D>,
     config: &RollingConfig,
