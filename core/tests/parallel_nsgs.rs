@@ -140,12 +140,9 @@ fn results_are_bitwise_identical_for_1_to_4_threads() {
 fn parallel_runs_reach_the_tolerance_and_report_the_measured_error() {
     // RockPile_tob1 and the generated piles are left out: NSGS stalls near 1e-3 on them in any
     // order.
-    for (name, p) in problems()
-        .into_iter()
-        .filter(|(n, _)| {
-            !n.starts_with("RockPile") && !n.starts_with("generated") && !n.starts_with("a dominant")
-        })
-    {
+    for (name, p) in problems().into_iter().filter(|(n, _)| {
+        !n.starts_with("RockPile") && !n.starts_with("generated") && !n.starts_with("a dominant")
+    }) {
         for decomposition in [
             Decomposition::Sequential,
             Decomposition::Coloured,

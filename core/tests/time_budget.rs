@@ -225,7 +225,10 @@ fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
     let n = p.size();
     let methods: [(&str, fc3d_core::Method); 3] = [
         ("ADMM", AdmmOptions::default().into()),
-        ("NSN-AC", NsnOptions::new(NsnFormulation::AlartCurnier).into()),
+        (
+            "NSN-AC",
+            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
+        ),
         ("PROX", ProxOptions::default().into()),
     ];
     for (name, method) in methods {

@@ -225,8 +225,9 @@ mod tests {
             entries.push(((i * 37) % n, i));
         }
         let p = pattern(n, &entries);
-        let values: Vec<f64> = (0..p.row_idx().len()).map(|k| 1.0 + (k % 7) as f64).collect();
-        let mut values = values;
+        let mut values: Vec<f64> = (0..p.row_idx().len())
+            .map(|k| 1.0 + (k % 7) as f64)
+            .collect();
         for j in 0..n {
             for k in p.col_ptr()[j]..p.col_ptr()[j + 1] {
                 if p.row_idx()[k] == j {

@@ -232,8 +232,7 @@ pub(crate) fn run_islands(
                     }
                     let island = island_of(i);
                     for _ in 0..VISIT {
-                        let sums =
-                            island.sweep(step, &mut worker, relaxation, &reactions, &memory);
+                        let sums = island.sweep(step, &mut worker, relaxation, &reactions, &memory);
                         if state.after_sweep(&island, &reactions, sums, limits, &timed_out) {
                             break;
                         }

@@ -417,7 +417,15 @@ impl Units<'_> {
                         let c = contacts.map_or(position, |contacts| contacts[position]);
                         let mut m = memory.get(c);
                         let (rc, old, _) = new_reaction(
-                            rows, step, &mut worker, relaxation, c, q, mu, reactions, &mut m,
+                            rows,
+                            step,
+                            &mut worker,
+                            relaxation,
+                            c,
+                            q,
+                            mu,
+                            reactions,
+                            &mut m,
                             false,
                         );
                         increment += distance_sq_d(&rc, &old);
