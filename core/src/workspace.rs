@@ -242,7 +242,7 @@ impl Workspace {
                     } else {
                         stats.structure_built += 1;
                     }
-                    let outcome = nsn_on(&mut solver, p, &limits, r, u, obs);
+                    let outcome = nsn_on(&mut solver, p, &limits.start(), r, u, obs);
                     *newton = Some(solver);
                     Ok(outcome)
                 }

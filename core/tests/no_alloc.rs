@@ -307,8 +307,16 @@ fn solve_allocations_do_not_grow_with_iterations() {
         assert_eq!(one, many, "{name}, all sweep options: {one} vs {many}");
     }
     // The parallel decompositions on two threads (the pool, kept for the process, is started
-    // by a first solve): the calling thread allocates nothing per sweep.
-    for (name, p) in cases {
+    // by a first solve): the calling thread allocates nothing per sweep. A pile of 5000
+    // contacts is one island large enough to be swept coloured by both threads.
+    let pile = fc3d_core::scenes::sphere_piles(&fc3d_core::scenes::PileSpec {
+        contacts: 5000,
+        piles: 1,
+        seed: 3,
+    })
+    .unwrap();
+    let parallel_cases = [cases[0], cases[1], cases[2], ("pile of 5000", &pile)];
+    for (name, p) in parallel_cases {
         for decomposition in [
             fc3d_core::Decomposition::Coloured,
             fc3d_core::Decomposition::Islands,

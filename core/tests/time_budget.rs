@@ -207,3 +207,51 @@ fn admm_and_vi_stop_at_the_deadline_near_round_off() {
         stops_at_the_deadline_in_anytime_mode("VI", file, ViOptions::default().into());
     }
 }
+
+#[test]
+fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
+    // One pile of 5000 contacts: the symbolic analysis of W + rho I (and of NSN's Newton matrix,
+    // same pattern) predicts 1.7e10 flops, 1.7 s at math::lu_cost::FLOPS_PER_SECOND; one
+    // numeric factorization measured 2.4 s (release, loaded machine). With a budget of 300 ms
+    // ADMM, NSN and PROX stop out of time before their first factorization, with r as it came.
+    use fc3d_core::scenes::{sphere_piles, PileSpec};
+    use fc3d_core::{AdmmOptions, NsnFormulation, NsnOptions, ProxOptions};
+    let p = sphere_piles(&PileSpec {
+        contacts: 5000,
+        piles: 1,
+        seed: 1,
+    })
+    .unwrap();
+    let n = p.size();
+    let methods: [(&str, fc3d_core::Method); 3] = [
+        ("ADMM", AdmmOptions::default().into()),
+        (
+            "NSN-AC",
+            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
+        ),
+        ("PROX", ProxOptions::default().into()),
+    ];
+    for (name, method) in methods {
+        let config = SolverConfig::new(method)
+            .with_tolerance(1e-8)
+            .with_time_budget(Some(Duration::from_millis(300)));
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let start = Instant::now();
+        let report = solve(&p, &config, &mut r, &mut u).unwrap();
+        let elapsed = start.elapsed();
+        assert_eq!(report.status, SolveStatus::TimeBudgetExhausted, "{name}");
+        // PROX counts the proximal step whose Newton solve started no step.
+        let steps = if name == "PROX" { 1 } else { 0 };
+        assert_eq!(report.iterations, steps, "{name}");
+        assert!(r.iter().all(|&x| x == 0.0), "{name}: r was changed");
+        let mut u2 = vec![0.0; n];
+        assert_eq!(
+            report.error,
+            fc3d_core::natural_map_error(&p, &r, &mut u2),
+            "{name}"
+        );
+        // Set-up (copy of W, symbolic analysis, prediction) only: well under one
+        // factorization.
+        assert!(elapsed < Duration::from_secs(2), "{name}: {elapsed:?}");
+    }
+}

@@ -4,6 +4,7 @@
 
 pub mod cone;
 pub mod linalg;
+pub mod lu_cost;
 pub mod lu_fill;
 pub mod rolling;
 pub mod step;

@@ -204,12 +204,13 @@ fn prox(
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
+    // The budget counts from here: the copy of W and the symbolic analysis are part of it.
+    let run = limits.start();
     let mut newton = match &options.internal {
         ProxInternal::NsnAc(n) => Some(NewtonSolver::new(problem, n)?),
         ProxInternal::Nsgs(_) => None,
     };
     let internal_max_iter = options.internal_max_iter();
-    let run = limits.start();
     let n = problem.size();
     let mut shifted_q = vec![0.0; n];
     let mut error = natural_map_error(problem, r, u);

@@ -42,6 +42,7 @@ use crate::contract::{
 use crate::error::Fc3dError;
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{bounded, contact_of, distance_sq, norm};
+use crate::math::lu_cost::{checked_lu_cost, LuCost};
 use crate::math::lu_fill::lu_factor_nnz;
 use crate::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
 use crate::matrix::Delassus;
@@ -93,6 +94,8 @@ struct ShiftedSystem {
     factored: bool,
     /// `nnz(L) + nnz(U)` of the first successful factorization.
     factor_nnz: Option<usize>,
+    /// The predicted cost of one factorization (from the symbolic analysis).
+    cost: LuCost,
 }
 
 impl ShiftedSystem {
@@ -119,6 +122,7 @@ impl ShiftedSystem {
         }
         let symbolic = factorize_symbolic_lu(sym, Default::default())
             .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: symbolic LU: {e:?}")))?;
+        let cost = checked_lu_cost(sym, symbolic.col_perm(), "ADMM: LU factors of W + rho I")?;
         let factor_scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
         )
@@ -135,6 +139,7 @@ impl ShiftedSystem {
             solve_scratch,
             factored: false,
             factor_nnz: None,
+            cost,
         })
     }
 
@@ -252,7 +257,7 @@ fn initial_rho(
                 return options.rho;
             }
             let floor = EIGENVALUE_RATIO_FLOOR * lambda_max;
-            let lambda_min = if system.factor(0.0) {
+            let lambda_min = if system.cost.ends_by(deadline) && system.factor(0.0) {
                 let inverse_max = power_iteration(x, y, deadline, |a, b| {
                     b.copy_from_slice(a);
                     system.solve_in_place(b);
@@ -409,6 +414,12 @@ fn admm_iterations<P: AdmmProblem>(
         1.0
     };
     rho *= scale;
+    // A factorization cannot be interrupted: one predicted to end past the deadline is not
+    // started, and the run stops out of time with r as it came.
+    if !system.cost.ends_by(run.deadline()) {
+        problem.velocity(r, u);
+        return Ok(SolverOutcome::stopped(0, true));
+    }
     if !system.factor(rho) {
         return Err(Fc3dError::InvalidStructure(format!(
             "ADMM: W + rho I is singular for rho = {rho}"
@@ -516,8 +527,11 @@ fn admm_iterations<P: AdmmProblem>(
             continue;
         };
         let new_rho = rho * factor;
-        if !(new_rho.is_finite() && new_rho > 0.0 && system.factor(new_rho)) {
-            // Keep the current factorization.
+        if !(new_rho.is_finite() && new_rho > 0.0 && system.cost.ends_by(run.deadline())) {
+            // Keep the current factorization (valid for rho).
+            continue;
+        }
+        if !system.factor(new_rho) {
             system.factor(rho);
             continue;
         }

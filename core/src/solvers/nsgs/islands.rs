@@ -1,23 +1,28 @@
 //! NSGS by islands ([`Decomposition::Islands`]): the connected components of the contact graph
-//! are independent friction problems. Each is swept in index order (Siconos' order restricted
-//! to the island, so an island's iterates are those of a sequential NSGS on it alone) with its
-//! own stopping test, its share of the error (133) (see [`Island::error`]), and is no longer
-//! swept once it passes; a contact coupled to no other is solved once and checked. Threads take
-//! islands, largest first, for [`VISIT`] sweeps at a time, so that under a time budget every
-//! island progresses. After every round of visits the global error (133) is measured: the run
-//! stops when it passes (it is the error reported), and its normalisation sets the islands'
-//! shares. Should every island stop while the global error is above the tolerance, the islands
-//! run again with a tolerance tightened by the missing ratio (at most [`ROUNDS`] times).
+//! are independent friction problems, each with its own stopping test, its share of the error
+//! (133) (see [`Island::error`]), and no longer swept once it passes; a contact coupled to no
+//! other is solved once and checked. An island of fewer than [`COLOURED_ISLAND`] contacts is
+//! swept in index order (Siconos' order restricted to the island, so its iterates are those of
+//! a sequential NSGS on it alone) by one thread; threads take such islands, largest first, for
+//! [`VISIT`] sweeps at a time, so that under a time budget every island progresses. A larger
+//! island is swept by all threads together, as [`Decomposition::Coloured`] sweeps a whole
+//! problem (units of consecutive contacts of the island, coloured), so that a scene with one
+//! dominant pile does not run on one thread. Which islands are coloured depends on their size
+//! only, never on the number of threads: results are the same for any number of threads.
+//! After every round of visits the global error (133) is measured: the run stops when it passes
+//! (it is the error reported), and its normalisation sets the islands' shares. Should every
+//! island stop while the global error is above the tolerance, the islands run again with a
+//! tolerance tightened by the missing ratio (at most [`ROUNDS`] times).
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice};
+use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice, SpinBarrier};
 use super::settings::{Decomposition, NsgsOptions};
-use super::sweeper::{new_reaction, ContactStep, Sweeper};
+use super::sweeper::{new_reaction, Colouring, ContactStep, Sweeper, Units, UNIT};
 use crate::contract::SolverOutcome;
 use crate::contract::{deadline_passed, ErrorSchedule, IterationEvent, Limits, Observer};
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::{block_vec_add, distance_sq_d};
 use crate::matrix::BlockRows;
 use crate::measure::{contact_residual_sq_d, natural_map_error_by_rows, relative_scale};
@@ -30,6 +35,19 @@ const ROUNDS: usize = 4;
 /// island progresses (the results do not depend on it).
 const VISIT: usize = 16;
 
+/// Islands of at least this many contacts (8 units of the coloured sweep) are swept by all
+/// threads together with the coloured scheme; smaller ones by one thread each, in index order.
+/// Below it a coloured island has too few units per colour to share among threads, and the
+/// sweep order of the small Capsules and RockPile problems stays Siconos' order.
+pub(crate) const COLOURED_ISLAND: usize = 8 * UNIT;
+
+/// A large island's coloured schedule and its per-unit sums.
+struct ColouredIsland {
+    colouring: Colouring,
+    next_unit: Vec<AtomicUsize>,
+    unit_sums: Vec<f64>,
+}
+
 /// An island's run: its stopping test and where it stands.
 struct IslandRun {
     schedule: ErrorSchedule,
@@ -38,6 +56,45 @@ struct IslandRun {
     /// Sweeps done in all.
     sweeps: usize,
     done: bool,
+}
+
+impl IslandRun {
+    /// Records one sweep of `island` with squared increment `increment_sq` and squared
+    /// reaction norm `r_sq`, and runs the island's test; true when the island stops being
+    /// swept for now (converged, stalled, out of sweeps, or the deadline passed, then flagged
+    /// in `timed_out`).
+    fn after_sweep(
+        &mut self,
+        island: &Island<'_>,
+        reactions: &SharedSlice<'_>,
+        (increment_sq, r_sq): (f64, f64),
+        limits: (usize, Option<std::time::Instant>),
+        timed_out: &AtomicBool,
+    ) -> bool {
+        let (max_iter, deadline) = limits;
+        self.sweeps += 1;
+        self.tested += 1;
+        // A lone contact was solved exactly: go straight to the full test.
+        let light = if island.contacts.len() == 1 {
+            0.0
+        } else if r_sq > 0.0 {
+            (increment_sq / r_sq).sqrt()
+        } else {
+            increment_sq.sqrt()
+        };
+        let test = self
+            .schedule
+            .test_light(self.tested, light, |_| island.error(reactions));
+        if test.converged || test.stalled || self.sweeps >= max_iter {
+            self.done = true;
+            return true;
+        }
+        if deadline_passed(deadline) {
+            timed_out.store(true, Ordering::Relaxed);
+            return true;
+        }
+        false
+    }
 }
 
 pub(crate) fn run_islands(
@@ -54,8 +111,39 @@ pub(crate) fn run_islands(
     sweeper.set_deadline(run.deadline());
     let (order, start) = ContactGraph::new(sweeper.island_parts().0, 1)?.islands()?;
     let n_islands = start.len() - 1;
-    let threads = resolve_threads(options.threads).min(n_islands.max(1));
+    // Islands come largest first: the coloured ones are the first n_coloured.
+    let n_coloured = (0..n_islands)
+        .take_while(|&i| start[i + 1] - start[i] >= COLOURED_ISLAND)
+        .count();
+    let mut coloured = Vec::new();
+    if n_coloured > 0 {
+        let nc = problem.n_contacts();
+        let mut position = try_vec(nc, 0usize, "island positions")?;
+        for i in 0..n_coloured {
+            for (p, &c) in order[start[i]..start[i + 1]].iter().enumerate() {
+                position[c] = p;
+            }
+        }
+        for i in 0..n_coloured {
+            let contacts = &order[start[i]..start[i + 1]];
+            let colouring = Colouring::of_island(sweeper.island_parts().0, contacts, &position)?;
+            let unit_sums = try_vec(2 * colouring.n_units(), 0.0, "sweep increments")?;
+            let next_unit = (0..colouring.n_colours())
+                .map(|_| AtomicUsize::new(0))
+                .collect();
+            coloured.push(ColouredIsland {
+                colouring,
+                next_unit,
+                unit_sums,
+            });
+        }
+    }
+    let threads = match n_coloured {
+        0 => resolve_threads(options.threads).min(n_islands.max(1)),
+        _ => resolve_threads(options.threads),
+    };
     let pool = Pool::shared(threads)?;
+    let barrier = SpinBarrier::new(pool.as_ref().map_or(1, |p| p.threads()));
     let (q, mu) = (problem.q(), problem.mu());
     let tol = run.tolerance;
     let nc = problem.n_contacts().max(1) as f64;
@@ -83,11 +171,54 @@ pub(crate) fn run_islands(
     let mut rounds = 1;
     let timed_out = AtomicBool::new(false);
     let error = loop {
-        let next = AtomicUsize::new(0);
+        let next = AtomicUsize::new(n_coloured);
         let (rows, step, memory, relaxation) = sweeper.island_parts();
         {
             let reactions = SharedSlice::new(r);
             let memory = SharedSlice::new(memory);
+            let island_of = |i: usize| {
+                let contacts = &order[start[i]..start[i + 1]];
+                Island {
+                    contacts,
+                    scale: scale * (contacts.len() as f64 / nc).sqrt(),
+                    rows,
+                    q,
+                    mu,
+                }
+            };
+            let limits = (run.max_iter, run.deadline());
+            // The large islands one after the other, each swept by all threads.
+            for (i, plan) in coloured.iter_mut().enumerate() {
+                if timed_out.load(Ordering::Relaxed) {
+                    break;
+                }
+                let mut state = islands[i].lock().unwrap_or_else(|e| e.into_inner());
+                if state.done {
+                    continue;
+                }
+                let ColouredIsland {
+                    colouring,
+                    next_unit,
+                    unit_sums,
+                } = plan;
+                let island = island_of(i);
+                let units = Units {
+                    contacts: Some(island.contacts),
+                    colouring,
+                    next_unit,
+                    barrier: &barrier,
+                    pool: pool.as_deref(),
+                };
+                for _ in 0..VISIT {
+                    let sums = units.sweep(
+                        rows, step, relaxation, q, mu, &reactions, &memory, unit_sums,
+                    );
+                    if state.after_sweep(&island, &reactions, sums, limits, &timed_out) {
+                        break;
+                    }
+                }
+            }
+            // The small islands shared among the threads, one thread per island.
             let job = |_thread: usize| {
                 let mut worker = step.worker();
                 loop {
@@ -99,45 +230,20 @@ pub(crate) fn run_islands(
                     if state.done {
                         continue;
                     }
-                    let contacts = &order[start[i]..start[i + 1]];
-                    let island = Island {
-                        contacts,
-                        scale: scale * (contacts.len() as f64 / nc).sqrt(),
-                        rows,
-                        q,
-                        mu,
-                    };
+                    let island = island_of(i);
                     for _ in 0..VISIT {
-                        let (increment_sq, r_sq) =
-                            island.sweep(step, &mut worker, relaxation, &reactions, &memory);
-                        state.sweeps += 1;
-                        state.tested += 1;
-                        // A lone contact was solved exactly: go straight to the full test.
-                        let light = if island.contacts.len() == 1 {
-                            0.0
-                        } else if r_sq > 0.0 {
-                            (increment_sq / r_sq).sqrt()
-                        } else {
-                            increment_sq.sqrt()
-                        };
-                        let tested = state.tested;
-                        let test = state
-                            .schedule
-                            .test_light(tested, light, |_| island.error(&reactions));
-                        if test.converged || test.stalled || state.sweeps >= run.max_iter {
-                            state.done = true;
-                            break;
-                        }
-                        if deadline_passed(run.deadline()) {
-                            timed_out.store(true, Ordering::Relaxed);
+                        let sums = island.sweep(step, &mut worker, relaxation, &reactions, &memory);
+                        if state.after_sweep(&island, &reactions, sums, limits, &timed_out) {
                             break;
                         }
                     }
                 }
             };
-            match &pool {
-                Some(pool) => pool.broadcast(&job),
-                None => job(0),
+            if n_coloured < n_islands && !timed_out.load(Ordering::Relaxed) {
+                match &pool {
+                    Some(pool) => pool.broadcast(&job),
+                    None => job(0),
+                }
             }
         }
         // The global error after every round of visits: the run stops on it, and its

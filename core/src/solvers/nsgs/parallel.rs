@@ -141,16 +141,29 @@ pub(crate) struct ContactGraph {
 
 impl ContactGraph {
     pub fn new<const D: usize>(rows: &BlockRows<D>, size: usize) -> Result<Self, Fc3dError> {
-        let nc = rows.n_contacts();
-        let n = nc.div_ceil(size);
+        Self::over(rows, None, size)
+    }
+
+    /// The graph of units of `size` consecutive positions of `island = (contacts, position)`
+    /// (contacts closed under coupling, `position[c]`: contact c's position in `contacts`);
+    /// without an island, of all contacts in index order.
+    pub fn over<const D: usize>(
+        rows: &BlockRows<D>,
+        island: Option<(&[usize], &[usize])>,
+        size: usize,
+    ) -> Result<Self, Fc3dError> {
+        let n_positions = island.map_or(rows.n_contacts(), |(contacts, _)| contacts.len());
+        let contact = |p: usize| island.map_or(p, |(contacts, _)| contacts[p]);
+        let unit_of = |c: usize| island.map_or(c, |(_, position)| position[c]) / size;
+        let n = n_positions.div_ceil(size);
         // The units each unit's rows reach (sorted, without repeats), then both directions.
         let mut forward_ptr = try_vec(n + 1, 0usize, "contact graph")?;
         let mut forward = Vec::new();
         let mut reached = Vec::new();
         for unit in 0..n {
             reached.clear();
-            for c in unit * size..((unit + 1) * size).min(nc) {
-                reached.extend(rows.coupled(c).map(|b| b / size).filter(|&v| v != unit));
+            for p in unit * size..((unit + 1) * size).min(n_positions) {
+                reached.extend(rows.coupled(contact(p)).map(unit_of).filter(|&v| v != unit));
             }
             reached.sort_unstable();
             reached.dedup();

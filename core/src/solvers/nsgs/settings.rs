@@ -48,6 +48,9 @@ pub enum Decomposition {
     /// stopping test (its residual against its share `||q|| sqrt(n_I / n)` of the tolerance)
     /// and stops being swept once converged; a contact
     /// coupled to no other is solved once and checked. The reported error is the global one.
+    /// An island of 4096 contacts or more is swept by all threads together as
+    /// [`Decomposition::Coloured`] sweeps a problem (its own units and colours); smaller ones
+    /// are shared among the threads, one island per thread at a time.
     /// Adaptive local tolerances are not applied (the local solver's own tolerance is used).
     Islands,
 }

@@ -13,6 +13,7 @@ use faer::{Conj, MatMut, Par};
 use crate::contract::Fill;
 use crate::error::Fc3dError;
 use crate::math::linalg::Mat3;
+use crate::math::lu_cost::{checked_lu_cost, LuCost};
 use crate::math::lu_fill::lu_factor_nnz;
 use crate::matrix::BlockSparseMatrix;
 
@@ -32,6 +33,8 @@ pub(crate) struct NewtonMatrix {
     /// of later ones may differ; the count costs 0.26x-0.4x of one numeric factorization,
     /// measured on box piles of 1k and 10k contacts).
     factor_nnz: Option<usize>,
+    /// The predicted cost of one factorization (from the symbolic analysis).
+    cost: LuCost,
 }
 
 impl NewtonMatrix {
@@ -89,6 +92,7 @@ impl NewtonMatrix {
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         let symbolic = factorize_symbolic_lu(pattern.as_ref(), Default::default())
             .map_err(|e| Fc3dError::Unsupported(format!("sparse LU analysis failed: {e:?}")))?;
+        let cost = checked_lu_cost(pattern.as_ref(), symbolic.col_perm(), "NSN: LU factors")?;
         let req = StackReq::any_of(&[
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
@@ -105,6 +109,7 @@ impl NewtonMatrix {
             numeric: NumericLu::new(),
             workspace,
             factor_nnz: None,
+            cost,
         })
     }
 
@@ -143,6 +148,11 @@ impl NewtonMatrix {
                 }
             }
         }
+    }
+
+    /// The predicted cost of one factorization.
+    pub fn cost(&self) -> LuCost {
+        self.cost
     }
 
     /// The fill of the first factorization, once one succeeded.
