@@ -39,6 +39,31 @@ use faer::sparse::SymbolicSparseColMatRef;
 /// just have fitted is refused).
 pub const FLOPS_PER_SECOND: f64 = 1e10;
 
+/// Seconds per stored entry of W for what comes before a sparse factorization and cannot be
+/// interrupted: assembling the column-compressed matrix (ADMM's `W + rho I`, NSN's Newton
+/// matrix), faer's symbolic LU (COLAMD ordering and symbolic factorization) and
+/// [`checked_lu_cost`]'s own symbolic Cholesky. Measured on this project's machine (load about 3,
+/// Dec. 2026) as the time ADMM and NSN-AC took to stop out of time before their first
+/// factorization (`fc3d solve --solver ADMM --tol 1e-4 --budget 1s gen:contacts=N,piles=4,seed=1`,
+/// the factorization refused by [`LuCost::ends_by`]): 1.7e-7 s per entry at 10^4 contacts
+/// (0.28 s, 1.7e6 entries), 2.0e-7 at 3·10^4 (1.09 s), 2.7e-7 at 10^5 (5.1 s, 1.9e7 entries);
+/// the analysis alone (`cargo run --release -p fc3d-core --example lu_cost -- predict piles=4
+/// ...`) 8.1e-8 to 1.56e-7. 1e-7 is below every measured set-up rate: a set-up is refused only
+/// when it would have overrun on a machine up to 1.7x faster than this one.
+pub const ANALYSIS_SECONDS_PER_ENTRY: f64 = 1e-7;
+
+/// Whether the set-up before a factorization (assembly and analysis) of a W of `stored_entries`
+/// entries, started now, is predicted to end by `deadline` (always without one); see [`ANALYSIS_SECONDS_PER_ENTRY`].
+pub fn analysis_ends_by(stored_entries: usize, deadline: Option<std::time::Instant>) -> bool {
+    let seconds = stored_entries as f64 * ANALYSIS_SECONDS_PER_ENTRY;
+    deadline.is_none_or(|d| {
+        Duration::try_from_secs_f64(seconds)
+            .ok()
+            .and_then(|t| std::time::Instant::now().checked_add(t))
+            .is_some_and(|end| end <= d)
+    })
+}
+
 /// The predicted cost of one numeric LU factorization.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LuCost {
@@ -190,6 +215,26 @@ mod tests {
             col_ptr.push(row_idx.len());
         }
         SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx)
+    }
+
+    #[test]
+    fn an_analysis_is_refused_only_when_it_cannot_end_in_time() {
+        use std::time::Instant;
+        // 1e6 entries: 0.1 s predicted.
+        assert!(analysis_ends_by(1_000_000, None));
+        assert!(analysis_ends_by(
+            1_000_000,
+            Some(Instant::now() + Duration::from_secs(1))
+        ));
+        assert!(!analysis_ends_by(
+            1_000_000,
+            Some(Instant::now() + Duration::from_millis(10))
+        ));
+        assert!(!analysis_ends_by(1, Some(Instant::now())));
+        assert!(!analysis_ends_by(
+            usize::MAX,
+            Some(Instant::now() + Duration::from_secs(1))
+        ));
     }
 
     #[test]

@@ -272,6 +272,16 @@ impl<'a> Delassus<'a> {
         }
     }
 
+    /// The entries W stores: every entry of a dense W, 9 per block of a sparse-block W, the
+    /// stored entries of a CSR W. What a sparse factorization's analysis reads.
+    pub fn stored_entries(&self) -> usize {
+        match self {
+            Delassus::Dense(m) => m.nrows() * m.ncols(),
+            Delassus::SparseBlock(m) => 9 * m.n_blocks(),
+            Delassus::Sparse(m) => m.nnz(),
+        }
+    }
+
     /// Short storage name for tables and messages.
     pub fn storage_name(&self) -> &'static str {
         match self {
