@@ -18,6 +18,7 @@ use crate::contract::{
     Stage, StageEnd, StageKind, StageLog, MAX_STAGES,
 };
 use crate::error::Fc3dError;
+use crate::local::LocalSolverKind;
 use crate::matrix::Delassus;
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
@@ -58,6 +59,11 @@ pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
 /// From this budget on (up to [`SHORT_BUDGET`]) ADMM's first steps fit on the strongly coupled
 /// problems of 40 to 300 contacts: its set-up (a factorization) takes 5-10 ms on the Capsules.
 pub const ADMM_BUDGET: Duration = Duration::from_millis(7);
+
+/// The most contacts on which ADMM's set-up fits a short budget (1.6 ms for its first step on
+/// the 276-contact Capsules, 22-170 ms on RockPile's 463 contacts and generated piles of 400
+/// and 1000): rule 2 (ADMM first from 7 ms) up to it, NSGS alone under a short budget above.
+pub const ADMM_MAX_CONTACTS: usize = 300;
 
 /// Contacts from which AUTO leaves out the methods that factorize a matrix of W's size (ADMM,
 /// PROX, Newton) on strongly coupled problems: between the 1k-contact pile, where ADMM and PROX
@@ -340,7 +346,7 @@ pub const RULES: &[Rule] = &[
         when: Condition {
             strongly_coupled: Some(true),
             min_contacts: Some(40),
-            max_contacts: Some(300),
+            max_contacts: Some(ADMM_MAX_CONTACTS),
             min_budget: Some(ADMM_BUDGET),
             max_budget: Some(SHORT_BUDGET),
             ..Condition::ANY
@@ -351,6 +357,19 @@ pub const RULES: &[Rule] = &[
               step is not done (5-10 ms a step on the Capsules); smaller ones (OneObject: PROX \
               after a few sweeps) and larger ones (RockPile: ADMM still at 0.4 after 20 ms) keep \
               the next row",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(ADMM_MAX_CONTACTS + 1),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, TO_THE_LIMITS)],
+        why: "strongly coupled problems above 300 contacts under a budget of 20 ms or less \
+              (RockPile, 463 contacts; generated piles of 400 and 1000): the first step of PROX \
+              or ADMM (a factorization) takes 22-240 ms there and overran the budget, while \
+              Gauss-Seidel's error falls steadily sweep after sweep",
     },
     Rule {
         when: Condition {
@@ -512,6 +531,101 @@ pub fn choose(
         .find(|(_, r)| r.when.holds(features, tolerance, budget))
         .map(|(i, r)| (i, r.plan))
         .expect("the last rule always holds")
+}
+
+/// The local solver of the NSGS stages of rule `rule`'s plan: QUARTIC (562, the exact
+/// one-contact solution by enumeration) on strongly coupled problems, where its sweeps are
+/// 1.3-1.8x as many as 551's in the same time with the same progress per sweep (`fc3d bench` on
+/// BoxesStack1, the Capsules, OneObject and RockPile at 1 ms, 10 ms and 100 ms, and on the
+/// generated 10^4-contact pile at 1 s: README "AUTO"); the Newton with Goldstein-Price line
+/// search (551) otherwise (the fastest NSGS on the small weakly coupled problems) and for a plan
+/// given in [`AutoOptions`].
+pub fn sweep_local_solver(rule: usize) -> LocalSolverKind {
+    match RULES.get(rule) {
+        Some(r) if r.when.strongly_coupled == Some(true) => LocalSolverKind::Quartic,
+        _ => LocalSolverKind::NewtonAlartCurnierGp,
+    }
+}
+
+/// Whether a stage of this kind factorizes a matrix of W's size in its first step (5-10 ms on
+/// the Capsules, more than 20 ms from 400 contacts on): such a step cannot be interrupted.
+pub fn factorizes(kind: StageKind) -> bool {
+    matches!(kind, Prox | Admm | Newton)
+}
+
+/// How a stage ended, as far as the choice of the next one goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Handover {
+    /// It stalled, used its allowance or its share of the budget, or could not be set up.
+    Ended,
+    /// It stopped for time before the deadline: its next step (a Newton step, a
+    /// factorization) was expected to end past it.
+    ShortOfDeadline,
+}
+
+/// The stage to run next: its index in the plan, and whether it runs to the limits whatever its
+/// progress.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NextStage {
+    pub index: usize,
+    pub to_the_limits: bool,
+}
+
+/// The plan's stage that fills the time a stage stopped short of the deadline left: its first
+/// stage that does not factorize (NSGS, TFP or EG, whose iterations are short and end at the
+/// deadline).
+fn filler(plan: &[PlannedStage]) -> Option<usize> {
+    plan.iter().position(|s| !factorizes(s.kind))
+}
+
+/// The next stage of a solve: `first` to begin with (`previous` is `None`), then the stage after
+/// `previous`. Without a budget (`time` is `None`) the plan ends after its last stage. Under a
+/// budget (`time`: the time left and the budget) the time is used up to the deadline:
+/// - the plan starts over after its last stage (a plan whose stages all stalled early);
+/// - a factorizing stage is not started after the first one when less than a quarter of the
+///   budget is left (its first step overran the deadline on the Capsules), the next stage of the
+///   plan is taken instead;
+/// - after a stage that stopped short of the deadline, the plan's first non-factorizing stage
+///   runs to the limits from the best iterate (it was PROX's next step, expected past the
+///   deadline, that ended the solve with the budget unspent); after that filler itself stopped
+///   short, nothing is left to try.
+pub fn next_stage(
+    plan: &[PlannedStage],
+    first: usize,
+    previous: Option<(usize, Handover)>,
+    time: Option<(Duration, Duration)>,
+) -> Option<NextStage> {
+    let Some((last, handover)) = previous else {
+        return (first < plan.len()).then_some(NextStage {
+            index: first,
+            to_the_limits: false,
+        });
+    };
+    let fill = || {
+        filler(plan)
+            .filter(|&i| i != last || handover == Handover::Ended)
+            .map(|index| NextStage {
+                index,
+                to_the_limits: true,
+            })
+    };
+    let Some((left, budget)) = time else {
+        return (last + 1 < plan.len()).then_some(NextStage {
+            index: last + 1,
+            to_the_limits: false,
+        });
+    };
+    if handover == Handover::ShortOfDeadline {
+        return fill();
+    }
+    (1..=plan.len())
+        .map(|k| (last + k) % plan.len())
+        .find(|&i| !(factorizes(plan[i].kind) && left < budget / 4))
+        .map(|index| NextStage {
+            index,
+            to_the_limits: false,
+        })
+        .or_else(fill)
 }
 
 /// Settings of AUTO. Its limits default to a tolerance of 1e-4 (Siconos' NSGS default) and
@@ -704,9 +818,7 @@ pub(crate) fn auto_with<'a>(
     let mut best_error = error;
     let mut total = 0usize;
     let mut out_of_time = false;
-    // Local solver 551 (Newton with Goldstein-Price): the fastest NSGS on the small shared
-    // problems (README "AUTO").
-    let nsgs_options = NsgsOptions::with_local(crate::local::LocalSolverKind::NewtonAlartCurnierGp);
+    let nsgs_options = NsgsOptions::with_local(sweep_local_solver(rule));
     // The sweeps run without a test of their own (Siconos' increment test passes hundreds of
     // sweeps after the error on the Capsules): AUTO measures the full error after each run of
     // sweeps, whose length it predicts from the rate seen (see `next_probe`).
@@ -728,19 +840,23 @@ pub(crate) fn auto_with<'a>(
     let mut fill = None;
 
     // Under a time budget, a plan whose stages all ended (stalled) before the deadline starts
-    // over from the best iterate: the host gave that time, and returning early with a worse
-    // error never helps (README "AUTO", the equal-budget comparison with Siconos).
-    // Passes are bounded (stages skipped late in a budget log nothing); the log's capacity
-    // ends the solve first.
-    let passes = if run.deadline().is_some() {
-        MAX_STAGES * plan.len()
-    } else {
-        plan.len() - first
-    };
-    'plan: for (index, planned) in plan.iter().enumerate().cycle().skip(first).take(passes) {
+    // over from the best iterate, and a stage stopped short of the deadline hands the time left
+    // to the plan's first stage that does not factorize (see `next_stage`). The log's capacity
+    // ends the solve at the latest.
+    let mut previous: Option<(usize, Handover)> = None;
+    'plan: loop {
         if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
             break;
         }
+        let time = run
+            .deadline()
+            .zip(limits.time_budget)
+            .map(|(d, b)| (d.saturating_duration_since(Instant::now()), b));
+        let Some(next) = next_stage(plan, first, previous, time) else {
+            break;
+        };
+        let index = next.index;
+        let planned = &plan[index];
         last_stage = index;
         // Every stage starts from the best iterate seen.
         if best.restore_if_better(r, error) {
@@ -748,16 +864,7 @@ pub(crate) fn auto_with<'a>(
         }
         let watch = stall_rule(planned.kind);
         let allowance = planned.allowance.unwrap_or(usize::MAX);
-        // A stage that factorizes a W-sized matrix (its first step: 5-10 ms on the Capsules)
-        // is not started late in a budget: it would overrun the deadline by that step.
-        let factorizes = matches!(planned.kind, Prox | Admm | Newton);
-        if factorizes && !log.is_empty() {
-            if let (Some(d), Some(b)) = (run.deadline(), limits.time_budget) {
-                if d.saturating_duration_since(Instant::now()) < b / 4 {
-                    continue 'plan;
-                }
-            }
-        }
+        let to_the_limits = next.to_the_limits || planned.allowance == TO_THE_LIMITS;
         // Under a budget above SHORT_BUDGET, a stage of a plan with several gets at most half of
         // the time left, so that a method that is slow on this problem (PROX on BoxesStack and
         // RockPile) leaves time to the next one while a fast one (PROX on the Capsules) still
@@ -766,7 +873,7 @@ pub(crate) fn auto_with<'a>(
         // before the deadline with the budget unspent.
         // So does a stage run to the limits (large piles).
         let last_possible = log.len() + 1 == MAX_STAGES;
-        let whole_remainder = last_possible || planned.allowance == TO_THE_LIMITS;
+        let whole_remainder = last_possible || to_the_limits;
         let stage_deadline = match run.deadline() {
             Some(d)
                 if plan.len() > 1
@@ -781,6 +888,7 @@ pub(crate) fn auto_with<'a>(
         let stage_over = || stage_deadline.is_some_and(|d| Instant::now() >= d);
         let mut done = 0usize;
         let end;
+        let mut handover = Handover::Ended;
         // The sweeper and the Newton matrix are built once per solve, at their first stage.
         // A workspace's structures (built for this W's pattern) are taken over.
         let built = match planned.kind {
@@ -804,6 +912,7 @@ pub(crate) fn auto_with<'a>(
                 error,
                 end: StageEnd::Failed,
             });
+            previous = Some((index, Handover::Ended));
             continue 'plan;
         }
         // The stall test looks at windows of `watch.chunk` iterations; NSGS measures inside a
@@ -877,11 +986,16 @@ pub(crate) fn auto_with<'a>(
                 end = StageEnd::Converged;
                 break;
             }
-            // A stage under the whole budget that stopped for time (possibly just before the
-            // deadline, its next Newton step expected to end past it) ends the solve for time.
-            let whole_budget_spent = stopped_for_time && stage_deadline == run.deadline();
-            if run.out_of_time() || whole_budget_spent {
+            if run.out_of_time() {
                 out_of_time = true;
+                end = StageEnd::Limits;
+                break;
+            }
+            // A stage under the whole budget that stopped for time before the deadline (its
+            // next Newton step or factorization expected to end past it) leaves the time left to
+            // a stage whose iterations are short.
+            if stopped_for_time && stage_deadline == run.deadline() {
+                handover = Handover::ShortOfDeadline;
                 end = StageEnd::Limits;
                 break;
             }
@@ -892,9 +1006,8 @@ pub(crate) fn auto_with<'a>(
             // A stage run to the limits is not ended by a stall (large piles: every method's
             // error falls slowly).
             // So is the last stage of a budgeted solve: the host gave the time left.
-            let patient = (planned.allowance == TO_THE_LIMITS
-                || (last_possible && run.deadline().is_some()))
-                && error.is_finite();
+            let patient =
+                (to_the_limits || (last_possible && run.deadline().is_some())) && error.is_finite();
             window += iterations;
             if window >= watch.chunk {
                 // NaN compares false: a non-finite error is a stall.
@@ -913,6 +1026,7 @@ pub(crate) fn auto_with<'a>(
             error,
             end,
         });
+        previous = Some((index, handover));
     }
     // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
     // family's last step): it is the final error unless an earlier iterate was better.
@@ -947,7 +1061,91 @@ pub(crate) fn auto_with<'a>(
 
 #[cfg(test)]
 mod tests {
-    use super::next_probe;
+    use super::{next_probe, next_stage, stage, Handover, NextStage, PlannedStage, TO_THE_LIMITS};
+    use crate::contract::StageKind::{Admm, ExtraGradient, Nsgs, Prox};
+    use std::time::Duration;
+
+    const ADMM_PROX_NSGS: &[PlannedStage] =
+        &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)];
+    const MS: Duration = Duration::from_millis(1);
+
+    fn at(index: usize) -> Option<NextStage> {
+        Some(NextStage {
+            index,
+            to_the_limits: false,
+        })
+    }
+
+    fn filling(index: usize) -> Option<NextStage> {
+        Some(NextStage {
+            index,
+            to_the_limits: true,
+        })
+    }
+
+    #[test]
+    fn without_a_budget_the_plan_runs_once_from_its_first_stage() {
+        let plan = ADMM_PROX_NSGS;
+        assert_eq!(next_stage(plan, 0, None, None), at(0));
+        assert_eq!(next_stage(plan, 1, None, None), at(1));
+        assert_eq!(next_stage(plan, 0, Some((0, Handover::Ended)), None), at(1));
+        assert_eq!(next_stage(plan, 0, Some((2, Handover::Ended)), None), None);
+    }
+
+    #[test]
+    fn under_a_budget_the_plan_starts_over_and_late_factorizations_are_skipped() {
+        let plan = ADMM_PROX_NSGS;
+        // The first stage starts whatever the time left (it is the rule's choice).
+        assert_eq!(next_stage(plan, 0, None, Some((MS, 10 * MS))), at(0));
+        // Half the budget left: the next stage, then the plan starts over after its last one.
+        let half = Some((5 * MS, 10 * MS));
+        assert_eq!(next_stage(plan, 0, Some((0, Handover::Ended)), half), at(1));
+        assert_eq!(next_stage(plan, 0, Some((2, Handover::Ended)), half), at(0));
+        // Less than a quarter left: PROX and ADMM are skipped, NSGS runs (again).
+        let late = Some((2 * MS, 10 * MS));
+        assert_eq!(next_stage(plan, 0, Some((0, Handover::Ended)), late), at(2));
+        assert_eq!(next_stage(plan, 0, Some((2, Handover::Ended)), late), at(2));
+        // A plan of factorizing stages only, late: nothing to run.
+        let factorizing = &[stage(Prox, None), stage(Admm, None)];
+        assert_eq!(
+            next_stage(factorizing, 0, Some((0, Handover::Ended)), late),
+            None
+        );
+    }
+
+    #[test]
+    fn a_stage_stopped_short_of_the_deadline_leaves_the_time_to_a_non_factorizing_one() {
+        // PROX stopped with 4 of 10 ms left (its next step expected past the deadline): the
+        // plan's first stage that does not factorize runs to the limits, not ADMM.
+        let plan = ADMM_PROX_NSGS;
+        let left = Some((4 * MS, 10 * MS));
+        assert_eq!(
+            next_stage(plan, 0, Some((1, Handover::ShortOfDeadline)), left),
+            filling(2)
+        );
+        // The first non-factorizing stage of the plan is the filler (EG here).
+        let eg_first = &[
+            stage(ExtraGradient, None),
+            stage(Admm, None),
+            stage(Prox, None),
+            stage(Nsgs, None),
+        ];
+        assert_eq!(
+            next_stage(eg_first, 0, Some((2, Handover::ShortOfDeadline)), left),
+            filling(0)
+        );
+        // A filler that stopped short itself ends the solve; one that ended otherwise (a stage
+        // run to the limits only ends at the limits) hands over as any stage.
+        assert_eq!(
+            next_stage(plan, 0, Some((2, Handover::ShortOfDeadline)), left),
+            None
+        );
+        let sweeps = &[stage(Nsgs, TO_THE_LIMITS)];
+        assert_eq!(
+            next_stage(sweeps, 0, Some((0, Handover::Ended)), left),
+            at(0)
+        );
+    }
 
     #[test]
     fn probes_double_until_a_rate_is_known_then_aim_at_the_tolerance() {
