@@ -70,9 +70,10 @@ pub const ADMM_MAX_CONTACTS: usize = 300;
 /// still reach 1e-4 within 2 s, and the 10k-contact one, where one ADMM iteration costs 75x more.
 pub const LARGE_PROBLEM: usize = 5000;
 
-/// Contacts from which AUTO sweeps to the limits on strongly coupled problems, without handing
-/// over to extragradient: between the 10k-contact pile (EG best after 10 s) and the 100k one
-/// (EG 9x behind NSGS after 10 s).
+/// Contacts from which AUTO runs the Tresca fixed point to the limits on strongly coupled
+/// problems, without Gauss-Seidel and extragradient stages: between the 10k-contact pile (EG best
+/// after 10 s, TFP 2-3.5x behind it) and the 100k one (TFP best after 1 s, EG 9x behind NSGS
+/// after 10 s).
 pub const HUGE_PROBLEM: usize = 30_000;
 
 /// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
@@ -388,9 +389,11 @@ pub const RULES: &[Rule] = &[
             min_contacts: Some(HUGE_PROBLEM),
             ..Condition::ANY
         },
-        plan: &[stage(Nsgs, TO_THE_LIMITS)],
-        why: "hyperstatic piles of 10^5 contacts: Gauss-Seidel sweeps to the limits; EG falls \
-              behind there (3.0e-2 after 10 s against NSGS's 3.5e-3)",
+        plan: &[stage(Tresca, TO_THE_LIMITS)],
+        why: "hyperstatic piles of 10^5 contacts: the Tresca fixed point to the limits, the best \
+              fixed choice after 1 s in three runs (1.6e-2-5.3e-2, NSGS 1.6-2x behind) and within \
+              1.25x of the best after 10 s; EG falls behind there (3.0e-2 after 10 s against \
+              NSGS's 3.5e-3)",
     },
     Rule {
         when: Condition {
