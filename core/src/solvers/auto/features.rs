@@ -3,8 +3,6 @@
 use crate::matrix::Delassus;
 use crate::problem::FrictionProblem;
 
-use super::rules::{STRONG_MU, WEAK_DOMINANCE};
-
 /// Cheap features of a problem, computed in one pass over W's stored entries (O(nnz)).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProblemFeatures {
@@ -30,6 +28,10 @@ pub struct ProblemFeatures {
     pub singular_contacts: usize,
 }
 
+/// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
+pub const STRONG_MU: f64 = 0.25;
+/// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
+pub const WEAK_DOMINANCE: f64 = 0.16;
 impl ProblemFeatures {
     /// Strong frictional coupling (see [`Condition::strongly_coupled`]).
     pub fn strongly_coupled(&self) -> bool {

@@ -24,12 +24,12 @@ use crate::problem::FrictionProblem;
 use crate::solvers::nsgs::PreparedSweep;
 use crate::solvers::nsn::NewtonSolver;
 
-pub use features::ProblemFeatures;
+pub use features::{ProblemFeatures, STRONG_MU, WEAK_DOMINANCE};
 pub use plan::{factorizes, next_stage, Handover, NextStage};
 pub use rules::{
     choose, sweep_local_solver, Condition, PlannedStage, Rule, StallRule, ADMM_BUDGET,
     ADMM_MAX_CONTACTS, HUGE_PROBLEM, LARGE_PROBLEM, MODERATE_MU, RULES, SHORT_BUDGET, STALL,
-    STRONG_MU, TO_THE_LIMITS, WEAK_DOMINANCE,
+    TO_THE_LIMITS,
 };
 pub(crate) use run::auto_with;
 

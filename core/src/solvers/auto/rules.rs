@@ -32,10 +32,6 @@ pub const LARGE_PROBLEM: usize = 5000;
 /// after 10 s).
 pub const HUGE_PROBLEM: usize = 30_000;
 
-/// `mu_max` from which friction couples the contacts strongly (see [`Condition`]).
-pub const STRONG_MU: f64 = 0.25;
-/// Normal-row diagonal dominance below which a coupled problem is hard for Gauss-Seidel.
-pub const WEAK_DOMINANCE: f64 = 0.16;
 /// `mu_max` below which PROX beats ADMM on strongly coupled problems at tight tolerances: the
 /// shared and generated problems of that class have mu <= 0.42 or mu >= 0.7.
 pub const MODERATE_MU: f64 = 0.5;
