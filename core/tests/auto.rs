@@ -4,7 +4,8 @@
 use std::time::{Duration, Instant};
 
 use fc3d_core::io::dat::read_dat_file;
-use fc3d_core::solvers::auto::{choose, PlannedStage, ProblemFeatures, RULES};
+use fc3d_core::local::LocalSolverKind;
+use fc3d_core::solvers::auto::{choose, sweep_local_solver, PlannedStage, ProblemFeatures, RULES};
 use fc3d_core::{
     natural_map_error, solve, AutoOptions, Delassus, DenseMatrix, FrictionProblem, SolveStatus,
     SolverConfig, StageEnd, StageKind,
@@ -236,6 +237,21 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     }
     assert_eq!(anytime("OneObject-i1028-138.hdf5.dat", 10), StageKind::Nsgs);
     assert_eq!(anytime("RockPile_tob1.dat", 10), StageKind::Nsgs);
+    // RockPile (463 contacts) sweeps to the limits under a short budget: no factorizing stage,
+    // whose first step takes longer than the budget there.
+    let f = ProblemFeatures::of(&shared("RockPile_tob1.dat"));
+    let (rule, plan) = choose(&f, 0.0, Some(Duration::from_millis(10)));
+    assert_eq!(plan.len(), 1);
+    assert_eq!(plan[0].allowance, Some(usize::MAX));
+    // The NSGS stages of strongly coupled problems sweep with QUARTIC (562), the others with
+    // the Newton local solver 551.
+    assert_eq!(sweep_local_solver(rule), LocalSolverKind::Quartic);
+    let f = ProblemFeatures::of(&shared("Confeti-ex13-Fc3D-SBM.dat"));
+    let (rule, _) = choose(&f, 0.0, Some(Duration::from_millis(10)));
+    assert_eq!(
+        sweep_local_solver(rule),
+        LocalSolverKind::NewtonAlartCurnierGp
+    );
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! AUTO on large strongly coupled problems (generated piles from 5000 contacts): Gauss-Seidel
-//! first, then extragradient to the limits (from 30000 contacts, Gauss-Seidel to the limits);
+//! first, then extragradient to the limits (from 30000 contacts, the Tresca fixed point to the
+//! limits);
 //! no stage that factorizes a matrix of W's size; the
 //! budget holds and the error reported is the one measured on the returned reactions.
 
@@ -31,14 +32,15 @@ fn large_piles_get_sweeps_then_extragradient_to_the_limits() {
         assert_eq!(kinds, [StageKind::Nsgs, StageKind::ExtraGradient]);
         assert_eq!(plan[1].allowance, TO_THE_LIMITS);
     }
-    // From HUGE_PROBLEM on, sweeps only (features of a pile that size; not solved here).
+    // From HUGE_PROBLEM on, the Tresca fixed point only (features of a pile that size; not
+    // solved here).
     let huge = ProblemFeatures {
         n_contacts: HUGE_PROBLEM,
         ..large
     };
     let (_, plan) = choose(&huge, 1e-4, None);
     assert_eq!(plan.len(), 1);
-    assert_eq!(plan[0].kind, StageKind::Nsgs);
+    assert_eq!(plan[0].kind, StageKind::Tresca);
     assert_eq!(plan[0].allowance, TO_THE_LIMITS);
     // Below the threshold the rows of the shared problems still apply.
     let small = ProblemFeatures::of(&pile(1000));

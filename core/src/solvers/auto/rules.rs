@@ -1,0 +1,348 @@
+//! AUTO's rule table ([`RULES`]), its thresholds, and how each kind of stage is watched
+//! ([`STALL`]): data, each row with the measurement behind it.
+
+use std::time::Duration;
+
+use crate::contract::StageKind;
+use crate::local::LocalSolverKind;
+
+use super::features::ProblemFeatures;
+
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
+
+/// A time budget this short favours methods whose first iterations are cheap.
+pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
+/// From this budget on (up to [`SHORT_BUDGET`]) ADMM's first steps fit on the strongly coupled
+/// problems of 40 to 300 contacts: its set-up (a factorization) takes 5-10 ms on the Capsules.
+pub const ADMM_BUDGET: Duration = Duration::from_millis(7);
+
+/// The most contacts on which ADMM's set-up fits a short budget (1.6 ms for its first step on
+/// the 276-contact Capsules, 22-170 ms on RockPile's 463 contacts and generated piles of 400
+/// and 1000): rule 2 (ADMM first from 7 ms) up to it, NSGS alone under a short budget above.
+pub const ADMM_MAX_CONTACTS: usize = 300;
+
+/// Contacts from which AUTO leaves out the methods that factorize a matrix of W's size (ADMM,
+/// PROX, Newton) on strongly coupled problems: between the 1k-contact pile, where ADMM and PROX
+/// still reach 1e-4 within 2 s, and the 10k-contact one, where one ADMM iteration costs 75x more.
+pub const LARGE_PROBLEM: usize = 5000;
+
+/// Contacts from which AUTO runs the Tresca fixed point to the limits on strongly coupled
+/// problems, without Gauss-Seidel and extragradient stages: between the 10k-contact pile (EG best
+/// after 10 s, TFP 2-3.5x behind it) and the 100k one (TFP best after 1 s, EG 9x behind NSGS
+/// after 10 s).
+pub const HUGE_PROBLEM: usize = 30_000;
+
+/// `mu_max` below which PROX beats ADMM on strongly coupled problems at tight tolerances: the
+/// shared and generated problems of that class have mu <= 0.42 or mu >= 0.7.
+pub const MODERATE_MU: f64 = 0.5;
+
+/// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
+/// or the limits stop it; [`TO_THE_LIMITS`]: not stopped by a stall either).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlannedStage {
+    pub kind: StageKind,
+    pub allowance: Option<usize>,
+}
+
+pub(crate) const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedStage {
+    PlannedStage { kind, allowance }
+}
+
+/// The allowance of a stage that runs until the tolerance or the limits, whatever its progress:
+/// on large hyperstatic piles every method's error falls slowly but steadily (README "Scale"),
+/// and a stall test would end the solve with most of the budget unspent.
+pub const TO_THE_LIMITS: Option<usize> = Some(usize::MAX);
+
+/// When a rule applies: every condition given must hold (`None`: any value).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Condition {
+    /// Some contact has a singular one-contact problem (`W_NN <= 0`).
+    pub singular_contacts: Option<bool>,
+    /// At most this many contacts.
+    pub max_contacts: Option<usize>,
+    /// The tolerance is at least this (a loose solve).
+    pub min_tolerance: Option<f64>,
+    /// At least this many contacts.
+    pub min_contacts: Option<usize>,
+    /// Strong frictional coupling: `mu_max >= STRONG_MU` and a normal row far from diagonal
+    /// dominance (`diagonal_dominance < WEAK_DOMINANCE`), the case where Gauss-Seidel and the
+    /// Tresca fixed point crawl.
+    pub strongly_coupled: Option<bool>,
+    /// The solve has a time budget of at most this (a short anytime solve).
+    pub max_budget: Option<Duration>,
+    /// The solve has a time budget of at least this.
+    pub min_budget: Option<Duration>,
+    /// The largest friction coefficient is below this.
+    pub max_mu: Option<f64>,
+    /// The tolerance is below this (a tight solve).
+    pub max_tolerance: Option<f64>,
+}
+
+impl Condition {
+    const ANY: Condition = Condition {
+        singular_contacts: None,
+        max_contacts: None,
+        min_tolerance: None,
+        min_contacts: None,
+        strongly_coupled: None,
+        max_budget: None,
+        min_budget: None,
+        max_mu: None,
+        max_tolerance: None,
+    };
+
+    fn holds(&self, f: &ProblemFeatures, tolerance: f64, budget: Option<Duration>) -> bool {
+        self.singular_contacts
+            .is_none_or(|s| s == (f.singular_contacts > 0))
+            && self.max_contacts.is_none_or(|m| f.n_contacts <= m)
+            && self.min_tolerance.is_none_or(|t| tolerance >= t)
+            && self.min_contacts.is_none_or(|m| f.n_contacts >= m)
+            && self
+                .strongly_coupled
+                .is_none_or(|s| s == f.strongly_coupled())
+            && self
+                .max_budget
+                .is_none_or(|m| budget.is_some_and(|b| b <= m))
+            && self
+                .min_budget
+                .is_none_or(|m| budget.is_some_and(|b| b >= m))
+            && self.max_mu.is_none_or(|m| f.mu_max < m)
+            && self.max_tolerance.is_none_or(|t| tolerance < t)
+    }
+}
+
+/// A row of the rule table: when it applies, the plan, and why (the measurement behind it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rule {
+    pub when: Condition,
+    pub plan: &'static [PlannedStage],
+    pub why: &'static str,
+}
+
+/// AUTO's rule table: the first row whose condition holds gives the plan. The last row holds
+/// always. README.md "AUTO" has the bench runs behind each row.
+pub const RULES: &[Rule] = &[
+    Rule {
+        when: Condition {
+            singular_contacts: Some(true),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Nsgs, None)],
+        why: "a contact with W_NN <= 0 has no well-posed one-contact problem: Gauss-Seidel's \
+              local solves and an unshifted Newton matrix break down, the proximal shift does not",
+    },
+    Rule {
+        when: Condition {
+            max_contacts: Some(1),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None)],
+        why: "one contact: one Gauss-Seidel sweep is the one-contact solver itself, which solves \
+              it to the tolerance",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(40),
+            max_contacts: Some(ADMM_MAX_CONTACTS),
+            min_budget: Some(ADMM_BUDGET),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
+        why: "strongly coupled problems of 40-300 contacts (BoxesStack, Capsules) under a budget \
+              of 7-20 ms: within 10 ms ADMM reaches about 1e-6 where NSGS is at 1e-5 and a PROX \
+              step is not done (5-10 ms a step on the Capsules); smaller ones (OneObject: PROX \
+              after a few sweeps) and larger ones (RockPile: ADMM still at 0.4 after 20 ms) keep \
+              the next row",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(ADMM_MAX_CONTACTS + 1),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, TO_THE_LIMITS)],
+        why: "strongly coupled problems above 300 contacts under a budget of 20 ms or less \
+              (RockPile, 463 contacts; generated piles of 400 and 1000): the first step of PROX \
+              or ADMM (a factorization) takes 22-240 ms there and overran the budget, while \
+              Gauss-Seidel's error falls steadily sweep after sweep",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_budget: Some(SHORT_BUDGET),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(Prox, None), stage(Admm, None)],
+        why: "strongly coupled problems under a budget of 20 ms or less: within 1 ms NSGS (local \
+              solver 551) is the closest to the solution on the Capsules (1e-5, where one PROX \
+              step is not done yet); PROX takes over where it stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(HUGE_PROBLEM),
+            ..Condition::ANY
+        },
+        plan: &[stage(Tresca, TO_THE_LIMITS)],
+        why: "hyperstatic piles of 10^5 contacts: the Tresca fixed point to the limits, the best \
+              fixed choice after 1 s in three runs (1.6e-2-5.3e-2, NSGS 1.6-2x behind) and within \
+              1.25x of the best after 10 s; EG falls behind there (3.0e-2 after 10 s against \
+              NSGS's 3.5e-3)",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(LARGE_PROBLEM),
+            ..Condition::ANY
+        },
+        plan: &[stage(Nsgs, None), stage(ExtraGradient, TO_THE_LIMITS)],
+        why: "large hyperstatic piles (generated, 10^4-10^5 contacts): no method reaches 1e-4 \
+              within a minute, the factorizing ones (ADMM, PROX, Newton) cost 75-245x more per \
+              iteration at 10x the contacts and overrun a 1 s budget in their set-up (ADMM: over \
+              9 GB at 10^5); Gauss-Seidel gains most in the first second, EG (one product with \
+              W per iteration) in the next ones, to the limits since every error falls slowly",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_tolerance: Some(1e-5),
+            min_contacts: Some(100),
+            ..Condition::ANY
+        },
+        plan: &[
+            stage(ExtraGradient, None),
+            stage(Admm, None),
+            stage(Prox, None),
+            stage(Nsgs, None),
+        ],
+        why: "large strongly coupled problems to 1e-4 (Capsules, RockPile): EG's iterations (one \
+              product with W) are the cheapest, EG is the fastest on the Capsules (3-10x ADMM); \
+              where it stalls (RockPile) ADMM, then PROX take over",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            max_mu: Some(MODERATE_MU),
+            max_tolerance: Some(1e-5),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems with mu < 0.5 to 1e-6 or tighter (OneObject, mu 0.3; \
+              generated piles of 40 and 60 contacts, mu 0.38-0.42): PROX is the fastest or within \
+              1.7x of it at 1e-6 where ADMM first is 2.8-54x behind; with mu = 0.7 (BoxesStack, \
+              Capsules) it is the other way round (PROX 10-30x behind ADMM on two of them)",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_tolerance: Some(1e-6),
+            ..Condition::ANY
+        },
+        plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
+        why: "strongly coupled problems (BoxesStack, Capsules, RockPile) to 1e-4 or 1e-6: ADMM is \
+              the fastest on most, NSGS and TFP crawl; PROX takes over where ADMM stalls",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            ..Condition::ANY
+        },
+        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        why: "strongly coupled problems (OneObject, Capsules at 1e-8): the proximal Newton \
+              converges in a few steps where NSGS does not converge at all",
+    },
+    Rule {
+        when: Condition::ANY,
+        plan: &[
+            stage(Nsgs, None),
+            stage(Tresca, None),
+            stage(Prox, None),
+            stage(Newton, None),
+        ],
+        why: "small or weakly coupled problems (Rover, Confeti, NESpheres, FC3D_Example1): NSGS \
+              with the Newton local solver 551 is the fastest or within 1.5x of it (TFP, PFP); \
+              TFP, PROX and Newton go on where it stalls",
+    },
+];
+
+/// How each stage kind is watched: iterations per chunk, and the factor by which the error must
+/// fall over a chunk for the stage to go on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StallRule {
+    pub kind: StageKind,
+    pub chunk: usize,
+    pub factor: f64,
+}
+
+/// The stall rules (one per kind).
+pub const STALL: [StallRule; 6] = [
+    StallRule {
+        kind: Nsgs,
+        chunk: 10,
+        factor: 0.7,
+    },
+    StallRule {
+        kind: Newton,
+        chunk: 5,
+        factor: 0.5,
+    },
+    // PROX and ADMM build their matrices at each call: long chunks.
+    StallRule {
+        kind: Prox,
+        chunk: 50,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: Admm,
+        chunk: 1000,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: Tresca,
+        chunk: 5,
+        factor: 0.5,
+    },
+    StallRule {
+        kind: ExtraGradient,
+        chunk: 100,
+        factor: 0.5,
+    },
+];
+
+pub(crate) fn stall_rule(kind: StageKind) -> StallRule {
+    STALL
+        .into_iter()
+        .find(|s| s.kind == kind)
+        .expect("one stall rule per kind")
+}
+
+/// The index of the rule that applies and its plan.
+pub fn choose(
+    features: &ProblemFeatures,
+    tolerance: f64,
+    budget: Option<Duration>,
+) -> (usize, &'static [PlannedStage]) {
+    RULES
+        .iter()
+        .enumerate()
+        .find(|(_, r)| r.when.holds(features, tolerance, budget))
+        .map(|(i, r)| (i, r.plan))
+        .expect("the last rule always holds")
+}
+
+/// The local solver of the NSGS stages of rule `rule`'s plan: QUARTIC (562, the exact
+/// one-contact solution by enumeration) on strongly coupled problems, where its sweeps are
+/// 1.3-1.8x as many as 551's in the same time with the same progress per sweep (`fc3d bench` on
+/// BoxesStack1, the Capsules, OneObject and RockPile at 1 ms, 10 ms and 100 ms, and on the
+/// generated 10^4-contact pile at 1 s: README "AUTO"); the Newton with Goldstein-Price line
+/// search (551) otherwise (the fastest NSGS on the small weakly coupled problems) and for a plan
+/// given in [`AutoOptions`].
+pub fn sweep_local_solver(rule: usize) -> LocalSolverKind {
+    match RULES.get(rule) {
+        Some(r) if r.when.strongly_coupled == Some(true) => LocalSolverKind::Quartic,
+        _ => LocalSolverKind::NewtonAlartCurnierGp,
+    }
+}

@@ -1,0 +1,332 @@
+//! The stage loop: runs a plan's stages in chunks from the best iterate, watches their
+//! progress and the limits, and hands the time over from stage to stage.
+
+use std::time::{Duration, Instant};
+
+use crate::contract::{
+    BestIterate, ErrorEvaluation, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome,
+    Stage, StageEnd, StageKind, StageLog, MAX_STAGES,
+};
+use crate::error::Fc3dError;
+use crate::measure::natural_map_error;
+use crate::problem::FrictionProblem;
+use crate::solvers::admm::AdmmOptions;
+use crate::solvers::nsgs::{run_sweeps, NsgsOptions, PreparedSweep, SweepSchedule, Sweeper};
+use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
+use crate::solvers::prox::ProxOptions;
+use crate::solvers::tresca::TrescaOptions;
+use crate::solvers::vi::{ViOptions, ViSolver};
+
+use super::features::ProblemFeatures;
+use super::plan::{next_probe, next_stage, Handover};
+use super::rules::{choose, stall_rule, sweep_local_solver, SHORT_BUDGET, TO_THE_LIMITS};
+use super::{AutoCarry, AutoChoice, AutoOptions, ROUND_OFF};
+
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
+
+/// The remaining budget as limits for a stage of at most `max_iter` iterations.
+fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> Limits {
+    Limits {
+        tolerance,
+        max_iter,
+        // An exhausted budget still allows one iteration (the caller stops right after).
+        time_budget: deadline.map(|d| {
+            d.saturating_duration_since(Instant::now())
+                .max(Duration::from_nanos(1))
+        }),
+    }
+}
+
+/// Runs AUTO; a workspace hands in what it kept and gets it back in `carry` (see [`AutoCarry`]).
+pub(crate) fn auto_with<'a>(
+    problem: &FrictionProblem<'a>,
+    options: &AutoOptions,
+    limits: &Limits,
+    r: &mut [f64],
+    u: &mut [f64],
+    observer: &mut Observer<'_>,
+    carry: &mut AutoCarry<'a>,
+) -> Result<SolverOutcome, Fc3dError> {
+    options.validate()?;
+    let run = limits.start();
+    // An anytime solve (a budget and a tolerance below round-off) stops at round-off: the
+    // stages after it gain nothing and their steps overran the budget on the small shared
+    // problems (README "AUTO against Siconos at equal budget").
+    let tolerance = if run.deadline().is_some() {
+        run.tolerance.max(ROUND_OFF)
+    } else {
+        run.tolerance
+    };
+    let requested = run.tolerance;
+    let budget = limits.time_budget;
+    let resume = carry.resume.take().filter(|c| {
+        options.plan.is_none()
+            && c.tolerance == requested
+            && c.budget == budget
+            && c.stage < c.plan.len()
+    });
+    let (rule, plan, first) = match (options.plan, resume) {
+        (Some(plan), _) => (usize::MAX, plan, 0),
+        (None, Some(c)) => (c.rule, c.plan, c.stage),
+        (None, None) => {
+            let (rule, plan) = choose(&ProblemFeatures::of(problem), requested, budget);
+            (rule, plan, 0)
+        }
+    };
+    carry.resumed = resume.is_some() && options.plan.is_none();
+    let mut last_stage = first;
+    // A colouring kept for another run is handed back as it came.
+    let (kept_rows, kept_colouring) = match carry.sweep.take() {
+        Some(p) => (Some(p.rows), p.colouring),
+        None => (None, None),
+    };
+    let mut kept_rows = kept_rows;
+    let mut kept_newton = carry.newton.take();
+    let mut log = StageLog::new(rule);
+    // The initial error is not measured (a product with W, as much as a whole solve of a small
+    // problem): the first stage starts from r as given.
+    let mut error = f64::INFINITY;
+    let mut best = BestIterate::new(r, error);
+    let mut best_error = error;
+    let mut total = 0usize;
+    let mut out_of_time = false;
+    let nsgs_options = NsgsOptions::with_local(sweep_local_solver(rule));
+    // The sweeps run without a test of their own (Siconos' increment test passes hundreds of
+    // sweeps after the error on the Capsules): AUTO measures the full error after each run of
+    // sweeps, whose length it predicts from the rate seen (see `next_probe`).
+    let schedule = SweepSchedule {
+        error_evaluation: ErrorEvaluation::Light,
+        evaluation_frequency: 1,
+        local_tolerance: nsgs_options.local_tolerance,
+        stop_when_stalled: false,
+        acceleration: Default::default(),
+    };
+    let mut sweeper: Option<Sweeper> = None;
+    let prox_options = ProxOptions::default();
+    let admm_options = AdmmOptions::default();
+    let tresca_options = TrescaOptions::default();
+    let eg_options = ViOptions::new(ViSolver::ExtraGradient);
+    let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
+    let mut newton: Option<NewtonSolver> = None;
+    // The largest factorization of the stages that factorize (PROX and ADMM build their own).
+    let mut fill = None;
+
+    // Under a time budget, a plan whose stages all ended (stalled) before the deadline starts
+    // over from the best iterate, and a stage stopped short of the deadline hands the time left
+    // to the plan's first stage that does not factorize (see `next_stage`). The log's capacity
+    // ends the solve at the latest.
+    let mut previous: Option<(usize, Handover)> = None;
+    'plan: loop {
+        if error <= tolerance || total >= run.max_iter || out_of_time || log.is_full() {
+            break;
+        }
+        let time = run
+            .deadline()
+            .zip(limits.time_budget)
+            .map(|(d, b)| (d.saturating_duration_since(Instant::now()), b));
+        let Some(next) = next_stage(plan, first, previous, time) else {
+            break;
+        };
+        let index = next.index;
+        let planned = &plan[index];
+        last_stage = index;
+        // Every stage starts from the best iterate seen.
+        if best.restore_if_better(r, error) {
+            error = best_error;
+        }
+        let watch = stall_rule(planned.kind);
+        let allowance = planned.allowance.unwrap_or(usize::MAX);
+        let to_the_limits = next.to_the_limits || planned.allowance == TO_THE_LIMITS;
+        // Under a budget above SHORT_BUDGET, a stage of a plan with several gets at most half of
+        // the time left, so that a method that is slow on this problem (PROX on BoxesStack and
+        // RockPile) leaves time to the next one while a fast one (PROX on the Capsules) still
+        // converges; the plan then starts over (README "AUTO against Siconos at equal budget").
+        // The last stage the log can hold gets all the time left: halving would end the solve
+        // before the deadline with the budget unspent.
+        // So does a stage run to the limits (large piles).
+        let last_possible = log.len() + 1 == MAX_STAGES;
+        let whole_remainder = last_possible || to_the_limits;
+        let stage_deadline = match run.deadline() {
+            Some(d)
+                if plan.len() > 1
+                    && !whole_remainder
+                    && limits.time_budget.is_some_and(|b| b > SHORT_BUDGET) =>
+            {
+                let now = Instant::now();
+                Some(now + d.saturating_duration_since(now) / 2)
+            }
+            other => other,
+        };
+        let stage_over = || stage_deadline.is_some_and(|d| Instant::now() >= d);
+        let mut done = 0usize;
+        let end;
+        let mut handover = Handover::Ended;
+        // The sweeper and the Newton matrix are built once per solve, at their first stage.
+        // A workspace's structures (built for this W's pattern) are taken over.
+        let built = match planned.kind {
+            Newton if newton.is_none() => {
+                NewtonSolver::reusing(problem, &newton_options, kept_newton.take())
+                    .map(|(s, _)| newton = Some(s))
+                    .is_ok()
+            }
+            Nsgs if sweeper.is_none() => match kept_rows.take() {
+                Some(rows) => Sweeper::with_rows(rows, &nsgs_options, tolerance, None),
+                None => Sweeper::with_options(problem, &nsgs_options, tolerance),
+            }
+            .map(|s| sweeper = Some(s))
+            .is_ok(),
+            _ => true,
+        };
+        if !built {
+            log.push(Stage {
+                kind: planned.kind,
+                iterations: 0,
+                error,
+                end: StageEnd::Failed,
+            });
+            previous = Some((index, Handover::Ended));
+            continue 'plan;
+        }
+        // The stall test looks at windows of `watch.chunk` iterations; NSGS measures inside a
+        // window as often as its predicted convergence asks.
+        let mut window_start = error;
+        let mut window = 0usize;
+        let mut probe = 1usize;
+        loop {
+            let left = (run.max_iter - total).min(allowance - done);
+            if left == 0 {
+                end = if done >= allowance {
+                    StageEnd::Allowance
+                } else {
+                    StageEnd::Limits
+                };
+                break;
+            }
+            let chunk = match planned.kind {
+                Nsgs => probe.min(watch.chunk - window),
+                _ => watch.chunk,
+            }
+            .min(left);
+            let before = error;
+            let offset = total;
+            let mut shifted = |ev: &IterationEvent<'_>| {
+                observer(&IterationEvent {
+                    iteration: offset + ev.iteration,
+                    reaction: ev.reaction,
+                    error: ev.error,
+                })
+            };
+            // The families report the natural-map error of (r, u = W r + q) when their last
+            // step measured it (the contract of `SolverOutcome::final_error`): then it is not
+            // measured again.
+            let (iterations, measured, stopped_for_time) = match planned.kind {
+                Nsgs => {
+                    let sweeper = sweeper.as_mut().expect("built above");
+                    // Tolerance 0: the sweeps run the whole probe (or stop on a fixed point).
+                    let l = stage_limits(0.0, chunk, stage_deadline);
+                    let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
+                    (o.iterations, o.final_error, o.out_of_time)
+                }
+                Newton => {
+                    let solver = newton.as_mut().expect("built above");
+                    let inner = stage_limits(tolerance, chunk, stage_deadline).start();
+                    let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
+                    (o.iterations, None, o.out_of_time)
+                }
+                Prox | Admm | Tresca | ExtraGradient => {
+                    let family: &dyn Family = match planned.kind {
+                        Prox => &prox_options,
+                        Admm => &admm_options,
+                        ExtraGradient => &eg_options,
+                        _ => &tresca_options,
+                    };
+                    let l = stage_limits(tolerance, chunk, stage_deadline);
+                    let o = family.run(problem, &l, r, u, &mut shifted)?;
+                    fill = Fill::largest(fill, o.fill);
+                    (o.iterations, o.final_error, o.out_of_time)
+                }
+            };
+            // A stage that did nothing (converged at entry, or cut at once) still counts one
+            // iteration so that the loop ends.
+            let iterations = iterations.max(1);
+            done += iterations;
+            total += iterations;
+            error = measured.unwrap_or_else(|| natural_map_error(problem, r, u));
+            best.offer(r, error);
+            best_error = best_error.min(error);
+            if error <= tolerance {
+                end = StageEnd::Converged;
+                break;
+            }
+            if run.out_of_time() {
+                out_of_time = true;
+                end = StageEnd::Limits;
+                break;
+            }
+            // A stage under the whole budget that stopped for time before the deadline (its
+            // next Newton step or factorization expected to end past it) leaves the time left to
+            // a stage whose iterations are short.
+            if stopped_for_time && stage_deadline == run.deadline() {
+                handover = Handover::ShortOfDeadline;
+                end = StageEnd::Limits;
+                break;
+            }
+            if stage_over() {
+                end = StageEnd::Limits;
+                break;
+            }
+            // A stage run to the limits is not ended by a stall (large piles: every method's
+            // error falls slowly).
+            // So is the last stage of a budgeted solve: the host gave the time left.
+            let patient =
+                (to_the_limits || (last_possible && run.deadline().is_some())) && error.is_finite();
+            window += iterations;
+            if window >= watch.chunk {
+                // NaN compares false: a non-finite error is a stall.
+                if !patient && !(error <= watch.factor * window_start) {
+                    end = StageEnd::Stalled;
+                    break;
+                }
+                window_start = error;
+                window = 0;
+            }
+            probe = next_probe(probe, before, error, iterations, tolerance, watch.chunk);
+        }
+        log.push(Stage {
+            kind: planned.kind,
+            iterations: done,
+            error,
+            end,
+        });
+        previous = Some((index, handover));
+    }
+    // The last error was measured on (r, u = W r + q) by `natural_map_error` (here or by the
+    // family's last step): it is the final error unless an earlier iterate was better.
+    let restored = best.restore_if_better(r, error);
+    let fill = Fill::largest(fill, newton.as_ref().and_then(NewtonSolver::fill));
+    // Only a stage that reached the tolerance (or, in an anytime solve, the one the budget ended
+    // in) is worth starting from: after a solve that ran out of stages or iterations, the next
+    // one chooses afresh.
+    let finished = error <= tolerance || (requested == 0.0 && out_of_time);
+    carry.choice = finished.then_some(AutoChoice {
+        rule,
+        plan,
+        stage: last_stage,
+        tolerance: requested,
+        budget,
+    });
+    carry.sweep = sweeper
+        .map(|s| s.into_prepared().0)
+        .or(kept_rows)
+        .map(|rows| PreparedSweep {
+            rows,
+            colouring: kept_colouring,
+        });
+    carry.newton = newton.or(kept_newton);
+    Ok(SolverOutcome {
+        stages: Some(log),
+        fill,
+        ..SolverOutcome::stopped(total.min(run.max_iter), out_of_time)
+            .with_final_error((!restored && error.is_finite()).then_some(error))
+    })
+}
