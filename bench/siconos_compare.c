@@ -150,7 +150,8 @@ static int parse_solver(const char* spec, struct solver_spec* out) {
   return *end == '\0' ? 0 : -1;
 }
 
-/* The outcome of a timed solve: the last repetition's results and the median time. */
+/* The outcome of a timed solve: the last repetition's results and the median time; under a time
+   budget (a solver whose result depends on time), the results and time of the median repetition. */
 struct timed_run {
   int info, iterations, reps;
   double error, seconds;
@@ -166,6 +167,22 @@ static int timed_solve(FrictionContactProblem* problem, const struct solver_spec
                        double* velocity, double* times, struct timed_run* out) {
   int n = problem->dimension * problem->numberOfContacts;
   double spent = 0.0, longest = 0.0;
+  /* Under a budget each repetition's result is kept, so that the one returned is the one timed. */
+  struct rep_result {
+    int info, iterations;
+    double error, seconds;
+  }* results = NULL;
+  double* reactions = NULL;
+  if (time_budget > 0.0 && reps > 1) {
+    results = calloc((size_t)reps, sizeof *results);
+    reactions = calloc((size_t)reps * ((size_t)n + 1), sizeof(double));
+    if (!results || !reactions) {
+      fprintf(stderr, "out of memory\n");
+      free(results);
+      free(reactions);
+      return 2;
+    }
+  }
   out->info = 0;
   out->iterations = 0;
   out->reps = 0;
@@ -210,11 +227,29 @@ static int timed_solve(FrictionContactProblem* problem, const struct solver_spec
     out->error = options->dparam[SICONOS_DPARAM_RESIDU];
     solver_options_delete(options);
     free(options);
+    if (results) {
+      results[rep] = (struct rep_result){rep_info, rep_iter, out->error, times[rep]};
+      memcpy(reactions + (size_t)rep * ((size_t)n + 1), reaction, ((size_t)n + 1) * sizeof(double));
+    }
     if (rep_info < 0) break; /* rejected input: nothing to time */
   }
   int done = out->reps;
   qsort(times, (size_t)done, sizeof(double), cmp_double);
   out->seconds = done % 2 ? times[done / 2] : 0.5 * (times[done / 2 - 1] + times[done / 2]);
+  if (results) {
+    /* The repetition at rank done / 2 of the sorted times (the median, or the slower of the two
+       middle ones): its reaction, outcome and time. */
+    int median = 0;
+    for (int rep = 0; rep < done; rep++)
+      if (results[rep].seconds == times[done / 2]) median = rep;
+    out->info = results[median].info;
+    out->iterations = results[median].iterations;
+    out->error = results[median].error;
+    out->seconds = results[median].seconds;
+    memcpy(reaction, reactions + (size_t)median * ((size_t)n + 1), ((size_t)n + 1) * sizeof(double));
+    free(results);
+    free(reactions);
+  }
   return 0;
 }
 
