@@ -56,10 +56,18 @@ pub const ANALYSIS_SECONDS_PER_ENTRY: f64 = 1e-7;
 /// entries, started now, is predicted to end by `deadline` (always without one); see [`ANALYSIS_SECONDS_PER_ENTRY`].
 pub fn analysis_ends_by(stored_entries: usize, deadline: Option<std::time::Instant>) -> bool {
     let seconds = stored_entries as f64 * ANALYSIS_SECONDS_PER_ENTRY;
+    ends_by(
+        Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
+        deadline,
+    )
+}
+
+/// Whether work of `duration` started now ends by `deadline` (always without one; never when
+/// the end is past what the clock can hold).
+fn ends_by(duration: Duration, deadline: Option<std::time::Instant>) -> bool {
     deadline.is_none_or(|d| {
-        Duration::try_from_secs_f64(seconds)
-            .ok()
-            .and_then(|t| std::time::Instant::now().checked_add(t))
+        std::time::Instant::now()
+            .checked_add(duration)
             .is_some_and(|end| end <= d)
     })
 }
@@ -82,11 +90,7 @@ impl LuCost {
     /// Whether a factorization started now is predicted to end by `deadline` (always without
     /// one).
     pub fn ends_by(&self, deadline: Option<std::time::Instant>) -> bool {
-        deadline.is_none_or(|d| {
-            std::time::Instant::now()
-                .checked_add(self.duration())
-                .is_some_and(|end| end <= d)
-        })
+        ends_by(self.duration(), deadline)
     }
 
     /// Memory the factors need: a value and a row index per entry.
