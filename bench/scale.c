@@ -3,7 +3,8 @@
  * bench/siconos_compare.c is. scripts/scale-bench.sh builds both and runs them on generated piles.
  *
  * Modes (each prints one line of "key value" pairs):
- *   setup [--threads N] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]
+ *   setup [--threads N] [--in-place] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]
+ *       With --in-place (fc3d only) every call is fc3d_driver_in_place (no copies of r and u).
  *       Times are CPU seconds of the process (see now_seconds). With --threads N (fc3d only,
  *       NSGS 500): fc3d's coloured decomposition on N threads (iparam[FC3D_IPARAM_NSGS_
  *       DECOMPOSITION] = FC3D_NSGS_COLOURED, iparam[FC3D_IPARAM_NSGS_THREADS] = N), timed in
@@ -15,6 +16,9 @@
  *       /proc/self/clear_refs after the read). Prints
  *         contacts C blocks B rss_before_kb R0 peak_read_kb P1 rss_after_read_kb R1
  *         peak_solve_kb P2 call1_s T1 callN_s TN sweep_s S setup_s U stream_bytes Y clock cpu|wall
+ *         peak_converged_kb P3 converged_info I converged_iterations K
+ *       P3: peak RSS (reset before it) of one more call, from r = 0 to tolerance 5e-2 (a few sweeps
+ *       on the piles), which converges: what a call that ends converged holds at its end.
  *       stream_bytes: what one sweep must read at least (every block, its column index, the block
  *       row pointers, q, r and mu).
  *       Then, for each tolerance (loosest first), solves on from where the previous one stopped
@@ -61,6 +65,16 @@ static double wall_seconds(void) {
 /* Threads of fc3d's coloured NSGS (0: the library's defaults, one thread, CPU time). */
 static int threads = 0;
 
+/* Whether calls go through fc3d_driver_in_place (fc3d only: no copies of r and u). */
+static int in_place = 0;
+
+static int driver(FrictionContactProblem* problem, double* r, double* u, SolverOptions* options) {
+#ifdef FC3D_IPARAM_NSGS_DECOMPOSITION
+  if (in_place) return fc3d_driver_in_place(problem, r, u, options);
+#endif
+  return fc3d_driver(problem, r, u, options);
+}
+
 /* The clock of the timings: CPU time of the process, or wall time for a threaded run. */
 static double clock_seconds(void) { return threads > 0 ? wall_seconds() : now_seconds(); }
 
@@ -76,6 +90,9 @@ static SolverOptions* create_options(int solver) {
 #endif
   return options;
 }
+
+/* The tolerance of the converged call whose peak memory is measured. */
+#define CONVERGED_TOL 5e-2
 
 static int cmp_double(const void* a, const void* b) {
   double x = *(const double*)a, y = *(const double*)b;
@@ -126,7 +143,7 @@ static double call(FrictionContactProblem* problem, int solver, double tol, int 
   options->dparam[SICONOS_DPARAM_TOL] = tol;
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter;
   double t0 = clock_seconds();
-  *info = fc3d_driver(problem, r, u, options);
+  *info = driver(problem, r, u, options);
   double t = clock_seconds() - t0;
   *iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
   *error = options->dparam[SICONOS_DPARAM_RESIDU];
@@ -150,24 +167,37 @@ static double median_call(FrictionContactProblem* problem, int solver, int max_i
 }
 
 static int mode_setup(int argc, char** argv) {
-  if (argc >= 4 && strcmp(argv[2], "--threads") == 0) {
-    threads = atoi(argv[3]);
+  /* Options between "setup" and the problem: shift them out, the rest as without them. */
+  while (argc >= 3 && strncmp(argv[2], "--", 2) == 0) {
+    int used = 1;
+    if (strcmp(argv[2], "--threads") == 0 && argc >= 4) {
+      threads = atoi(argv[3]);
+      used = 2;
 #ifndef FC3D_IPARAM_NSGS_DECOMPOSITION
-    fprintf(stderr, "--threads: this library has no coloured NSGS (fc3d only)\n");
-    return 2;
+      fprintf(stderr, "--threads: this library has no coloured NSGS (fc3d only)\n");
+      return 2;
 #endif
-    if (threads < 1) {
-      fprintf(stderr, "--threads needs a positive count\n");
+      if (threads < 1) {
+        fprintf(stderr, "--threads needs a positive count\n");
+        return 2;
+      }
+    } else if (strcmp(argv[2], "--in-place") == 0) {
+#ifndef FC3D_IPARAM_NSGS_DECOMPOSITION
+      fprintf(stderr, "--in-place: fc3d_driver_in_place is fc3d's\n");
+      return 2;
+#endif
+      in_place = 1;
+    } else {
+      fprintf(stderr, "unknown option %s\n", argv[2]);
       return 2;
     }
-    /* The rest as without the option. */
-    argv[3] = argv[1];
-    argv[2] = argv[0];
-    argv += 2;
-    argc -= 2;
+    argv[1 + used] = argv[1];
+    argv[used] = argv[0];
+    argv += used;
+    argc -= used;
   }
   if (argc < 6 || argc == 7) {
-    fprintf(stderr, "usage: %s setup [--threads N] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]\n",
+    fprintf(stderr, "usage: %s setup [--threads N] [--in-place] <problem.dat> <solver> <sweeps> <reps> [<max_iter> <tol>...]\n",
             argv[0]);
     return 2;
   }
@@ -191,11 +221,20 @@ static int mode_setup(int argc, char** argv) {
   long peak_solve = status_kb("VmHWM");
   double tn = median_call(problem, solver, 1 + sweeps, reps, r, u);
   double sweep = (tn - t1) / sweeps;
+  /* A call that converges (to CONVERGED_TOL, a few sweeps on the piles): its end (the final
+   * error, fc3d's test for a ray of no solution) may hold memory that a call stopped at its
+   * iteration limit does not. */
+  reset_peak();
+  int converged_info, converged_iterations;
+  double converged_error;
+  call(problem, solver, CONVERGED_TOL, 1000, r, u, &converged_info, &converged_iterations, &converged_error);
+  long peak_converged = status_kb("VmHWM");
   double stream_bytes = (double)blocks * (72.0 + 8.0) + (double)nc * (8.0 + 3 * 8.0 * 2 + 8.0);
   printf("contacts %d blocks %ld rss_before_kb %ld peak_read_kb %ld rss_after_read_kb %ld peak_solve_kb %ld "
-         "call1_s %.6e callN_s %.6e sweep_s %.6e setup_s %.6e stream_bytes %.0f clock %s\n",
+         "call1_s %.6e callN_s %.6e sweep_s %.6e setup_s %.6e stream_bytes %.0f clock %s "
+         "peak_converged_kb %ld converged_info %d converged_iterations %d\n",
          nc, blocks, rss_before, peak_read, rss_after_read, peak_solve, t1, tn, sweep, t1 - sweep, stream_bytes,
-         threads > 0 ? "wall" : "cpu");
+         threads > 0 ? "wall" : "cpu", peak_converged, converged_info, converged_iterations);
   fflush(stdout);
   if (argc > 7) {
     int max_iter = atoi(argv[6]), total_iter = 0;
@@ -208,7 +247,7 @@ static int mode_setup(int argc, char** argv) {
       options->dparam[SICONOS_DPARAM_TOL] = tol;
       options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iter - total_iter;
       double t0 = clock_seconds();
-      int info = fc3d_driver(problem, r, u, options);
+      int info = driver(problem, r, u, options);
       total += clock_seconds() - t0;
       total_iter += options->iparam[SICONOS_IPARAM_ITER_DONE];
       printf("tol %g info %d iterations %d error %.6e seconds %.6e\n", tol, info, total_iter,

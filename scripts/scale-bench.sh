@@ -31,11 +31,13 @@
 #   --threads N      also run fc3d's coloured NSGS on N threads (iparam[15] = 1, iparam[16] = N),
 #                    rows "fc3d-coloured-Nt", timed in wall-clock seconds (CPU time would sum
 #                    the threads; the CSV's clock column says which); default 0: no such rows
+#   --in-place       also run fc3d through fc3d_driver_in_place (no copies of r and u): rows
+#                    "fc3d-in-place"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 sizes=1000,3000,10000,30000,100000,300000,500000 piles=4 seed=1 solver=500 sweeps=10 reps=3
-tols=1e-3,1e-4,1e-6 max_iter=1000000 cap=120 libs=fc3d,siconos threads=0
+tols=1e-3,1e-4,1e-6 max_iter=1000000 cap=120 libs=fc3d,siconos threads=0 in_place=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --sizes) sizes=$2; shift ;;
@@ -49,7 +51,8 @@ while [ $# -gt 0 ]; do
     --timeout) cap=$2; shift ;;
     --libs) libs=$2; shift ;;
     --threads) threads=$2; shift ;;
-    -h|--help) sed -n '2,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --in-place) in_place=1 ;;
+    -h|--help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -62,6 +65,7 @@ case "$threads" in ''|*[!0-9]*) echo "--threads needs a count" >&2; exit 2 ;; es
 runs=()
 for lib in "${libs[@]}"; do runs+=("$lib"); done
 if [ "$threads" -gt 0 ]; then runs+=("fc3d-coloured-${threads}t"); fi
+if [ "$in_place" = 1 ]; then runs+=("fc3d-in-place"); fi
 
 OUT=target/scale
 mkdir -p "$OUT/scenes" "$OUT/bin"
@@ -83,7 +87,7 @@ echo "== streaming read bandwidth: $bandwidth GB/s"
 csv=$OUT/results.csv
 tcols=$(printf 't_%s_s,' "${tols[@]}")
 icols=$(printf 'it_%s,' "${tols[@]}")
-echo "contacts,piles,library,clock,file_mb,blocks,rss_before_kb,peak_read_kb,rss_after_read_kb,peak_solve_kb,sweep_s,setup_s,floor_s,$tcols${icols}status,bandwidth_gbs" >"$csv"
+echo "contacts,piles,library,clock,file_mb,blocks,rss_before_kb,peak_read_kb,rss_after_read_kb,peak_solve_kb,peak_converged_kb,sweep_s,setup_s,floor_s,$tcols${icols}status,bandwidth_gbs" >"$csv"
 for n in "${sizes[@]}"; do
   file=$OUT/scenes/piles-c$n-p$piles-s$seed.dat
   if [ ! -s "$file" ]; then
@@ -93,7 +97,10 @@ for n in "${sizes[@]}"; do
   for lib in "${runs[@]}"; do
     log=$OUT/run-$lib-$n.txt
     bin=$lib opts=()
-    case "$lib" in fc3d-coloured-*) bin=fc3d opts=(--threads "$threads") ;; esac
+    case "$lib" in
+      fc3d-coloured-*) bin=fc3d opts=(--threads "$threads") ;;
+      fc3d-in-place) bin=fc3d opts=(--in-place) ;;
+    esac
     rc=0
     timeout -k 5 "$cap" "$OUT/bin/scale-$bin" setup "${opts[@]}" "$file" "$solver" "$sweeps" "$reps" "$max_iter" "${tols[@]}" \
       >"$log" 2>"$OUT/err-$lib-$n.txt" || rc=$?
@@ -111,9 +118,9 @@ for n in "${sizes[@]}"; do
     if [ -n "$line" ]; then
       floor=$(awk -v b="$(get stream_bytes)" -v g="$bandwidth" 'BEGIN { printf "%.6e", b / (g * 1e9) }')
     fi
-    echo "$n,$piles,$lib,$(get clock),$mb,$(get blocks),$(get rss_before_kb),$(get peak_read_kb),$(get rss_after_read_kb),$(get peak_solve_kb),$(get sweep_s),$(get setup_s),$floor,$(IFS=,; echo "${times[*]}"),$(IFS=,; echo "${its[*]}"),$status,$bandwidth" >>"$csv"
-    printf '%8s %-18s %-8s sweep %-12s setup %-12s peak read %8s kB solve %8s kB  %s\n' "$n" "$lib" "$status" \
-      "$(get sweep_s)" "$(get setup_s)" "$(get peak_read_kb)" "$(get peak_solve_kb)" "$(IFS=' '; echo "${its[*]}")"
+    echo "$n,$piles,$lib,$(get clock),$mb,$(get blocks),$(get rss_before_kb),$(get peak_read_kb),$(get rss_after_read_kb),$(get peak_solve_kb),$(get peak_converged_kb),$(get sweep_s),$(get setup_s),$floor,$(IFS=,; echo "${times[*]}"),$(IFS=,; echo "${its[*]}"),$status,$bandwidth" >>"$csv"
+    printf '%8s %-18s %-8s sweep %-12s setup %-12s peak read %8s kB solve %8s kB converged %8s kB  %s\n' "$n" "$lib" "$status" \
+      "$(get sweep_s)" "$(get setup_s)" "$(get peak_read_kb)" "$(get peak_solve_kb)" "$(get peak_converged_kb)" "$(IFS=' '; echo "${its[*]}")"
   done
 done
 echo "== $csv"

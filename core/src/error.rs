@@ -130,6 +130,9 @@ pub fn try_copy<T: Clone>(values: &[T], what: &str) -> Result<Vec<T>, Fc3dError>
 
 /// Checks that every value is finite, naming the first offender.
 pub fn check_finite(what: &str, values: &[f64]) -> Result<(), Fc3dError> {
+    if all_finite(values) {
+        return Ok(());
+    }
     match values.iter().position(|v| !v.is_finite()) {
         Some(index) => Err(Fc3dError::NonFinite {
             what: what.to_string(),
@@ -137,4 +140,19 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<(), Fc3dError> {
         }),
         None => Ok(()),
     }
+}
+
+/// Whether every value is finite, in one pass at the pace of memory: `x * 0` is 0 for a finite
+/// `x` and NaN otherwise, summed in eight independent lanes (a test per value, which stops at
+/// the first offender, runs at a value per several cycles).
+pub fn all_finite(values: &[f64]) -> bool {
+    const LANES: usize = 8;
+    let mut chunks = values.chunks_exact(LANES);
+    let mut sums = [0.0_f64; LANES];
+    for c in &mut chunks {
+        for (s, x) in sums.iter_mut().zip(c) {
+            *s += x * 0.0;
+        }
+    }
+    sums.iter().all(|&s| s == 0.0) && chunks.remainder().iter().all(|v| v.is_finite())
 }

@@ -232,46 +232,60 @@ fn grows_where_no_solution_is(
 ) -> bool {
     let n = problem.n_contacts();
     let (q, w) = (problem.q(), problem.w());
-    // 56 bytes a contact, after the run (less than W's diagonal blocks alone). Should even that
-    // be unavailable, the result is judged by its error alone.
-    let (Ok(mut parent), Ok(mut sums)) = (
-        try_vec(n, 0usize, "islands of W"),
-        try_vec(n, [0.0_f64; 6], "ray test"),
-    ) else {
+    // 4 bytes a contact and 48 an island, after the run: the peak of a converged solve at scale
+    // is the run's, not this test's. Should even that be unavailable (or the contacts too many
+    // to number in 32 bits), the result is judged by its error alone.
+    let Ok(n32) = u32::try_from(n) else {
         return false;
     };
-    // Islands by union-find over the contacts (path halving, union by index).
-    parent.iter_mut().enumerate().for_each(|(c, p)| *p = c);
-    let root = |parent: &mut Vec<usize>, mut c: usize| {
-        while parent[c] != c {
-            parent[c] = parent[parent[c]];
-            c = parent[c];
+    let Ok(mut island) = try_vec(n, 0u32, "islands of W") else {
+        return false;
+    };
+    // Islands by union-find over the contacts (path halving, union by index: an island's root
+    // is its smallest contact).
+    island.iter_mut().zip(0..n32).for_each(|(p, c)| *p = c);
+    let root = |parent: &mut Vec<u32>, mut c: usize| {
+        while parent[c] as usize != c {
+            parent[c] = parent[parent[c] as usize];
+            c = parent[c] as usize;
         }
         c
     };
-    w.for_each_entry(|i, j, v| {
-        if v != 0.0 {
-            let (a, b) = (root(&mut parent, i / 3), root(&mut parent, j / 3));
-            if a != b {
-                parent[a.max(b)] = a.min(b);
-            }
+    w.for_each_coupling(|i, j| {
+        let (a, b) = (root(&mut island, i), root(&mut island, j));
+        if a != b {
+            island[a.max(b)] = a.min(b) as u32;
         }
     });
+    // Number the islands in the order of their roots: a root comes before the other contacts
+    // of its island, so each contact finds its root already numbered.
     for c in 0..n {
-        parent[c] = root(&mut parent, c);
+        island[c] = root(&mut island, c) as u32;
     }
-    let island = parent;
-    // Per island, at the index of its root contact: ||r_I||^2, ||q_I||^2, q_I·r_I, ||W_I r_I||^2
+    let mut n_islands = 0u32;
+    for c in 0..n {
+        let r = island[c] as usize;
+        island[c] = if r == c {
+            n_islands += 1;
+            n_islands - 1
+        } else {
+            island[r]
+        };
+    }
+    let Ok(mut sums) = try_vec(n_islands as usize, [0.0_f64; 6], "ray test") else {
+        return false;
+    };
+    // Per island: ||r_I||^2, ||q_I||^2, q_I·r_I, ||W_I r_I||^2
     // (r and W r divided by the island's largest |r| entry, so that a reaction beyond 1e154, a
     // ray followed with a growing step, gives finite sums), the island's largest diagonal entry
     // and its largest |r| entry.
     const LARGEST: usize = 5;
     for (c, rc) in r.chunks_exact(3).enumerate() {
-        let l = &mut sums[island[c]][LARGEST];
+        let l = &mut sums[island[c] as usize][LARGEST];
         *l = rc.iter().fold(*l, |m, v| m.max(v.abs()));
     }
     for c in 0..n {
-        let s = &mut sums[island[c]];
+        let s = &mut sums[island[c] as usize];
         let l = s[LARGEST];
         if !(l > 0.0 && l.is_finite()) {
             continue;

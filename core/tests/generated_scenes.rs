@@ -93,6 +93,38 @@ fn a_small_box_scene_solves_with_nsgs() {
     assert!(touching > p.n_contacts() / 2);
 }
 
+/// The contact graph of W (`Delassus::for_each_coupling`) is the same on dense, sparse-block and
+/// CSR storage of one matrix, and is the one its non-zero entries give.
+#[test]
+fn the_coupling_pairs_are_those_of_the_non_zero_entries_in_every_storage() {
+    use fc3d_core::Delassus;
+    use std::collections::BTreeSet;
+    let spec = PileSpec {
+        contacts: 150,
+        piles: 3,
+        seed: 2,
+    };
+    let p = sphere_piles(&spec).unwrap();
+    let (mut entries, mut triplets) = (BTreeSet::new(), Vec::new());
+    p.w().for_each_entry(|i, j, v| {
+        if v != 0.0 && i / 3 != j / 3 {
+            entries.insert((i / 3, j / 3));
+        }
+        triplets.push((i, j, v));
+    });
+    assert!(entries.len() > 150);
+    let n = p.size();
+    let dense = Delassus::Dense(p.w().to_dense());
+    let csr = Delassus::Sparse(fc3d_core::CsrMatrix::from_triplets(n, n, &triplets).unwrap());
+    for w in [p.w(), &dense, &csr] {
+        let mut pairs = BTreeSet::new();
+        w.for_each_coupling(|a, b| {
+            pairs.insert((a, b));
+        });
+        assert_eq!(pairs, entries);
+    }
+}
+
 /// A dense W whose blocks are mostly zero is solved through its sparse-block form: every family
 /// gives the same iterates, bit for bit, as on the sparse-block copy of the same matrix.
 #[test]

@@ -120,13 +120,19 @@ fn table(rows: &[Row], tols: &[String]) -> String {
             _ => "–".into(),
         };
         let held = r.num("rss_after_read_kb");
-        let adds = match (r.num("peak_solve_kb"), held) {
+        // The solve's peak: of the calls stopped at their iteration limit and of the call that
+        // converged, when measured (VmHWM was reset to the RSS before each, so both are
+        // absolute).
+        let peak_solve = match (r.num("peak_solve_kb"), r.num("peak_converged_kb")) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        };
+        let adds = match (peak_solve, held) {
             (Some(p), Some(h)) => Some(p - h),
             _ => None,
         };
-        // The process's peak over the read and the solve (VmHWM was reset to the RSS after the
-        // read, so the solve's peak is absolute).
-        let peak_all = match (r.num("peak_read_kb"), r.num("peak_solve_kb")) {
+        // The process's peak over the read and the solve.
+        let peak_all = match (r.num("peak_read_kb"), peak_solve) {
             (Some(a), Some(b)) => Some(a.max(b)),
             _ => None,
         };

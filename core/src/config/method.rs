@@ -97,6 +97,17 @@ impl Method {
         self.family().default_limits()
     }
 
+    /// Whether a run of this method, on a W without NaN or infinite entries, can fail only
+    /// before it touches `r`: what lets a caller solve in its own arrays (the C
+    /// `fc3d_driver_in_place`) and still leave them untouched on every failure. NSGS prepares
+    /// everything it allocates (local states, colouring, islands, the best-iterate copy under a
+    /// time budget) before its first sweep. A factorizing method may run out of memory in a
+    /// factorization mid-run, and the other families call inner solvers whose allocations
+    /// happen mid-run: they answer `false`.
+    pub fn fails_only_before_start(&self) -> bool {
+        matches!(self, Method::Nsgs(_))
+    }
+
     /// The preset named `name` (case-insensitive) or numbered `name` (a Siconos id; the first
     /// preset with that id).
     pub fn preset(name: &str) -> Option<Method> {

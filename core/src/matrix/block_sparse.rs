@@ -146,9 +146,30 @@ impl<'a> BlockSparseMatrix<'a> {
     }
 
     /// Fails with [`Fc3dError::NonFinite`] naming the first block holding a NaN or an infinity.
+    /// One pass at the pace of memory ([`crate::error::all_finite`] over a chunk of blocks);
+    /// only a chunk that fails is searched block by block. (A test per block chains nine
+    /// additions: 0.3 sweep at 5·10^5 contacts, against 0.1 for the memory.)
     pub fn check_finite(&self) -> Result<(), Fc3dError> {
-        for k in 0..self.n_blocks() {
-            check_block(k, self.block(k))?;
+        const CHUNK: usize = 256;
+        let n = self.n_blocks();
+        let lanes = |range: std::ops::Range<usize>| match &self.values {
+            BlockValues::Packed(v) => crate::error::all_finite(&v[9 * range.start..9 * range.end]),
+            BlockValues::Table(t) => {
+                // Blocks apart in memory: as `all_finite`, with a block's nine values as lanes.
+                let mut sums = [0.0_f64; 9];
+                for b in &t[range] {
+                    sums.iter_mut().zip(b.iter()).for_each(|(s, x)| *s += x * 0.0);
+                }
+                sums.iter().all(|&s| s == 0.0)
+            }
+        };
+        for start in (0..n).step_by(CHUNK) {
+            let end = (start + CHUNK).min(n);
+            if !lanes(start..end) {
+                for k in start..end {
+                    check_block(k, self.block(k))?;
+                }
+            }
         }
         Ok(())
     }
@@ -399,4 +420,49 @@ fn check_block(k: usize, b: &[f64; 9]) -> Result<(), Fc3dError> {
         what: format!("W (block {k})"),
         index: b.iter().position(|v| !v.is_finite()).unwrap_or(0),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The chunked pass finds a NaN or an infinity in any block of a borrowed table (first
+    /// block, last of a chunk, first of the next, last of a partial chunk) and names it; finite
+    /// values, -0 and the largest doubles included, pass.
+    #[test]
+    fn check_finite_names_the_block_anywhere_in_a_borrowed_table() {
+        let n = 600;
+        let mut values = vec![[1.0_f64; 9]; n];
+        values[7] = [-0.0, f64::MAX, -f64::MAX, f64::MIN_POSITIVE, 0.0, 1e-320, 1.0, 2.0, 3.0];
+        let (row_ptr, col_idx): (Vec<usize>, Vec<usize>) = ((0..=n).collect(), (0..n).collect());
+        let check = |values: &[[f64; 9]]| {
+            let table: Vec<&[f64; 9]> = values.iter().collect();
+            BlockSparseMatrix::from_block_table(
+                n,
+                n,
+                row_ptr.clone().into(),
+                col_idx.clone().into(),
+                Shared::Borrowed(&table),
+            )
+            .unwrap()
+            .check_finite()
+        };
+        assert!(check(&values).is_ok());
+        for (k, j, bad) in [
+            (0, 0, f64::NAN),
+            (255, 8, f64::INFINITY),
+            (256, 4, f64::NEG_INFINITY),
+            (599, 3, f64::NAN),
+        ] {
+            let kept = values[k][j];
+            values[k][j] = bad;
+            match check(&values) {
+                Err(Fc3dError::NonFinite { what, index }) => {
+                    assert_eq!((what, index), (format!("W (block {k})"), j))
+                }
+                other => panic!("block {k}: {other:?}"),
+            }
+            values[k][j] = kept;
+        }
+    }
 }

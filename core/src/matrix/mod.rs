@@ -173,10 +173,43 @@ impl<'a> Delassus<'a> {
         BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
     }
 
+    /// Calls `f(a, b)` for each pair of distinct contacts (3x3 blocks) that a non-zero entry of
+    /// W couples: once per stored block holding one (per entry on a CSR W; a pair may repeat).
+    /// The contact graph at the cost of reading W once, without a call per entry.
+    pub fn for_each_coupling(&self, mut f: impl FnMut(usize, usize)) {
+        match self {
+            Delassus::Dense(d) => {
+                let n = d.nrows();
+                if n != d.ncols() || n % 3 != 0 {
+                    return;
+                }
+                let (mut flags, mut rows) = (vec![false; n / 3], vec![0u64; n]);
+                for bj in 0..n / 3 {
+                    dense_block_column_pattern(d.values(), n, bj, &mut flags, &mut rows);
+                    for (bi, _) in flags.iter().enumerate().filter(|&(bi, f)| *f && bi != bj) {
+                        f(bi, bj);
+                    }
+                }
+            }
+            Delassus::SparseBlock(m) => {
+                for (bi, bj, b) in m.iter_blocks() {
+                    if bi != bj && b.iter().any(|v| *v != 0.0) {
+                        f(bi, bj);
+                    }
+                }
+            }
+            Delassus::Sparse(m) => m.for_each_entry(|i, j, v| {
+                if v != 0.0 && i / 3 != j / 3 {
+                    f(i / 3, j / 3);
+                }
+            }),
+        }
+    }
+
     /// For a dense W of 3x3 blocks whose blocks are mostly zero (at most
     /// [`SPARSE_VIEW_MAX_FILL`] of them hold a non-zero entry), the same matrix in sparse-block
     /// storage: every block with a non-zero entry and every diagonal block, values unchanged.
-    /// `None` for other storages and for dense matrices that are not mostly zero. Two passes
+    /// `None` for other storages and for dense matrices that are not mostly zero. One pass
     /// over the dense values, column by column; memory in proportion to the non-zero blocks.
     pub fn sparse_block_view(&self) -> Option<BlockSparseMatrix<'static>> {
         let Delassus::Dense(d) = self else {
@@ -188,29 +221,24 @@ impl<'a> Delassus<'a> {
         }
         let nc = n / 3;
         let values = d.values();
-        // Marks, for block column bj, the block rows holding a non-zero entry (or the diagonal).
-        let mark = |bj: usize, flags: &mut [bool]| {
-            flags.iter_mut().for_each(|f| *f = false);
+        // The block rows of block column bj holding a non-zero entry, and the diagonal.
+        let mut rows = vec![0u64; n];
+        let mut mark = |bj: usize, flags: &mut [bool]| {
+            dense_block_column_pattern(values, n, bj, flags, &mut rows);
             flags[bj] = true;
-            for col in values[3 * bj * n..3 * (bj + 1) * n].chunks_exact(n) {
-                for (i, v) in col.iter().enumerate() {
-                    if *v != 0.0 {
-                        flags[i / 3] = true;
-                    }
-                }
-            }
         };
         let mut flags = vec![false; nc];
         let mut row_count = vec![0usize; nc + 1];
         let limit = (SPARSE_VIEW_MAX_FILL * (nc * nc) as f64) as usize;
-        let mut total = 0usize;
+        // The blocks kept, column by column: W's values are read once for the pattern.
+        let mut found: Vec<(usize, usize)> = Vec::new();
         for bj in 0..nc {
             mark(bj, &mut flags);
             for (bi, _) in flags.iter().enumerate().filter(|(_, f)| **f) {
                 row_count[bi + 1] += 1;
-                total += 1;
+                found.push((bi, bj));
             }
-            if total > limit {
+            if found.len() > limit {
                 return None;
             }
         }
@@ -219,18 +247,15 @@ impl<'a> Delassus<'a> {
         }
         let row_ptr = row_count.clone();
         let mut next = row_count;
-        let mut col_idx = vec![0usize; total];
-        let mut blocks = vec![[0.0; 9]; total];
-        for bj in 0..nc {
-            mark(bj, &mut flags);
-            for (bi, _) in flags.iter().enumerate().filter(|(_, f)| **f) {
-                let k = next[bi];
-                next[bi] += 1;
-                col_idx[k] = bj;
-                for c in 0..3 {
-                    for r in 0..3 {
-                        blocks[k][r + 3 * c] = values[(3 * bi + r) + (3 * bj + c) * n];
-                    }
+        let mut col_idx = vec![0usize; found.len()];
+        let mut blocks = vec![[0.0; 9]; found.len()];
+        for (bi, bj) in found {
+            let k = next[bi];
+            next[bi] += 1;
+            col_idx[k] = bj;
+            for c in 0..3 {
+                for r in 0..3 {
+                    blocks[k][r + 3 * c] = values[(3 * bi + r) + (3 * bj + c) * n];
                 }
             }
         }
@@ -289,5 +314,27 @@ impl<'a> Delassus<'a> {
             Delassus::SparseBlock(_) => "sparse-block",
             Delassus::Sparse(_) => "csr",
         }
+    }
+}
+
+/// Marks in `flags` the block rows of block column `bj` of a dense column-major `n x n` W (3x3
+/// blocks) that hold a non-zero entry; the others are cleared. `rows` (at least `n` long) is
+/// work space. No branch per entry: on a small dense W this pass is most of a one-sweep call.
+fn dense_block_column_pattern(
+    values: &[f64],
+    n: usize,
+    bj: usize,
+    flags: &mut [bool],
+    rows: &mut [u64],
+) {
+    // Row by row over the three columns, then by block row. `v != 0.0` is "the bits of v
+    // without the sign are not 0" (-0 is 0, a NaN is not): integer ORs, which vectorize.
+    let rows = &mut rows[..n];
+    rows.iter_mut().for_each(|f| *f = 0);
+    for col in values[3 * bj * n..3 * (bj + 1) * n].chunks_exact(n) {
+        rows.iter_mut().zip(col).for_each(|(f, v)| *f |= v.to_bits() << 1);
+    }
+    for (f, r) in flags.iter_mut().zip(rows.chunks_exact(3)) {
+        *f = (r[0] | r[1] | r[2]) != 0;
     }
 }
