@@ -215,8 +215,13 @@ pub trait SweptProblem<const D: usize> {
     fn n_contacts(&self) -> usize;
     /// The problem's relative natural-map error of `r`, `u = W r + q` computed on W's storage.
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64;
-    /// The same with `u` computed through the block rows of W.
-    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64;
+    /// The problem's relative natural-map error of the pair `(r, u)` as given.
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64;
+    /// [`SweptProblem::error`] with `u` computed through the block rows of W.
+    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64 {
+        rows.velocity(self.q(), r, u);
+        self.error_of(r, u)
+    }
     /// Dumont's criterion with the problem's cone (`u` receives `W r + q`).
     fn dumont_by_rows(
         &self,
@@ -240,8 +245,8 @@ impl<const D: usize> SweptProblem<D> for FrictionProblem<'_, D> {
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
         natural_map_error(self, r, u)
     }
-    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64 {
-        natural_map_error_by_rows(self, rows, r, u)
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64 {
+        natural_map_error_of(self, r, u)
     }
     fn dumont_by_rows(
         &self,
@@ -268,8 +273,7 @@ impl<const D: usize> SweptProblem<D> for RollingProblem<'_, D> {
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
         rolling_error(self, r, u)
     }
-    fn error_by_rows(&self, rows: &BlockRows<D>, r: &[f64], u: &mut [f64]) -> f64 {
-        rows.velocity(self.q(), r, u);
+    fn error_of(&self, r: &[f64], u: &[f64]) -> f64 {
         relative_rolling_error::<D>(r, u, self.mu(), self.mu_r(), norm(self.q()))
     }
     fn dumont_by_rows(

@@ -332,7 +332,9 @@ fn dense_block_column_pattern(
     let rows = &mut rows[..n];
     rows.iter_mut().for_each(|f| *f = 0);
     for col in values[3 * bj * n..3 * (bj + 1) * n].chunks_exact(n) {
-        rows.iter_mut().zip(col).for_each(|(f, v)| *f |= v.to_bits() << 1);
+        rows.iter_mut()
+            .zip(col)
+            .for_each(|(f, v)| *f |= v.to_bits() << 1);
     }
     for (f, r) in flags.iter_mut().zip(rows.chunks_exact(3)) {
         *f = (r[0] | r[1] | r[2]) != 0;

@@ -227,86 +227,92 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
 
     let mut last_measured = None;
     let mut dumont = None;
-    for iteration in 1..=run.max_iter {
-        if let Some(a) = anderson.as_mut() {
-            a.before_sweep(r);
-        }
-        let increment_sq = sweeper.sweep(q, mu, r);
-        let test = schedule.test(iteration, increment_sq, r, |measure| match measure {
-            Measure::NaturalMap => problem.error(r, u),
-            Measure::DumontCriterion => {
-                let e = sweeper.dumont_criterion(problem, r, u);
-                dumont = Some(e);
-                e
+    let outcome = 'run: {
+        for iteration in 1..=run.max_iter {
+            if let Some(a) = anderson.as_mut() {
+                a.before_sweep(r);
             }
-        });
-        let (error, full) = (test.error, test.full);
-        let mut converged = test.converged;
-        if converged && !full && sweeper.any_frozen() {
-            // A cheap test cannot see frozen contacts (they did not move because they were not
-            // visited): visit everything again before believing it.
-            sweeper.thaw();
-            converged = false;
-        }
-        if test.tested {
-            match options.local_tolerance {
-                LocalTolerance::Given => {}
-                LocalTolerance::Adaptive { ratio } => {
-                    sweeper.set_local_tolerance((error / ratio).max(tol / nc))
+            let increment_sq = sweeper.sweep(q, mu, r);
+            let test = schedule.test(iteration, increment_sq, r, |measure| match measure {
+                Measure::NaturalMap => sweeper.tested_error(problem, r, u),
+                Measure::DumontCriterion => {
+                    let e = sweeper.dumont_criterion(problem, r, u);
+                    dumont = Some(e);
+                    e
                 }
-                LocalTolerance::AdaptivePerContact { ratio } => {
-                    sweeper.set_local_tolerance(error / (ratio * nc))
+            });
+            let (error, full) = (test.error, test.full);
+            let mut converged = test.converged;
+            if converged && !full && sweeper.any_frozen() {
+                // A cheap test cannot see frozen contacts (they did not move because they were not
+                // visited): visit everything again before believing it.
+                sweeper.thaw();
+                converged = false;
+            }
+            if test.tested {
+                match options.local_tolerance {
+                    LocalTolerance::Given => {}
+                    LocalTolerance::Adaptive { ratio } => {
+                        sweeper.set_local_tolerance((error / ratio).max(tol / nc))
+                    }
+                    LocalTolerance::AdaptivePerContact { ratio } => {
+                        sweeper.set_local_tolerance(error / (ratio * nc))
+                    }
                 }
             }
-        }
-        if let Some(b) = best.as_mut() {
-            // Measure every iterate so the one returned is the best seen, not merely the last
-            // one measured.
-            let e = if full {
-                error
-            } else {
-                sweeper.natural_map_error(problem, r, u)
-            };
-            b.offer(r, e);
-        }
-        observer(&IterationEvent {
-            iteration,
-            reaction: r,
-            error,
-        });
-        let measured = full.then_some(error);
-        if test.tested {
-            last_measured = measured;
-        }
-        if options.stop_when_stalled && test.stalled && !sweeper.any_frozen() {
-            return Ok(SolverOutcome {
-                dumont_criterion: dumont,
-                ..SolverOutcome::stopped(iteration, false).with_final_error(measured)
+            if let Some(b) = best.as_mut() {
+                // Measure every iterate so the one returned is the best seen, not merely the last
+                // one measured.
+                let e = if full {
+                    error
+                } else {
+                    sweeper.natural_map_error(problem, r, u)
+                };
+                b.offer(r, e);
+            }
+            observer(&IterationEvent {
+                iteration,
+                reaction: r,
+                error,
             });
+            let measured = full.then_some(error);
+            if test.tested {
+                last_measured = measured;
+            }
+            if options.stop_when_stalled && test.stalled && !sweeper.any_frozen() {
+                break 'run SolverOutcome::stopped(iteration, false).with_final_error(measured);
+            }
+            if let Some(outcome) = run.end_of_iteration(iteration, converged) {
+                break 'run if outcome.out_of_time {
+                    if let Some(b) = &best {
+                        // b holds the best measured iterate, the current one included.
+                        b.restore(r);
+                    }
+                    outcome
+                } else {
+                    outcome.with_final_error(measured)
+                };
+            }
+            if let Some(a) = anderson.as_mut() {
+                // Only now, with r tested and the run going on: the next sweep may start from an
+                // extrapolated point.
+                a.after_sweep(r);
+            }
         }
-        if let Some(outcome) = run.end_of_iteration(iteration, converged) {
-            let outcome = if outcome.out_of_time {
-                if let Some(b) = &best {
-                    // b holds the best measured iterate, the current one included.
-                    b.restore(r);
-                }
-                outcome
-            } else {
-                outcome.with_final_error(measured)
-            };
-            return Ok(SolverOutcome {
-                dumont_criterion: dumont,
-                ..outcome
-            });
+        run.exhausted().with_final_error(last_measured)
+    };
+    // The final error of a run whose last iterate was not measured is left to the solve's
+    // single-threaded measurement, except for a coloured sweep: its threads measure it, as they
+    // measure its tests (the same bits for any number of threads).
+    let outcome = match outcome.final_error {
+        None if sweeper.is_coloured() => {
+            let error = sweeper.tested_error(problem, r, u);
+            outcome.with_final_error(Some(error))
         }
-        if let Some(a) = anderson.as_mut() {
-            // Only now, with r tested and the run going on: the next sweep may start from an
-            // extrapolated point.
-            a.after_sweep(r);
-        }
-    }
+        _ => outcome,
+    };
     Ok(SolverOutcome {
         dumont_criterion: dumont,
-        ..run.exhausted().with_final_error(last_measured)
+        ..outcome
     })
 }
