@@ -32,7 +32,7 @@
 #                    rows "fc3d-coloured-Nt", timed in wall-clock seconds (CPU time would sum
 #                    the threads; the CSV's clock column says which); default 0: no such rows
 #   --in-place       also run fc3d through fc3d_driver_in_place (no copies of r and u): rows
-#                    "fc3d-in-place"
+#                    "fc3d-in-place"; with --threads N also "fc3d-in-place-coloured-Nt" (both)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -66,6 +66,7 @@ runs=()
 for lib in "${libs[@]}"; do runs+=("$lib"); done
 if [ "$threads" -gt 0 ]; then runs+=("fc3d-coloured-${threads}t"); fi
 if [ "$in_place" = 1 ]; then runs+=("fc3d-in-place"); fi
+if [ "$in_place" = 1 ] && [ "$threads" -gt 0 ]; then runs+=("fc3d-in-place-coloured-${threads}t"); fi
 
 OUT=target/scale
 mkdir -p "$OUT/scenes" "$OUT/bin"
@@ -99,6 +100,7 @@ for n in "${sizes[@]}"; do
     bin=$lib opts=()
     case "$lib" in
       fc3d-coloured-*) bin=fc3d opts=(--threads "$threads") ;;
+      fc3d-in-place-coloured-*) bin=fc3d opts=(--threads "$threads" --in-place) ;;
       fc3d-in-place) bin=fc3d opts=(--in-place) ;;
     esac
     rc=0
