@@ -439,7 +439,8 @@ int fc3d_driver(struct FrictionContactProblem *problem,
 // of them: a call holds 48 bytes a contact less (the peak memory of a solve at 10^5 contacts
 // and more). Nothing is written on failure still: before touching the arrays, W is checked for
 // NaN and infinite entries (one pass over W's values, which `fc3d_driver` does not make: about
-// a fifth of a sweep on a sparse-block W), and only a solver whose run can fail solely before
+// half a sweep's memory traffic on a sparse-block W, shared by the threads of a coloured or
+// islands NSGS), and only a solver whose run can fail solely before
 // it starts solves in place (NSGS, id 500, any decomposition). With another solver, or with
 // `options->callback` set (a callback that changed the options would make the call fail after
 // the solve), the call is `fc3d_driver`'s, copies included. `reaction` and `velocity` must not

@@ -16,7 +16,7 @@ use fc3d_core::measure::relative_natural_map_error;
 use fc3d_core::problem::FrictionProblem;
 use fc3d_core::{
     solve_planar_with_observer, solve_with_observer, Fc3dError, IterationEvent, Observer,
-    SolveReport,
+    SolveReport, SolverConfig,
 };
 
 /// What `fc3d_driver` read from the options and writes back into, to detect a callback that
@@ -126,7 +126,7 @@ unsafe fn driver_impl(
         && config.method.fails_only_before_start()
         && (*options).callback.is_null();
     let report = if in_place {
-        solve_in_host_arrays(&p, reaction, velocity, options, |r, u| {
+        solve_in_host_arrays(&p, &config, reaction, velocity, options, |r, u| {
             solve_with_observer(&p, &config, r, u, &mut |_| {})
         })?
     } else {
@@ -306,7 +306,8 @@ pub unsafe extern "C" fn fc3d_driver(
 /// of them: a call holds 48 bytes a contact less (the peak memory of a solve at 10^5 contacts
 /// and more). Nothing is written on failure still: before touching the arrays, W is checked for
 /// NaN and infinite entries (one pass over W's values, which `fc3d_driver` does not make: about
-/// a fifth of a sweep on a sparse-block W), and only a solver whose run can fail solely before
+/// half a sweep's memory traffic on a sparse-block W, shared by the threads of a coloured or
+/// islands NSGS), and only a solver whose run can fail solely before
 /// it starts solves in place (NSGS, id 500, any decomposition). With another solver, or with
 /// `options->callback` set (a callback that changed the options would make the call fail after
 /// the solve), the call is `fc3d_driver`'s, copies included. `reaction` and `velocity` must not
@@ -333,6 +334,7 @@ pub unsafe extern "C" fn fc3d_driver_in_place(
 /// success.
 unsafe fn solve_in_host_arrays(
     p: &FrictionProblem<'_>,
+    config: &SolverConfig,
     reaction: *mut c_double,
     velocity: *mut c_double,
     options: *mut SolverOptions,
@@ -358,7 +360,7 @@ unsafe fn solve_in_host_arrays(
         }
     }
     // The one failure a run could otherwise find after it started.
-    p.w().check_finite()?;
+    fc3d_core::check_w_before_solving_in_place(p, config)?;
     let report = solve(
         std::slice::from_raw_parts_mut(reaction, n),
         std::slice::from_raw_parts_mut(velocity, n),

@@ -17,6 +17,7 @@ extern "C" {
     fn solver_options_create(id: c_int) -> *mut SolverOptions;
     fn solver_options_delete(o: *mut SolverOptions);
     fn free(p: *mut std::ffi::c_void);
+    fn fc3d_last_error_message() -> *const c_char;
     fn fc3d_driver(
         p: *mut FrictionContactProblem,
         r: *mut c_double,
@@ -87,6 +88,13 @@ unsafe fn call(
     out
 }
 
+/// The calling thread's last error message.
+fn last_error() -> String {
+    unsafe { std::ffi::CStr::from_ptr(fc3d_last_error_message()) }
+        .to_string_lossy()
+        .into_owned()
+}
+
 fn limit(iterations: c_int, tol: f64) -> impl Fn(&mut SolverOptions) {
     move |o: &mut SolverOptions| unsafe {
         *o.iparam = iterations;
@@ -125,12 +133,27 @@ fn nothing_is_written_on_failure() {
         let block = *sbm.block.add(sbm.nbblocks as usize / 2);
         let kept = *block.add(4);
         *block.add(4) = f64::NAN;
-        for driver in [fc3d_driver_in_place as Driver, fc3d_driver] {
+        for driver in [fc3d_driver as Driver, fc3d_driver_in_place] {
             let c = call(driver, p, 500, limit(100, 1e-6), 0.5);
             assert_eq!(c.code, FC3D_ERR_NON_FINITE);
             assert_eq!(c.r, bits(&vec![0.5; n]));
             assert_eq!(c.u, bits(&vec![7.0; n]));
         }
+        let sequential = last_error();
+        // The coloured sweep checks W on its threads: the same block named, nothing written.
+        for threads in 1..=3 {
+            let coloured = move |o: &mut SolverOptions| {
+                limit(100, 1e-6)(o);
+                *o.iparam.add(15) = 1; // FC3D_IPARAM_NSGS_DECOMPOSITION: FC3D_NSGS_COLOURED
+                *o.iparam.add(16) = threads; // FC3D_IPARAM_NSGS_THREADS
+            };
+            let c = call(fc3d_driver_in_place, p, 500, coloured, 0.5);
+            assert_eq!(c.code, FC3D_ERR_NON_FINITE, "{threads} threads");
+            assert_eq!(c.r, bits(&vec![0.5; n]));
+            assert_eq!(c.u, bits(&vec![7.0; n]));
+            assert_eq!(last_error(), sequential, "{threads} threads");
+        }
+        assert!(sequential.contains("block"), "{sequential}");
         *block.add(4) = kept;
 
         // reaction and velocity overlapping: refused, nothing written.

@@ -38,6 +38,24 @@ pub fn solve(
     solve_with_observer(problem, config, r, u, &mut |_| {})
 }
 
+/// The check a caller makes before solving in arrays it must find untouched on failure (the C
+/// `fc3d_driver_in_place`): with a method that [fails only before it
+/// starts](crate::config::Method::fails_only_before_start), a W without NaN or infinite entries
+/// leaves nothing for a run to fail on once it touched `r`. A view of a host's blocks is read in
+/// full (the other storages were checked when they were built), on the threads the configured
+/// sweep runs on.
+pub fn check_w_before_solving_in_place(
+    problem: &FrictionProblem<'_>,
+    config: &SolverConfig,
+) -> Result<(), Fc3dError> {
+    match &config.method {
+        crate::config::Method::Nsgs(options) => {
+            crate::solvers::nsgs::check_finite_on_threads(problem.w(), options)
+        }
+        _ => problem.w().check_finite(),
+    }
+}
+
 /// [`solve`] with an observer called after every iteration (the C `Callback`). Under a
 /// rescaling the observer sees iterates mapped back to the host's units.
 pub fn solve_with_observer(

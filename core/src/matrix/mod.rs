@@ -266,8 +266,20 @@ impl<'a> Delassus<'a> {
     /// host's blocks ([`BlockSparseMatrix::from_block_table`]) can: every other storage is
     /// checked when it is built, so this returns at once for them.
     pub fn check_finite(&self) -> Result<(), Fc3dError> {
+        self.check_finite_part(0, 1)
+    }
+
+    /// [`Delassus::check_finite`] over part `part` of `parts` equal ranges of the stored blocks:
+    /// the parts together check what it checks, and the first failing part names the block it
+    /// names.
+    pub fn check_finite_part(&self, part: usize, parts: usize) -> Result<(), Fc3dError> {
         match self {
-            Delassus::SparseBlock(m) if m.is_borrowed() => m.check_finite(),
+            Delassus::SparseBlock(m) if m.is_borrowed() => {
+                let n = m.n_blocks();
+                let per_part = n.div_ceil(parts.max(1));
+                let start = (part * per_part).min(n);
+                m.check_finite_blocks(start..(start + per_part).min(n))
+            }
             _ => Ok(()),
         }
     }

@@ -128,6 +128,35 @@ pub(crate) fn nsgs(
     nsgs_on_rows(problem, options, limits, prepared, r, u, observer).0
 }
 
+/// [`Delassus::check_finite`](crate::matrix::Delassus::check_finite) on the threads an NSGS run
+/// with `options` sweeps on (one for the sequential sweep): the blocks cut in one range per
+/// thread, the first failing range's error returned, so the block named does not depend on the
+/// thread count. A check before the run that reads all of W once costs about what a
+/// multithreaded sweep costs only when it is shared out too.
+pub(crate) fn check_finite_on_threads(
+    w: &crate::matrix::Delassus<'_>,
+    options: &NsgsOptions,
+) -> Result<(), Fc3dError> {
+    let threads = match options.decomposition {
+        Decomposition::Sequential => 1,
+        Decomposition::Coloured | Decomposition::Islands => resolve_threads(options.threads),
+    };
+    let Some(pool) = parallel::Pool::shared(threads)? else {
+        return w.check_finite();
+    };
+    let parts = pool.threads();
+    let results: Vec<std::sync::Mutex<Result<(), Fc3dError>>> =
+        (0..parts).map(|_| std::sync::Mutex::new(Ok(()))).collect();
+    pool.broadcast(&|part| {
+        let result = w.check_finite_part(part, parts);
+        *results[part].lock().unwrap_or_else(|e| e.into_inner()) = result;
+    });
+    results
+        .into_iter()
+        .map(|m| m.into_inner().unwrap_or_else(|e| e.into_inner()))
+        .collect()
+}
+
 /// What a Gauss-Seidel run prepares from W's block pattern and a workspace keeps from one time
 /// step to the next while the pattern holds: the block rows and, once a coloured sweep ran, its
 /// colouring.
