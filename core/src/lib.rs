@@ -49,8 +49,8 @@ pub use matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 pub use measure::natural_map_error;
 pub use problem::{FrictionProblem, FrictionProblem2d, RollingProblem, RollingProblem2d};
 pub use solve::{
-    check_w_before_solving_in_place, solve, solve_planar, solve_planar_with_observer, solve_rolling, solve_rolling_with_observer,
-    solve_with_observer,
+    check_w_before_solving_in_place, solve, solve_planar, solve_planar_with_observer,
+    solve_rolling, solve_rolling_with_observer, solve_with_observer,
 };
 pub use solvers::aclm::AclmOptions;
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};

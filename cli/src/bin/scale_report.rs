@@ -170,11 +170,13 @@ fn table(rows: &[Row], tols: &[String]) -> String {
 }
 
 /// The libraries' colours, then the floor's (grey).
-const COLORS: [RGBColor; 5] = [
+const COLORS: [RGBColor; 7] = [
     RGBColor(0, 114, 178),
     RGBColor(213, 94, 0),
     RGBColor(0, 158, 115),
     RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
     RGBColor(127, 127, 127),
 ];
 const FLOOR_COLOR: RGBColor = COLORS[COLORS.len() - 1];
@@ -199,7 +201,9 @@ fn series(rows: &[Row]) -> Vec<Series> {
         let of = |key: &str| -> Vec<(f64, f64)> {
             rows.iter()
                 .filter(|r| r.library == *lib)
-                .filter_map(|r| r.num(key).map(|v| (r.contacts, v.max(1e-6))))
+                // A set-up measured as 0 or less (the difference of two noisy medians) has no
+                // place on a log axis: left out rather than drawn at an arbitrary floor.
+                .filter_map(|r| r.num(key).filter(|&v| v > 0.0).map(|v| (r.contacts, v)))
                 .collect()
         };
         out.push((

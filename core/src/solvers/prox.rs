@@ -10,7 +10,6 @@ use std::time::{Duration, Instant};
 
 use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome};
 use crate::error::{require_setting, Fc3dError};
-use crate::math::lu_cost::analysis_ends_by;
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
@@ -207,12 +206,12 @@ fn prox(
     options.validate()?;
     // The budget counts from here: the copy of W and the symbolic analysis are part of it.
     let run = limits.start();
-    if matches!(options.internal, ProxInternal::NsnAc(_))
-        && !analysis_ends_by(problem.w().stored_entries(), run.deadline())
-    {
-        // The Newton solver's analysis cannot be interrupted (see NSN).
-        problem.velocity(r, u);
-        return Ok(SolverOutcome::stopped(0, true));
+    if matches!(options.internal, ProxInternal::NsnAc(_)) {
+        if let Some(stop) =
+            super::stop_before_analysis(problem.w(), run.deadline(), || problem.velocity(r, u))
+        {
+            return Ok(stop);
+        }
     }
     let mut newton = match &options.internal {
         ProxInternal::NsnAc(n) => Some(NewtonSolver::new(problem, n)?),

@@ -42,7 +42,7 @@ use crate::contract::{
 use crate::error::Fc3dError;
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{bounded, contact_of, distance_sq, norm};
-use crate::math::lu_cost::{analysis_ends_by, checked_lu_cost, LuCost};
+use crate::math::lu_cost::{checked_lu_cost, LuCost};
 use crate::math::lu_fill::lu_factor_nnz;
 use crate::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
 use crate::matrix::Delassus;
@@ -384,9 +384,10 @@ fn admm_iterations<P: AdmmProblem>(
     let run = limits.start();
     // Neither the analysis nor a factorization can be interrupted: one predicted to end past
     // the deadline is not started, and the run stops out of time with r as it came.
-    if !analysis_ends_by(problem.w().stored_entries(), run.deadline()) {
-        problem.velocity(r, u);
-        return Ok(SolverOutcome::stopped(0, true));
+    if let Some(stop) =
+        super::stop_before_analysis(problem.w(), run.deadline(), || problem.velocity(r, u))
+    {
+        return Ok(stop);
     }
     let mut system = ShiftedSystem::new(problem.w())?;
 

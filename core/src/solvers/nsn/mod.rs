@@ -40,7 +40,6 @@ use crate::contract::{Family, IterationEvent, Limits, Observer, Run, SolverOutco
 use crate::error::Fc3dError;
 use crate::local::AlgorithmVariant;
 use crate::math::linalg::{norm, Mat3, Vec3};
-use crate::math::lu_cost::analysis_ends_by;
 use crate::matrix::BlockSparseMatrix;
 use crate::measure::{absolute_natural_map_residual, relative_scale};
 use crate::problem::FrictionProblem;
@@ -440,11 +439,10 @@ impl Family for NsnOptions {
     ) -> Result<SolverOutcome, Fc3dError> {
         // The budget counts from here: the copy of W and the symbolic analysis are part of it.
         let run = limits.start();
-        // The analysis cannot be interrupted: one predicted to end past the deadline is not
-        // started, and the run stops out of time with r as it came.
-        if !analysis_ends_by(problem.w().stored_entries(), run.deadline()) {
-            problem.velocity(r, u);
-            return Ok(SolverOutcome::stopped(0, true));
+        if let Some(stop) =
+            super::stop_before_analysis(problem.w(), run.deadline(), || problem.velocity(r, u))
+        {
+            return Ok(stop);
         }
         let mut solver = NewtonSolver::new(problem, self)?;
         Ok(nsn_on(&mut solver, problem, &run, r, u, observer))
