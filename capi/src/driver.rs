@@ -122,9 +122,8 @@ unsafe fn driver_impl(
     // The host's sparse-block W is read in place: no copy (the solve checks its values).
     let p = problem_view_from_c(&*problem)?;
     // In the host's arrays only when nothing can fail once they are touched.
-    let in_place = in_place
-        && config.method.fails_only_before_start()
-        && (*options).callback.is_null();
+    let in_place =
+        in_place && config.method.fails_only_before_start() && (*options).callback.is_null();
     let report = if in_place {
         solve_in_host_arrays(&p, &config, reaction, velocity, options, |r, u| {
             solve_with_observer(&p, &config, r, u, &mut |_| {})

@@ -104,7 +104,11 @@ fn limit(iterations: c_int, tol: f64) -> impl Fn(&mut SolverOptions) {
 
 #[test]
 fn in_place_equals_the_driver_bit_for_bit() {
-    for name in ["Capsules-i101-404.dat", "Confeti-ex13-Fc3D-SBM.dat", "FC3D_Example1_SBM.dat"] {
+    for name in [
+        "Capsules-i101-404.dat",
+        "Confeti-ex13-Fc3D-SBM.dat",
+        "FC3D_Example1_SBM.dat",
+    ] {
         let p = read(name);
         unsafe {
             // NSGS (in place): converged, and stopped at its iteration limit; then the Newton
@@ -114,7 +118,10 @@ fn in_place_equals_the_driver_bit_for_bit() {
                     let a = call(fc3d_driver, p, id, limit(iterations, tol), r0);
                     let b = call(fc3d_driver_in_place, p, id, limit(iterations, tol), r0);
                     assert!(a.code >= 0, "{name} {id}: {}", a.code);
-                    assert_eq!(a, b, "{name}: solver {id}, {iterations} iterations, r0 {r0}");
+                    assert_eq!(
+                        a, b,
+                        "{name}: solver {id}, {iterations} iterations, r0 {r0}"
+                    );
                 }
             }
             frictionContactProblem_free(p);
