@@ -11,7 +11,7 @@ use crate::math::cone::{
 };
 use crate::math::linalg::{contact_of, norm, Vec3};
 use crate::math::rolling::{part_norms, project_on_rolling_cone, rolling_residual_sq};
-use crate::matrix::BlockRows;
+use crate::matrix::{BlockRows, Delassus};
 use crate::problem::{FrictionProblem, RollingProblem};
 
 /// Squared natural-map residual of one contact, `|| r - P_K(r - ũ) ||^2`.
@@ -213,6 +213,8 @@ pub trait SweptProblem<const D: usize> {
     /// The friction coefficients the sweep hands its one-contact step.
     fn mu(&self) -> &[f64];
     fn n_contacts(&self) -> usize;
+    /// W, in the storage the problem holds.
+    fn w(&self) -> &Delassus<'_>;
     /// The problem's relative natural-map error of `r`, `u = W r + q` computed on W's storage.
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64;
     /// The problem's relative natural-map error of the pair `(r, u)` as given.
@@ -242,6 +244,9 @@ impl<const D: usize> SweptProblem<D> for FrictionProblem<'_, D> {
     fn n_contacts(&self) -> usize {
         FrictionProblem::n_contacts(self)
     }
+    fn w(&self) -> &Delassus<'_> {
+        FrictionProblem::w(self)
+    }
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
         natural_map_error(self, r, u)
     }
@@ -269,6 +274,9 @@ impl<const D: usize> SweptProblem<D> for RollingProblem<'_, D> {
     }
     fn n_contacts(&self) -> usize {
         RollingProblem::n_contacts(self)
+    }
+    fn w(&self) -> &Delassus<'_> {
+        RollingProblem::w(self)
     }
     fn error(&self, r: &[f64], u: &mut [f64]) -> f64 {
         rolling_error(self, r, u)

@@ -273,15 +273,9 @@ impl<'a, const D: usize> BlockRows<'a, D> {
     /// its coupling costs).
     pub fn velocity(&self, q: &[f64], r: &[f64], u: &mut [f64]) {
         for c in 0..self.n_contacts {
-            u[D * c..D * c + D].copy_from_slice(&self.velocity_of(c, q, r));
+            let uc = block_vec_add(&self.diagonal(c), &contact_of(r, c), &self.local_q(c, q, r));
+            u[D * c..D * c + D].copy_from_slice(&uc);
         }
-    }
-
-    /// Contact `c`'s entries of `W r + q`: what [`BlockRows::velocity`] writes for it, so that
-    /// threads sharing the contacts out compute the same bits.
-    #[inline]
-    pub fn velocity_of(&self, c: usize, q: &[f64], r: &[f64]) -> [f64; D] {
-        block_vec_add(&self.diagonal(c), &contact_of(r, c), &self.local_q(c, q, r))
     }
 
     /// The contacts coupled to contact `c` through a stored block of its row (increasing, the

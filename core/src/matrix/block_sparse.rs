@@ -312,10 +312,17 @@ impl<'a> BlockSparseMatrix<'a> {
 
     /// `y <- y + W x`.
     pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+        self.mul_add_block_rows(x, y, 0..self.n_block_rows);
+    }
+
+    /// [`BlockSparseMatrix::mul_add`] for the block rows `rows` only: `y` holds their 3
+    /// entries each. Every entry gets the same terms in the same order as in the whole product,
+    /// so threads that share the rows out compute the same bits.
+    pub fn mul_add_block_rows(&self, x: &[f64], y: &mut [f64], rows: std::ops::Range<usize>) {
         let (row_ptr, col_idx) = (&*self.row_ptr, &*self.col_idx);
         with_blocks!(&self.values, 9, |blocks| mul_add_in(
             &blocks,
-            self.n_block_rows,
+            rows.clone(),
             row_ptr,
             col_idx,
             x,
@@ -348,13 +355,13 @@ impl<'a> BlockSparseMatrix<'a> {
 /// `y <- y + W x` over blocks of any storage (the one product of a sparse-block W).
 fn mul_add_in(
     blocks: &impl BlockAt,
-    n_block_rows: usize,
+    rows: std::ops::Range<usize>,
     row_ptr: &[usize],
     col_idx: &[usize],
     x: &[f64],
     y: &mut [f64],
 ) {
-    for (bi, ys) in y.chunks_exact_mut(3).enumerate().take(n_block_rows) {
+    for (bi, ys) in rows.zip(y.chunks_exact_mut(3)) {
         // The row's sums kept in registers; each entry gets its terms in the same order as
         // block by block into y.
         let mut acc = [ys[0], ys[1], ys[2]];

@@ -76,6 +76,17 @@ impl<'a> SharedSlice<'a> {
         unsafe { self.ptr.add(i).write(v) }
     }
 
+    /// Entries `range` as a slice of their own.
+    ///
+    /// # Safety
+    /// No other thread accesses these entries until the next synchronisation point, and no other
+    /// slice of them is alive.
+    #[inline]
+    pub unsafe fn range_mut(&self, range: std::ops::Range<usize>) -> &mut [f64] {
+        assert!(range.start <= range.end && range.end <= self.len);
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
+    }
+
     /// Contact `c`'s `D` entries.
     #[inline]
     pub fn contact<const D: usize>(&self, c: usize) -> [f64; D] {

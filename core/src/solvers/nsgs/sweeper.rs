@@ -8,7 +8,7 @@ use std::time::Instant;
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
 use crate::math::linalg::{block_vec_add, distance_sq_d, Block};
-use crate::matrix::BlockRows;
+use crate::matrix::{BlockRows, BlockSparseMatrix, Delassus};
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
@@ -750,36 +750,33 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
 
     /// The relative natural-map error of `r`, with `u = W r + q` computed through the prepared
     /// blocks (cheaper than the host's storage when W is dense but sparsely coupled).
-    /// A coloured sweep's threads share the product out.
     pub fn natural_map_error<P: SweptProblem<D>>(
         &self,
         problem: &P,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
-        match self.coloured.as_ref().and_then(|c| c.pool.as_deref()) {
-            Some(pool) => {
-                velocity_on_threads(&self.rows, pool, problem.q(), r, u);
-                problem.error_of(r, u)
-            }
-            None => problem.error_by_rows(&self.rows, r, u),
-        }
+        problem.error_by_rows(&self.rows, r, u)
     }
 
-    /// The natural-map error a convergence test measures: on the host's storage for a
-    /// sequential sweep (as Siconos measures it, so that the sweep counts match), through the
-    /// prepared rows on the sweep's threads for a coloured one (the product is most of a test's
-    /// cost, and a single-threaded test would cost a 2-thread sweep's time at 10^5 contacts).
+    /// The natural-map error a convergence test measures: the problem's own, `u = W r + q` on
+    /// W's storage (the bits an independent measurement such as `fc3d_compute_error` finds),
+    /// with the product shared out among a coloured sweep's threads when W is sparse-block (the
+    /// product is most of a test's cost: on one thread it would cost a 2-thread sweep's time at
+    /// 10^5 contacts).
     pub(crate) fn tested_error<P: SweptProblem<D>>(
         &self,
         problem: &P,
         r: &[f64],
         u: &mut [f64],
     ) -> f64 {
-        if self.is_coloured() {
-            self.natural_map_error(problem, r, u)
-        } else {
-            problem.error(r, u)
+        let pool = self.coloured.as_ref().and_then(|c| c.pool.as_deref());
+        match (pool, problem.w()) {
+            (Some(pool), Delassus::SparseBlock(w)) => {
+                velocity_on_threads(w, pool, problem.q(), r, u);
+                problem.error_of(r, u)
+            }
+            _ => problem.error(r, u),
         }
     }
 
@@ -794,23 +791,24 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
     }
 }
 
-/// `u <- W r + q` through `rows`, the contacts cut in one contiguous range per thread of `pool`.
-/// Each contact's entries are computed as [`BlockRows::velocity`] computes them, so `u` is the
-/// same for any number of threads.
-fn velocity_on_threads<const D: usize>(
-    rows: &BlockRows<D>,
+/// `u <- W r + q` on a sparse-block W's storage, its block rows cut in one contiguous range per
+/// thread of `pool`. Each entry gets the terms of [`Delassus::velocity`] in the same order, so
+/// `u` has the bits of the single-threaded product for any number of threads.
+fn velocity_on_threads(
+    w: &BlockSparseMatrix<'_>,
     pool: &Pool,
     q: &[f64],
     r: &[f64],
     u: &mut [f64],
 ) {
-    let n = rows.n_contacts();
+    let n = w.n_block_rows();
     let per_thread = n.div_ceil(pool.threads());
     let u = SharedSlice::new(u);
     pool.broadcast(&|thread| {
-        for c in (thread * per_thread).min(n)..((thread + 1) * per_thread).min(n) {
-            // SAFETY: contact c is in this thread's range only; r and q are only read.
-            unsafe { u.set_contact(c, &rows.velocity_of(c, q, r)) };
-        }
+        let rows = (thread * per_thread).min(n)..((thread + 1) * per_thread).min(n);
+        // SAFETY: these entries belong to this thread's rows only; r and q are only read.
+        let part = unsafe { u.range_mut(3 * rows.start..3 * rows.end) };
+        part.copy_from_slice(&q[3 * rows.start..3 * rows.end]);
+        w.mul_add_block_rows(r, part, rows);
     });
 }
