@@ -10,7 +10,7 @@
  *       DECOMPOSITION] = FC3D_NSGS_COLOURED, iparam[FC3D_IPARAM_NSGS_THREADS] = N), timed in
  *       wall-clock seconds (CPU time would sum the threads); the line then says clock wall.
  *       Reads the problem (peak RSS of the read measured alone), then times fc3d_driver calls
- *       from r = 0 limited to 1 and to 1 + <sweeps> iterations (<reps> each, medians):
+ *       from r = 0 limited to 1 and to 1 + <sweeps> iterations (<reps> each, alternated, medians):
  *       sweep = (t(1 + sweeps) - t(1)) / sweeps, setup = t(1) - sweep: what a call costs on top of
  *       its sweeps. Peak RSS of the solving part measured alone (VmHWM reset through
  *       /proc/self/clear_refs after the read). Prints
@@ -152,18 +152,30 @@ static double call(FrictionContactProblem* problem, int solver, double tol, int 
   return t;
 }
 
-static double median_call(FrictionContactProblem* problem, int solver, int max_iter, int reps, double* r,
-                          double* u) {
-  double* times = calloc((size_t)reps, sizeof(double));
+static double median(double* times, int reps) {
+  qsort(times, (size_t)reps, sizeof(double), cmp_double);
+  return reps % 2 ? times[reps / 2] : 0.5 * (times[reps / 2 - 1] + times[reps / 2]);
+}
+
+/* Medians of `reps` calls limited to 1 sweep (*t1) and to 1 + `sweeps` sweeps (*tn), the two
+ * kinds alternated so that a drift of the machine's speed during the measurement (this VM's
+ * memory bandwidth moves by tens of percent from minute to minute) weighs on both alike: the
+ * set-up is their difference, and a drift between two separate series of calls swung it by 2x. */
+static void median_calls(FrictionContactProblem* problem, int solver, int sweeps, int reps, double* r,
+                         double* u, double* t1, double* tn) {
+  double* times1 = calloc((size_t)reps, sizeof(double));
+  double* timesn = calloc((size_t)reps, sizeof(double));
   int info, iterations;
   double error;
-  for (int k = 0; k < reps; k++)
+  for (int k = 0; k < reps; k++) {
     /* A tolerance no sweep reaches: every call does exactly max_iter sweeps. */
-    times[k] = call(problem, solver, 1e-300, max_iter, r, u, &info, &iterations, &error);
-  qsort(times, (size_t)reps, sizeof(double), cmp_double);
-  double m = reps % 2 ? times[reps / 2] : 0.5 * (times[reps / 2 - 1] + times[reps / 2]);
-  free(times);
-  return m;
+    times1[k] = call(problem, solver, 1e-300, 1, r, u, &info, &iterations, &error);
+    timesn[k] = call(problem, solver, 1e-300, 1 + sweeps, r, u, &info, &iterations, &error);
+  }
+  *t1 = median(times1, reps);
+  *tn = median(timesn, reps);
+  free(times1);
+  free(timesn);
 }
 
 static int mode_setup(int argc, char** argv) {
@@ -217,9 +229,10 @@ static int mode_setup(int argc, char** argv) {
   long blocks = 0;
   if (problem->M->storageType == NM_SPARSE_BLOCK) blocks = (long)problem->M->matrix1->nbblocks;
   reset_peak();
-  double t1 = median_call(problem, solver, 1, reps, r, u);
+  double t1, tn;
+  median_calls(problem, solver, sweeps, reps, r, u, &t1, &tn);
+  /* The calls of 1 and of 1 + sweeps sweeps hold the same memory. */
   long peak_solve = status_kb("VmHWM");
-  double tn = median_call(problem, solver, 1 + sweeps, reps, r, u);
   double sweep = (tn - t1) / sweeps;
   /* A call that converges (to CONVERGED_TOL, a few sweeps on the piles): its end (the final
    * error, fc3d's test for a ray of no solution) may hold memory that a call stopped at its

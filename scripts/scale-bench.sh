@@ -7,7 +7,7 @@
 #   bash scripts/scale-bench.sh --sizes 1000,10000 --timeout 60
 #
 # Per size and library, one process reads the .dat (peak RSS of the read alone), then measures
-#   - per-call set-up and per-sweep time (CPU seconds of the process, robust on a shared machine): medians of fc3d_driver calls limited to 1 and 1 + SWEEPS
+#   - per-call set-up and per-sweep time (CPU seconds of the process, robust on a shared machine): medians of fc3d_driver calls limited to 1 and 1 + SWEEPS (alternated)
 #     sweeps (set-up = t(1) - one sweep: everything a call does besides its sweeps);
 #   - peak RSS of the solving part alone (VmHWM reset after the read);
 #   - time and sweeps to 1e-3, 1e-4, 1e-6 (NSGS with Siconos' defaults, 500 = local solver 565),
