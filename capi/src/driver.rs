@@ -125,9 +125,7 @@ unsafe fn driver_impl(
     let in_place =
         in_place && config.method.fails_only_before_start() && (*options).callback.is_null();
     let report = if in_place {
-        solve_in_host_arrays(&p, &config, reaction, velocity, options, |r, u| {
-            solve_with_observer(&p, &config, r, u, &mut |_| {})
-        })?
+        solve_in_host_arrays(&p, &config, reaction, velocity, options)?
     } else {
         solve_into_host(&p, reaction, velocity, options, |r, u, observer| {
             solve_with_observer(&p, &config, r, u, observer)
@@ -327,9 +325,9 @@ pub unsafe extern "C" fn fc3d_driver_in_place(
     )
 }
 
-/// Runs `solve` in the host's `reaction` (initial guess) and `velocity` arrays, after the checks
-/// that leave nothing to fail once they are touched: the arrays do not overlap each other, q or
-/// mu, and W holds no NaN or infinity. The outputs (`iparam[1]`, `dparam[1]`) are written on
+/// Solves with `config` in the host's `reaction` (initial guess) and `velocity` arrays, after
+/// the checks that leave nothing to fail once they are touched: the arrays do not overlap each
+/// other, q or mu, and W holds no NaN or infinity. The outputs (`iparam[1]`, `dparam[1]`) are written on
 /// success.
 unsafe fn solve_in_host_arrays(
     p: &FrictionProblem<'_>,
@@ -337,7 +335,6 @@ unsafe fn solve_in_host_arrays(
     reaction: *mut c_double,
     velocity: *mut c_double,
     options: *mut SolverOptions,
-    solve: impl FnOnce(&mut [f64], &mut [f64]) -> Result<SolveReport, Fc3dError>,
 ) -> CResult<SolveReport> {
     let n = p.size();
     c_slice(reaction as *const c_double, n, "reaction")?;
@@ -360,7 +357,9 @@ unsafe fn solve_in_host_arrays(
     }
     // The one failure a run could otherwise find after it started.
     fc3d_core::check_w_before_solving_in_place(p, config)?;
-    let report = solve(
+    let report = fc3d_core::solve(
+        p,
+        config,
         std::slice::from_raw_parts_mut(reaction, n),
         std::slice::from_raw_parts_mut(velocity, n),
     )?;

@@ -146,13 +146,20 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<(), Fc3dError> {
 /// `x` and NaN otherwise, summed in eight independent lanes (a test per value, which stops at
 /// the first offender, runs at a value per several cycles).
 pub fn all_finite(values: &[f64]) -> bool {
-    const LANES: usize = 8;
-    let mut chunks = values.chunks_exact(LANES);
-    let mut sums = [0.0_f64; LANES];
-    for c in &mut chunks {
-        for (s, x) in sums.iter_mut().zip(c) {
+    let chunks = values.chunks_exact(8);
+    let remainder = chunks.remainder();
+    all_finite_lanes(chunks.map(|c| c.first_chunk::<8>().expect("8 values")))
+        && remainder.iter().all(|v| v.is_finite())
+}
+
+/// [`all_finite`] over groups of `L` values, each group's values summed in the `L` lanes (the
+/// groups may lie apart in memory, as the blocks of a host's sparse-block W do).
+pub fn all_finite_lanes<'v, const L: usize>(groups: impl Iterator<Item = &'v [f64; L]>) -> bool {
+    let mut sums = [0.0_f64; L];
+    for g in groups {
+        for (s, x) in sums.iter_mut().zip(g) {
             *s += x * 0.0;
         }
     }
-    sums.iter().all(|&s| s == 0.0) && chunks.remainder().iter().all(|v| v.is_finite())
+    sums.iter().all(|&s| s == 0.0)
 }

@@ -275,10 +275,7 @@ impl<'a> Delassus<'a> {
     pub fn check_finite_part(&self, part: usize, parts: usize) -> Result<(), Fc3dError> {
         match self {
             Delassus::SparseBlock(m) if m.is_borrowed() => {
-                let n = m.n_blocks();
-                let per_part = n.div_ceil(parts.max(1));
-                let start = (part * per_part).min(n);
-                m.check_finite_blocks(start..(start + per_part).min(n))
+                m.check_finite_blocks(part_of(m.n_blocks(), part, parts))
             }
             _ => Ok(()),
         }
@@ -327,6 +324,13 @@ impl<'a> Delassus<'a> {
             Delassus::Sparse(_) => "csr",
         }
     }
+}
+
+/// Part `part` of `0..n` cut in `parts` contiguous ranges of equal length (the last shorter or
+/// empty): how threads share out blocks or block rows in a fixed order.
+pub(crate) fn part_of(n: usize, part: usize, parts: usize) -> std::ops::Range<usize> {
+    let per_part = n.div_ceil(parts.max(1));
+    (part * per_part).min(n)..((part + 1) * per_part).min(n)
 }
 
 /// Marks in `flags` the block rows of block column `bj` of a dense column-major `n x n` W (3x3

@@ -801,11 +801,9 @@ fn velocity_on_threads(
     r: &[f64],
     u: &mut [f64],
 ) {
-    let n = w.n_block_rows();
-    let per_thread = n.div_ceil(pool.threads());
     let u = SharedSlice::new(u);
     pool.broadcast(&|thread| {
-        let rows = (thread * per_thread).min(n)..((thread + 1) * per_thread).min(n);
+        let rows = crate::matrix::part_of(w.n_block_rows(), thread, pool.threads());
         // SAFETY: these entries belong to this thread's rows only; r and q are only read.
         let part = unsafe { u.range_mut(3 * rows.start..3 * rows.end) };
         part.copy_from_slice(&q[3 * rows.start..3 * rows.end]);
