@@ -322,9 +322,10 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
                     outcome.with_final_error(measured)
                 };
             }
-            if let Some(a) = anderson.as_mut() {
+            if let Some(a) = anderson.as_mut().filter(|_| iteration < run.max_iter) {
                 // Only now, with r tested and the run going on: the next sweep may start from an
-                // extrapolated point.
+                // extrapolated point. Not after the last sweep: the run returns the iterate it
+                // measured, not an extrapolation nobody measured.
                 a.after_sweep(r);
             }
         }
