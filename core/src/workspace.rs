@@ -15,10 +15,11 @@
 //!   compare patterns, not its blocks. The check is part of the refill: one pass over the stored
 //!   blocks, no allocation for the block rows; when the pattern changed, the structure is
 //!   rebuilt (and counted in [`WorkspaceStats`]).
-//! * **AUTO's last choice** ([`Workspace::auto_choice`]): while W's block pattern, the tolerance
-//!   and the budget are unchanged, AUTO skips its feature pass and starts from the stage of its
-//!   plan that reached the tolerance in the previous solve; its NSGS and Newton stages use the
-//!   kept structures.
+//! * **AUTO's last choice** ([`Workspace::auto_choice`]): while the tolerance and the budget are
+//!   unchanged, AUTO starts from the stage of its plan that reached the tolerance in the
+//!   previous solve. On the same W block pattern it skips its feature pass; on another one
+//!   (contacts appeared or vanished) it measures the features and resumes only if they give the
+//!   same rule. Its NSGS and Newton stages use the kept structures.
 //!
 //! A workspace solve is the ordinary [`crate::solve`] (same checks, rescaling, post-processing
 //! and reported error) started from the warm iterate: its result equals a cold [`crate::solve`]
@@ -222,7 +223,8 @@ impl Workspace {
                     let mut carry = AutoCarry {
                         sweep: Some(prepared),
                         newton: newton.take(),
-                        resume: last_choice.take().filter(|_| same_pattern),
+                        resume: last_choice.take(),
+                        same_pattern,
                         choice: None,
                         resumed: false,
                     };

@@ -279,7 +279,7 @@ fn the_colouring_of_a_coloured_sweep_is_kept_while_the_pattern_holds() {
 }
 
 #[test]
-fn auto_resumes_from_the_stage_that_finished_while_the_pattern_holds() {
+fn auto_resumes_from_the_stage_that_finished_while_the_rule_holds() {
     let auto = SolverConfig::new(AutoOptions::default()).with_tolerance(1e-8);
     let seq = box_slide(40, &mut cold_stepper(nsgs()));
     let mut ws = Workspace::new();
@@ -322,7 +322,8 @@ fn auto_resumes_from_the_stage_that_finished_while_the_pattern_holds() {
     }
     assert!(resumed > 0, "{:?}", ws.stats());
 
-    // Another tolerance, another pattern or another method in between: no resume.
+    // Another tolerance, another method in between, or another pattern whose features give
+    // another rule: no resume. Another pattern with the same rule (a contact appeared) resumes.
     let mut ws = Workspace::new();
     let run = |ws: &mut Workspace, config: &SolverConfig, p: &FrictionProblem<'_>, ids: &[i64]| {
         let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
@@ -335,20 +336,31 @@ fn auto_resumes_from_the_stage_that_finished_while_the_pattern_holds() {
     assert_eq!(run(&mut ws, &looser, &spheres(&[1.5, 2.5]), &[1, 2]), 1);
     assert_eq!(
         run(&mut ws, &looser, &spheres(&[1.0, 2.5, 1.0]), &[1, 2, 3]),
-        1
+        2
     );
     assert_eq!(
         run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
-        2
+        3
     );
+    // One contact left: the one-contact rule, not the kept one; and back.
+    let one = choose(&ProblemFeatures::of(&spheres(&[1.0])), 1e-4, None).0;
+    let three = choose(&ProblemFeatures::of(&spheres(&[1.0, 2.5, 2.0])), 1e-4, None).0;
+    assert_ne!(one, three);
+    assert_eq!(run(&mut ws, &looser, &spheres(&[1.0]), &[2]), 3);
+    assert_eq!(ws.auto_choice().map(|c| c.rule), Some(one));
+    assert_eq!(
+        run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
+        3
+    );
+    assert_eq!(ws.auto_choice().map(|c| c.rule), Some(three));
     assert_eq!(
         run(&mut ws, &nsgs(), &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
-        2
+        3
     );
     assert!(ws.auto_choice().is_none());
     assert_eq!(
         run(&mut ws, &looser, &spheres(&[1.0, 2.5, 2.0]), &[1, 2, 3]),
-        2
+        3
     );
     assert!(ws.auto_choice().is_some());
     // A solve that stops short of its tolerance leaves no choice: the next one chooses afresh.

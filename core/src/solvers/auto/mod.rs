@@ -90,8 +90,10 @@ impl Family for AutoOptions {
 }
 
 /// Where AUTO ended a solve: the rule and plan it followed and the stage of that plan that
-/// reached the tolerance (in an anytime solve, the one the budget ended in). A workspace keeps it so that the next step with the same W pattern, tolerance
-/// and budget skips the feature pass and the stages that came before.
+/// reached the tolerance (in an anytime solve, the one the budget ended in). A workspace keeps
+/// it so that the next step with the same tolerance and budget skips the stages that came
+/// before: at once on the same W block pattern, after the feature pass gave the same rule on
+/// another one.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AutoChoice {
     /// Index of the rule in [`RULES`] (`usize::MAX` for a plan given in [`AutoOptions`]).
@@ -111,15 +113,19 @@ impl AutoChoice {
 }
 
 /// What a workspace hands AUTO and gets back: structures built from W's block pattern (valid
-/// for the problem solved) and the choice to resume from (only when the pattern is unchanged).
-/// After the solve, `choice` is where this solve ended and the structures are handed back.
+/// for the problem solved) and the choice to resume from. After the solve, `choice` is where
+/// this solve ended and the structures are handed back.
 #[derive(Default)]
 pub(crate) struct AutoCarry<'a> {
     pub sweep: Option<PreparedSweep<'a>>,
     pub newton: Option<NewtonSolver>,
     pub resume: Option<AutoChoice>,
+    /// W's block pattern is the one `resume` was chosen on: the rule is taken as it is. On
+    /// another pattern the features are measured again and the solve resumes only if they
+    /// give the same rule.
+    pub same_pattern: bool,
     pub choice: Option<AutoChoice>,
-    /// The solve resumed from `resume` (same tolerance and budget).
+    /// The solve resumed from `resume` (same tolerance, budget and rule).
     pub resumed: bool,
 }
 

@@ -65,15 +65,21 @@ pub(crate) fn auto_with<'a>(
             && c.budget == budget
             && c.stage < c.plan.len()
     });
-    let (rule, plan, first) = match (options.plan, resume) {
-        (Some(plan), _) => (usize::MAX, plan, 0),
-        (None, Some(c)) => (c.rule, c.plan, c.stage),
-        (None, None) => {
+    // On W's block pattern of the kept choice, the features are not measured again. On another
+    // one (a contact appeared or vanished) they are, and the solve resumes only if they give
+    // the same rule: the choice follows the scene, not the exact contact set.
+    let (rule, plan, first, resumed) = match (options.plan, resume) {
+        (Some(plan), _) => (usize::MAX, plan, 0, false),
+        (None, Some(c)) if carry.same_pattern => (c.rule, c.plan, c.stage, true),
+        (None, kept) => {
             let (rule, plan) = choose(&ProblemFeatures::of(problem), requested, budget);
-            (rule, plan, 0)
+            match kept.filter(|c| c.rule == rule) {
+                Some(c) => (rule, plan, c.stage, true),
+                None => (rule, plan, 0, false),
+            }
         }
     };
-    carry.resumed = resume.is_some() && options.plan.is_none();
+    carry.resumed = resumed;
     let mut last_stage = first;
     // A colouring kept for another run is handed back as it came.
     let (kept_rows, kept_colouring) = match carry.sweep.take() {
