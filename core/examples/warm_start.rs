@@ -7,7 +7,9 @@
 //! Prints, per sequence and solver, the median over REPEATS (default 5) of the total solve time
 //! cold, with the warm start alone (the host keeps the reactions by id and calls `solve`; W's
 //! structures are rebuilt) and through the workspace ("warm"), the ratio cold / warm, and for cold
-//! and warm the total iterations, the largest error and the steps not converged.
+//! and warm the total iterations, the largest error and the steps not converged. With
+//! `FC3D_TRACE_STEPS` set, each step's solve is printed on stderr (time, iterations, error,
+//! AUTO's rule and stages).
 
 use std::collections::HashMap;
 use std::time::Instant;
@@ -41,6 +43,7 @@ struct Totals {
     iterations: usize,
     max_error: f64,
     not_converged: usize,
+    steps: usize,
 }
 
 /// How each step is solved.
@@ -63,6 +66,7 @@ fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
         iterations: 0,
         max_error: 0.0,
         not_converged: 0,
+        steps: 0,
     };
     for step in &seq.steps {
         let n = step.problem.size();
@@ -84,7 +88,27 @@ fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
             }
         }
         .expect("valid step");
-        t.seconds += start.elapsed().as_secs_f64();
+        let elapsed = start.elapsed().as_secs_f64();
+        t.seconds += elapsed;
+        if std::env::var_os("FC3D_TRACE_STEPS").is_some() {
+            let stages = report.stages.map(|log| {
+                log.stages()
+                    .map(|s| format!("{}:{}:{:?}", s.kind.name(), s.iterations, s.end))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            });
+            eprintln!(
+                "step {} contacts {} {:.1} ms it {} err {:.1e} rule {:?} {}",
+                t.steps,
+                step.ids.len(),
+                1e3 * elapsed,
+                report.iterations,
+                report.error,
+                report.stages.map(|l| l.rule),
+                stages.unwrap_or_default()
+            );
+        }
+        t.steps += 1;
         t.iterations += report.iterations;
         t.max_error = t.max_error.max(report.error);
         t.not_converged += usize::from(!report.converged());

@@ -8,7 +8,9 @@
 
 use std::time::{Duration, Instant};
 
-use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{
+    BestIterate, Family, IterationEvent, Limits, Observer, Run, SolverOutcome,
+};
 use crate::error::{require_setting, Fc3dError};
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::measure::natural_map_error;
@@ -213,99 +215,172 @@ fn prox(
             return Ok(stop);
         }
     }
-    let mut newton = match &options.internal {
-        ProxInternal::NsnAc(n) => Some(NewtonSolver::new(problem, n)?),
-        ProxInternal::Nsgs(_) => None,
-    };
-    let internal_max_iter = options.internal_max_iter();
-    let n = problem.size();
-    let mut shifted_q = vec![0.0; n];
-    let mut error = natural_map_error(problem, r, u);
-    let mut best = BestIterate::new(r, error);
-    if error <= run.tolerance {
-        return Ok(SolverOutcome::stopped(0, false));
-    }
-    let mut iterations = 0;
-    let mut out_of_time = false;
-    let variable = options.alpha > 0.0;
-    let mut shift = if variable {
-        options.sigma * error.powf(options.nu)
-    } else {
-        -options.alpha
-    };
-    let tolerance_floor = run.tolerance / problem.n_contacts().max(1) as f64;
-    for iteration in 1..=run.max_iter {
-        iterations = iteration;
-        for ((sq, q), ri) in shifted_q.iter_mut().zip(problem.q()).zip(r.iter()) {
-            *sq = q - shift * ri;
-        }
-        let internal_tol = (error / 10.0).max(tolerance_floor);
-        let (internal_converged, internal_out_of_time) = match &options.internal {
-            ProxInternal::NsnAc(_) => {
-                let solver = newton.as_mut().expect("built for NSN-AC");
-                let inner = run.inner(internal_tol, internal_max_iter);
-                let outcome =
-                    solver.run(&shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
-                (outcome.converged, outcome.out_of_time)
+    let (mut state, _) = ProxState::reusing(problem, options, None)?;
+    state.iterate(problem, options, &run, r, u, observer)
+}
+
+/// The proximal iteration between calls: the Newton solver of the regularized problems (its
+/// matrix and symbolic factorization built once) and the shift the next step takes. AUTO runs
+/// PROX in chunks through one state, so a chunk goes on where the last one stopped instead of
+/// starting over (analysis and shift rule) from its iterate.
+pub(crate) struct ProxState {
+    newton: Option<NewtonSolver>,
+    shifted_q: Vec<f64>,
+    /// The shift of the next proximal step; `None`: from the shift rule at the first step.
+    shift: Option<f64>,
+}
+
+impl ProxState {
+    /// The state for `problem`, taking over `kept`'s Newton matrix and symbolic factorization
+    /// when W's block pattern is the one it was built for (see [`NewtonSolver::reusing`]);
+    /// whether it did.
+    pub(crate) fn reusing(
+        problem: &FrictionProblem<'_>,
+        options: &ProxOptions,
+        kept: Option<NewtonSolver>,
+    ) -> Result<(Self, bool), Fc3dError> {
+        options.validate()?;
+        let (newton, reused) = match &options.internal {
+            ProxInternal::NsnAc(n) => {
+                let (solver, reused) = NewtonSolver::reusing(problem, n, kept)?;
+                (Some(solver), reused)
             }
-            ProxInternal::Nsgs(g) => {
-                let inner = FrictionProblem::new(
-                    shifted(problem.w(), shift)?,
-                    shifted_q.clone(),
-                    problem.mu().to_vec(),
-                )?;
-                // What is left of the budget; an exhausted one still allows one sweep.
-                let time_budget = run.deadline().map(|d| {
-                    let left = d.saturating_duration_since(Instant::now());
-                    left.max(Duration::from_nanos(1))
-                });
-                let inner_limits = Limits {
-                    tolerance: internal_tol,
-                    max_iter: internal_max_iter,
-                    time_budget,
-                };
-                let outcome = nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
-                let inner_error = outcome
-                    .final_error
-                    .unwrap_or_else(|| natural_map_error(&inner, r, u));
-                (inner_error <= internal_tol, outcome.out_of_time)
-            }
+            ProxInternal::Nsgs(_) => (None, false),
         };
-        error = natural_map_error(problem, r, u);
-        best.offer(r, error);
-        observer(&IterationEvent {
-            iteration,
-            reaction: r,
-            error,
-        });
+        let shifted_q = crate::error::try_vec(problem.size(), 0.0, "proximal right-hand side")?;
+        Ok((
+            ProxState {
+                newton,
+                shifted_q,
+                shift: None,
+            },
+            reused,
+        ))
+    }
+
+    /// The next run starts the shift rule over (a new stage from another iterate).
+    pub(crate) fn restart(&mut self) {
+        self.shift = None;
+    }
+
+    /// The Newton solver, for a workspace to keep.
+    pub(crate) fn into_newton(self) -> Option<NewtonSolver> {
+        self.newton
+    }
+
+    /// Runs PROX with `options` (those the state was built with) in `limits`.
+    pub(crate) fn run(
+        &mut self,
+        problem: &FrictionProblem<'_>,
+        options: &ProxOptions,
+        limits: &Limits,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        self.iterate(problem, options, &limits.start(), r, u, observer)
+    }
+
+    fn iterate(
+        &mut self,
+        problem: &FrictionProblem<'_>,
+        options: &ProxOptions,
+        run: &Run,
+        r: &mut [f64],
+        u: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<SolverOutcome, Fc3dError> {
+        let internal_max_iter = options.internal_max_iter();
+        let mut error = natural_map_error(problem, r, u);
+        let mut best = BestIterate::new(r, error);
         if error <= run.tolerance {
-            return Ok(SolverOutcome::stopped(iterations, false)
-                .with_fill(newton.as_ref().and_then(NewtonSolver::fill)));
+            return Ok(SolverOutcome::stopped(0, false));
         }
-        if !error.is_finite() {
-            break;
-        }
-        // An internal solve stopped by the budget (possibly before its first iteration, which
-        // was expected to end past the deadline) ends the run: another proximal step could not
-        // do more, and its unconverged solve must not inflate the shift.
-        if internal_out_of_time || run.out_of_time() {
-            out_of_time = true;
-            break;
-        }
-        if variable {
-            shift = if internal_converged {
-                options.sigma * error.powf(options.nu)
-            } else {
-                10.0 * shift
+        let mut iterations = 0;
+        let mut out_of_time = false;
+        let variable = options.alpha > 0.0;
+        let mut shift = match self.shift {
+            Some(shift) if variable => shift,
+            _ if variable => options.sigma * error.powf(options.nu),
+            _ => -options.alpha,
+        };
+        let tolerance_floor = run.tolerance / problem.n_contacts().max(1) as f64;
+        let newton = &mut self.newton;
+        let shifted_q = &mut self.shifted_q;
+        for iteration in 1..=run.max_iter {
+            iterations = iteration;
+            for ((sq, q), ri) in shifted_q.iter_mut().zip(problem.q()).zip(r.iter()) {
+                *sq = q - shift * ri;
+            }
+            let internal_tol = (error / 10.0).max(tolerance_floor);
+            let (internal_converged, internal_out_of_time) = match &options.internal {
+                ProxInternal::NsnAc(_) => {
+                    let solver = newton.as_mut().expect("built for NSN-AC");
+                    let inner = run.inner(internal_tol, internal_max_iter);
+                    let outcome =
+                        solver.run(shifted_q, problem.mu(), shift, &inner, r, u, &mut |_| {});
+                    (outcome.converged, outcome.out_of_time)
+                }
+                ProxInternal::Nsgs(g) => {
+                    let inner = FrictionProblem::new(
+                        shifted(problem.w(), shift)?,
+                        shifted_q.clone(),
+                        problem.mu().to_vec(),
+                    )?;
+                    // What is left of the budget; an exhausted one still allows one sweep.
+                    let time_budget = run.deadline().map(|d| {
+                        let left = d.saturating_duration_since(Instant::now());
+                        left.max(Duration::from_nanos(1))
+                    });
+                    let inner_limits = Limits {
+                        tolerance: internal_tol,
+                        max_iter: internal_max_iter,
+                        time_budget,
+                    };
+                    let outcome = nsgs(&inner, g, &inner_limits, r, u, &mut |_| {})?;
+                    let inner_error = outcome
+                        .final_error
+                        .unwrap_or_else(|| natural_map_error(&inner, r, u));
+                    (inner_error <= internal_tol, outcome.out_of_time)
+                }
             };
-            if !(shift.is_finite() && shift > 0.0) {
+            error = natural_map_error(problem, r, u);
+            best.offer(r, error);
+            observer(&IterationEvent {
+                iteration,
+                reaction: r,
+                error,
+            });
+            if error <= run.tolerance {
+                return Ok(SolverOutcome::stopped(iterations, false)
+                    .with_fill(newton.as_ref().and_then(NewtonSolver::fill)));
+            }
+            if !error.is_finite() {
                 break;
             }
+            // An internal solve stopped by the budget (possibly before its first iteration,
+            // which was expected to end past the deadline) ends the run: another proximal step
+            // could not do more, and its unconverged solve must not inflate the shift.
+            if internal_out_of_time || run.out_of_time() {
+                out_of_time = true;
+                break;
+            }
+            if variable {
+                shift = if internal_converged {
+                    options.sigma * error.powf(options.nu)
+                } else {
+                    10.0 * shift
+                };
+                if !(shift.is_finite() && shift > 0.0) {
+                    break;
+                }
+                self.shift = Some(shift);
+            }
         }
+        best.restore_if_better(r, error);
+        Ok(SolverOutcome::stopped(iterations, out_of_time)
+            .with_fill(newton.as_ref().and_then(NewtonSolver::fill)))
     }
-    best.restore_if_better(r, error);
-    Ok(SolverOutcome::stopped(iterations, out_of_time)
-        .with_fill(newton.as_ref().and_then(NewtonSolver::fill)))
 }
 
 #[cfg(test)]
