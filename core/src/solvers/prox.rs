@@ -8,9 +8,7 @@
 
 use std::time::{Duration, Instant};
 
-use crate::contract::{
-    BestIterate, Family, IterationEvent, Limits, Observer, Run, SolverOutcome,
-};
+use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::{require_setting, Fc3dError};
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::measure::natural_map_error;
@@ -386,6 +384,69 @@ impl ProxState {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_state_run_in_chunks_goes_on_as_one_run() {
+        // AUTO runs PROX in chunks through one state: while the error falls at every step (no
+        // earlier iterate restored at a chunk's end), two chunks of 3 steps give one run of 6,
+        // bit for bit (a shift rule started over would not: sigma * error at the second chunk's
+        // first step instead of the rule's value).
+        let p = crate::scenes::sphere_piles(&crate::scenes::PileSpec {
+            contacts: 60,
+            piles: 1,
+            seed: 3,
+        })
+        .unwrap();
+        let options = ProxOptions::default();
+        let limits = |max_iter| Limits {
+            tolerance: 1e-14,
+            max_iter,
+            time_budget: None,
+        };
+        let n = p.size();
+        let (mut r1, mut u1) = (vec![0.0; n], vec![0.0; n]);
+        let mut errors = Vec::new();
+        let whole = prox(&p, &options, &limits(6), &mut r1, &mut u1, &mut |e| {
+            errors.push(e.error)
+        })
+        .unwrap();
+        assert_eq!(whole.iterations, 6);
+        assert!(errors.windows(2).all(|e| e[1] < e[0]), "{errors:?}");
+        let (mut state, reused) = ProxState::reusing(&p, &options, None).unwrap();
+        assert!(!reused);
+        let (mut r2, mut u2) = (vec![0.0; n], vec![0.0; n]);
+        for _ in 0..2 {
+            let o = state
+                .run(&p, &options, &limits(3), &mut r2, &mut u2, &mut |_| {})
+                .unwrap();
+            assert_eq!(o.iterations, 3);
+        }
+        assert_eq!(r1, r2);
+        // The next step takes the shift the state holds: one step from a held shift x is one
+        // step of the fixed shift x; restarted, it is the rule's sigma * error again.
+        let held = 0.37;
+        let fixed = ProxOptions {
+            alpha: -held,
+            ..options
+        };
+        let (mut r3, mut u3) = (vec![0.0; n], vec![0.0; n]);
+        prox(&p, &fixed, &limits(1), &mut r3, &mut u3, &mut |_| {}).unwrap();
+        for restart in [false, true] {
+            state.shift = Some(held);
+            if restart {
+                state.restart();
+            }
+            let (mut r4, mut u4) = (vec![0.0; n], vec![0.0; n]);
+            state
+                .run(&p, &options, &limits(1), &mut r4, &mut u4, &mut |_| {})
+                .unwrap();
+            assert_eq!(r3 == r4, !restart, "restart {restart}");
+        }
+        // A kept Newton matrix for the same pattern is taken over.
+        let newton = state.into_newton();
+        assert!(newton.is_some());
+        assert!(ProxState::reusing(&p, &options, newton).unwrap().1);
+    }
 
     #[test]
     fn shifted_keeps_the_storage_and_adds_to_the_diagonal() {
