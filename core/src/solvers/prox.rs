@@ -214,7 +214,7 @@ fn prox(
         }
     }
     let (mut state, _) = ProxState::reusing(problem, options, None)?;
-    state.iterate(problem, options, &run, r, u, observer)
+    state.run(problem, options, &run, r, u, observer)
 }
 
 /// The proximal iteration between calls: the Newton solver of the regularized problems (its
@@ -266,20 +266,8 @@ impl ProxState {
         self.newton
     }
 
-    /// Runs PROX with `options` (those the state was built with) in `limits`.
+    /// Runs PROX with `options` (those the state was built with) in `run`'s limits.
     pub(crate) fn run(
-        &mut self,
-        problem: &FrictionProblem<'_>,
-        options: &ProxOptions,
-        limits: &Limits,
-        r: &mut [f64],
-        u: &mut [f64],
-        observer: &mut Observer<'_>,
-    ) -> Result<SolverOutcome, Fc3dError> {
-        self.iterate(problem, options, &limits.start(), r, u, observer)
-    }
-
-    fn iterate(
         &mut self,
         problem: &FrictionProblem<'_>,
         options: &ProxOptions,
@@ -417,7 +405,14 @@ mod tests {
         let (mut r2, mut u2) = (vec![0.0; n], vec![0.0; n]);
         for _ in 0..2 {
             let o = state
-                .run(&p, &options, &limits(3), &mut r2, &mut u2, &mut |_| {})
+                .run(
+                    &p,
+                    &options,
+                    &limits(3).start(),
+                    &mut r2,
+                    &mut u2,
+                    &mut |_| {},
+                )
                 .unwrap();
             assert_eq!(o.iterations, 3);
         }
@@ -438,7 +433,14 @@ mod tests {
             }
             let (mut r4, mut u4) = (vec![0.0; n], vec![0.0; n]);
             state
-                .run(&p, &options, &limits(1), &mut r4, &mut u4, &mut |_| {})
+                .run(
+                    &p,
+                    &options,
+                    &limits(1).start(),
+                    &mut r4,
+                    &mut u4,
+                    &mut |_| {},
+                )
                 .unwrap();
             assert_eq!(r3 == r4, !restart, "restart {restart}");
         }
