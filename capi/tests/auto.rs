@@ -4,35 +4,13 @@
 //! stages taken; with tolerance 0 and a budget it is an anytime solve.
 
 use std::ffi::CString;
-use std::os::raw::{c_char, c_double, c_int};
+use std::os::raw::c_int;
 
-use fc3d::types::{FrictionContactProblem, SolverOptions};
+use fc3d::types::SolverOptions;
 use fc3d::{FC3D_AUTO, FC3D_DPARAM_TIME_BUDGET, FC3D_IPARAM_AUTO_STAGES};
 
-extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_name_to_id(name: *const c_char) -> c_int;
-    fn solver_options_id_to_name(id: c_int) -> *const c_char;
-    fn frictionContact_new_from_filename(path: *const c_char) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(p: *mut FrictionContactProblem);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_compute_error(
-        p: *mut FrictionContactProblem,
-        z: *mut c_double,
-        w: *mut c_double,
-        tol: c_double,
-        o: *mut SolverOptions,
-        norm: c_double,
-        e: *mut c_double,
-    ) -> c_int;
-    fn free(p: *mut std::ffi::c_void);
-}
+mod siconos_api;
+use siconos_api::*;
 
 fn shared(name: &str) -> CString {
     CString::new(format!(

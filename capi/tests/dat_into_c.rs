@@ -7,7 +7,7 @@
 
 #![cfg(feature = "siconos-abi")]
 
-use std::ffi::{c_char, CString};
+use std::ffi::CString;
 use std::io::Write;
 use std::os::fd::FromRawFd;
 use std::path::{Path, PathBuf};
@@ -16,10 +16,11 @@ use fc3d::types::FrictionContactProblem;
 use fc3d_core::io::dat::{read_dat_file_any, DatProblem};
 use fc3d_core::Delassus;
 
+mod siconos_api;
+use siconos_api::*;
+
 extern "C" {
     fn frictionContact_newFromFile(file: *mut libc::FILE) -> *mut FrictionContactProblem;
-    fn frictionContact_new_from_filename(filename: *const c_char) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(problem: *mut FrictionContactProblem);
 }
 
 fn shared(name: &str) -> PathBuf {

@@ -5,26 +5,14 @@
 //! either solves a one-contact problem or refuses the id with FC3D_ERR_UNSUPPORTED_SOLVER and a
 //! message naming the id and the solver, writing nothing.
 
-use std::ffi::{c_char, CStr};
-use std::os::raw::{c_double, c_int};
+use std::ffi::CStr;
+use std::os::raw::c_int;
 
-use fc3d::types::{FrictionContactProblem, NumericsMatrix, SolverOptions};
+use fc3d::types::{FrictionContactProblem, NumericsMatrix};
 use fc3d::FC3D_ERR_UNSUPPORTED_SOLVER;
 
-extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_id_to_name(id: c_int) -> *const c_char;
-    fn solver_options_name_to_id(name: *const c_char) -> c_int;
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_last_error_message() -> *const c_char;
-    fn free(p: *mut std::ffi::c_void);
-}
+mod siconos_api;
+use siconos_api::*;
 
 /// The enumerators of `enum <name>` in a compat header, with their values.
 fn enumerators(header: &str, name: &str) -> Vec<(String, c_int)> {

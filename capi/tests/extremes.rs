@@ -11,34 +11,15 @@
 #[path = "../../core/tests/common/mod.rs"]
 mod common;
 
-use std::os::raw::{c_double, c_int};
+use std::os::raw::c_int;
 use std::time::Instant;
 
 use common::extremes::extreme_problems;
 use fc3d::types::{FrictionContactProblem, NumericsMatrix, SolverOptions};
 use fc3d_core::FrictionProblem;
 
-extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_update_internal(parent: *mut SolverOptions, n: usize, id: c_int);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_compute_error(
-        p: *mut FrictionContactProblem,
-        z: *mut c_double,
-        w: *mut c_double,
-        tol: c_double,
-        o: *mut SolverOptions,
-        norm: c_double,
-        e: *mut c_double,
-    ) -> c_int;
-    fn free(p: *mut std::ffi::c_void);
-}
+mod siconos_api;
+use siconos_api::*;
 
 const FC3D_ERR_UNSUPPORTED_SOLVER: c_int = fc3d::FC3D_ERR_UNSUPPORTED_SOLVER;
 const BUDGET: f64 = 0.5;

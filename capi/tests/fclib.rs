@@ -25,6 +25,9 @@ const SICONOS_FCLIB_SUCCESS: c_int = 1;
 use fc3d_core::io::{read_problem_file, write_dat_file, FCLIB_AVAILABLE};
 use fc3d_core::matrix::Delassus;
 
+mod siconos_api;
+use siconos_api::*;
+
 extern "C" {
     fn frictionContact_fclib_read(path: *const c_char) -> *mut FrictionContactProblem;
     fn frictionContact_fclib_write(
@@ -35,15 +38,10 @@ extern "C" {
         path: *const c_char,
         ndof: c_int,
     ) -> c_int;
-    fn frictionContact_new_from_filename(filename: *const c_char) -> *mut FrictionContactProblem;
     fn frictionContact_printInFilename(
         problem: *mut FrictionContactProblem,
         filename: *mut c_char,
     ) -> c_int;
-    fn frictionContactProblem_free(problem: *mut FrictionContactProblem);
-    fn fc3d_last_error_code() -> c_int;
-    fn fc3d_last_error_message() -> *const c_char;
-    fn fc3d_clear_last_error();
 }
 
 const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/siconos");

@@ -26,9 +26,11 @@ use fc3d::{
     FC3D_ERR_PARSE,
 };
 
+mod siconos_api;
+use siconos_api::*;
+
 extern "C" {
     fn frictionContact_newFromFile(file: *mut libc::FILE) -> *mut FrictionContactProblem;
-    fn frictionContact_new_from_filename(filename: *const c_char) -> *mut FrictionContactProblem;
     fn frictionContact_printInFile(
         problem: *mut FrictionContactProblem,
         file: *mut libc::FILE,
@@ -37,16 +39,12 @@ extern "C" {
         problem: *mut FrictionContactProblem,
         filename: *mut c_char,
     ) -> c_int;
-    fn frictionContactProblem_free(problem: *mut FrictionContactProblem);
     fn NM_new_from_file(file: *mut libc::FILE) -> *mut NumericsMatrix;
     fn NM_new_from_filename(filename: *const c_char) -> *mut NumericsMatrix;
     fn NM_write_in_file(m: *const NumericsMatrix, file: *mut libc::FILE);
     fn NM_free(m: *mut NumericsMatrix) -> *mut NumericsMatrix;
     fn SBM_new_from_file(file: *mut libc::FILE) -> *mut SparseBlockStructuredMatrix;
     fn SBM_clear(m: *mut SparseBlockStructuredMatrix);
-    fn fc3d_last_error_code() -> c_int;
-    fn fc3d_last_error_message() -> *const c_char;
-    fn fc3d_clear_last_error();
 }
 
 const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/siconos");

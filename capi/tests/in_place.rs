@@ -4,26 +4,17 @@
 
 #![cfg(feature = "siconos-abi")]
 
-use std::ffi::{c_char, CString};
+use std::ffi::CString;
 use std::os::raw::{c_double, c_int};
 use std::path::{Path, PathBuf};
 
 use fc3d::types::{FrictionContactProblem, SolverOptions};
 use fc3d::{FC3D_ERR_INVALID_STORAGE, FC3D_ERR_NON_FINITE};
 
+mod siconos_api;
+use siconos_api::*;
+
 extern "C" {
-    fn frictionContact_new_from_filename(filename: *const c_char) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(problem: *mut FrictionContactProblem);
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn free(p: *mut std::ffi::c_void);
-    fn fc3d_last_error_message() -> *const c_char;
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
     fn fc3d_driver_in_place(
         p: *mut FrictionContactProblem,
         r: *mut c_double,

@@ -14,9 +14,8 @@ include!("../../fuzz/fuzz_targets/options_case.rs");
 
 use std::time::{Duration, Instant};
 
-extern "C" {
-    fn calloc(n: usize, size: usize) -> *mut std::ffi::c_void;
-}
+mod siconos_api;
+use siconos_api::*;
 
 /// A solver as a host sets it up: a top-level id and, where it has one, the id of internal
 /// solver 0 (set with `solver_options_update_internal`, or by overwriting `solverId` for the

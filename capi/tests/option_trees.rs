@@ -26,6 +26,9 @@ use std::ptr::null_mut;
 use fc3d::types::{Callback, FrictionContactProblem, NumericsMatrix, SolverOptions};
 use fc3d::FC3D_ERR_INVALID_OPTION;
 
+mod siconos_api;
+use siconos_api::*;
+
 /// The limits of `fc3d.h` (checked against the header below).
 const FC3D_OPTIONS_MAX_DEPTH: c_int = 8;
 const FC3D_OPTIONS_MAX_INTERNAL_SOLVERS: c_int = 16;
@@ -51,23 +54,9 @@ fn the_limits_are_the_headers() {
 }
 
 extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
     fn solver_options_copy(o: *mut SolverOptions) -> *mut SolverOptions;
     fn solver_options_print(o: *mut SolverOptions);
-    fn solver_options_update_internal(parent: *mut SolverOptions, n: usize, id: c_int);
     fn solver_options_set_internal_solver(o: *mut SolverOptions, n: usize, s: *mut SolverOptions);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_last_error_message() -> *const std::ffi::c_char;
-    fn fc3d_last_error_code() -> c_int;
-    fn fc3d_clear_last_error();
-    fn calloc(n: usize, size: usize) -> *mut c_void;
-    fn free(p: *mut c_void);
 }
 
 fn message() -> String {

@@ -4,26 +4,13 @@
 //! Siconos itself (501). The figures compared with the installed Siconos are in the README ("Solver ids").
 
 use std::ffi::{CStr, CString};
-use std::os::raw::{c_char, c_double, c_int};
+use std::os::raw::c_int;
 
-use fc3d::types::{FrictionContactProblem, SolverOptions};
+use fc3d::types::SolverOptions;
 use fc3d::{FC3D_IPARAM_VARIANT, FC3D_VARIANT_FC3D, FC3D_VARIANT_SICONOS};
 
-extern "C" {
-    fn frictionContact_new_from_filename(f: *const c_char) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(p: *mut FrictionContactProblem);
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_update_internal(parent: *mut SolverOptions, n: usize, id: c_int);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_last_error_message() -> *const c_char;
-    fn free(p: *mut std::ffi::c_void);
-}
+mod siconos_api;
+use siconos_api::*;
 
 const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/siconos/");
 const VARIANT: usize = FC3D_IPARAM_VARIANT as usize;

@@ -17,22 +17,14 @@ use std::ffi::{c_char, c_void, CStr, CString};
 use std::os::raw::{c_double, c_int};
 use std::path::PathBuf;
 
-use fc3d::types::{FrictionContactProblem, SolverOptions};
+use fc3d::types::FrictionContactProblem;
 use fc3d::{Fc3dResult, FC3D_ERR_INVALID_OPTION};
 
+mod siconos_api;
+use siconos_api::*;
+
 extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_update_internal(parent: *mut SolverOptions, n: usize, id: c_int);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn frictionContact_new_from_filename(path: *const c_char) -> *mut FrictionContactProblem;
     fn frictionContact_newFromFile(file: *mut c_void) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(p: *mut FrictionContactProblem);
     fn fc3d_problem_read(path: *const c_char) -> *mut c_void;
     fn fc3d_problem_free(p: *mut c_void);
     fn fc3d_problem_contacts(p: *const c_void) -> i64;
@@ -56,10 +48,8 @@ extern "C" {
     fn fc3d_settings_free(s: *mut c_void);
     fn fc3d_settings_set_max_iter(s: *mut c_void, m: i64) -> c_int;
     fn fc3d_settings_set_tolerance(s: *mut c_void, t: c_double) -> c_int;
-    fn fc3d_last_error_message() -> *const c_char;
     fn fopen(path: *const c_char, mode: *const c_char) -> *mut c_void;
     fn fclose(f: *mut c_void) -> c_int;
-    fn free(p: *mut c_void);
 }
 
 const SMALL_STACK: usize = 256 << 10;

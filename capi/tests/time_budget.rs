@@ -6,34 +6,13 @@
 //! the run ends so), and `dparam[1]` equal to `fc3d_compute_error` of the returned reaction.
 
 use std::ffi::CString;
-use std::os::raw::{c_char, c_double, c_int};
+use std::os::raw::c_int;
 use std::time::{Duration, Instant};
 
-use fc3d::types::{FrictionContactProblem, SolverOptions};
+use fc3d::types::SolverOptions;
 
-extern "C" {
-    fn solver_options_create(id: c_int) -> *mut SolverOptions;
-    fn solver_options_delete(o: *mut SolverOptions);
-    fn solver_options_update_internal(parent: *mut SolverOptions, n: usize, id: c_int);
-    fn frictionContact_new_from_filename(path: *const c_char) -> *mut FrictionContactProblem;
-    fn frictionContactProblem_free(p: *mut FrictionContactProblem);
-    fn fc3d_driver(
-        p: *mut FrictionContactProblem,
-        r: *mut c_double,
-        u: *mut c_double,
-        o: *mut SolverOptions,
-    ) -> c_int;
-    fn fc3d_compute_error(
-        p: *mut FrictionContactProblem,
-        z: *mut c_double,
-        w: *mut c_double,
-        tol: c_double,
-        o: *mut SolverOptions,
-        norm: c_double,
-        e: *mut c_double,
-    ) -> c_int;
-    fn free(p: *mut std::ffi::c_void);
-}
+mod siconos_api;
+use siconos_api::*;
 
 const BUDGET: f64 = 0.05;
 
