@@ -43,7 +43,6 @@ struct Totals {
     iterations: usize,
     max_error: f64,
     not_converged: usize,
-    steps: usize,
 }
 
 /// How each step is solved.
@@ -66,9 +65,8 @@ fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
         iterations: 0,
         max_error: 0.0,
         not_converged: 0,
-        steps: 0,
     };
-    for step in &seq.steps {
+    for (k, step) in seq.steps.iter().enumerate() {
         let n = step.problem.size();
         let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
         let start = Instant::now();
@@ -99,7 +97,7 @@ fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
             });
             eprintln!(
                 "step {} contacts {} {:.1} ms it {} err {:.1e} rule {:?} {}",
-                t.steps,
+                k,
                 step.ids.len(),
                 1e3 * elapsed,
                 report.iterations,
@@ -108,7 +106,6 @@ fn run(seq: &Sequence, config: &SolverConfig, mode: Mode) -> Totals {
                 stages.unwrap_or_default()
             );
         }
-        t.steps += 1;
         t.iterations += report.iterations;
         t.max_error = t.max_error.max(report.error);
         t.not_converged += usize::from(!report.converged());

@@ -214,7 +214,7 @@ fn prox(
         }
     }
     let (mut state, _) = ProxState::reusing(problem, options, None)?;
-    state.run(problem, options, &run, r, u, observer)
+    state.run(problem, &run, r, u, observer)
 }
 
 /// The proximal iteration between calls: the Newton solver of the regularized problems (its
@@ -222,6 +222,7 @@ fn prox(
 /// PROX in chunks through one state, so a chunk goes on where the last one stopped instead of
 /// starting over (analysis and shift rule) from its iterate.
 pub(crate) struct ProxState {
+    options: ProxOptions,
     newton: Option<NewtonSolver>,
     shifted_q: Vec<f64>,
     /// The shift of the next proximal step; `None`: from the shift rule at the first step.
@@ -229,9 +230,9 @@ pub(crate) struct ProxState {
 }
 
 impl ProxState {
-    /// The state for `problem`, taking over `kept`'s Newton matrix and symbolic factorization
-    /// when W's block pattern is the one it was built for (see [`NewtonSolver::reusing`]);
-    /// whether it did.
+    /// The state of PROX with `options` on `problem`, taking over `kept`'s Newton matrix and
+    /// symbolic factorization when W's block pattern is the one it was built for (see
+    /// [`NewtonSolver::reusing`]); whether it did.
     pub(crate) fn reusing(
         problem: &FrictionProblem<'_>,
         options: &ProxOptions,
@@ -248,6 +249,7 @@ impl ProxState {
         let shifted_q = crate::error::try_vec(problem.size(), 0.0, "proximal right-hand side")?;
         Ok((
             ProxState {
+                options: *options,
                 newton,
                 shifted_q,
                 shift: None,
@@ -266,16 +268,16 @@ impl ProxState {
         self.newton
     }
 
-    /// Runs PROX with `options` (those the state was built with) in `run`'s limits.
+    /// Runs PROX with the state's options in `run`'s limits.
     pub(crate) fn run(
         &mut self,
         problem: &FrictionProblem<'_>,
-        options: &ProxOptions,
         run: &Run,
         r: &mut [f64],
         u: &mut [f64],
         observer: &mut Observer<'_>,
     ) -> Result<SolverOutcome, Fc3dError> {
+        let options = self.options;
         let internal_max_iter = options.internal_max_iter();
         let mut error = natural_map_error(problem, r, u);
         let mut best = BestIterate::new(r, error);
@@ -405,14 +407,7 @@ mod tests {
         let (mut r2, mut u2) = (vec![0.0; n], vec![0.0; n]);
         for _ in 0..2 {
             let o = state
-                .run(
-                    &p,
-                    &options,
-                    &limits(3).start(),
-                    &mut r2,
-                    &mut u2,
-                    &mut |_| {},
-                )
+                .run(&p, &limits(3).start(), &mut r2, &mut u2, &mut |_| {})
                 .unwrap();
             assert_eq!(o.iterations, 3);
         }
@@ -433,14 +428,7 @@ mod tests {
             }
             let (mut r4, mut u4) = (vec![0.0; n], vec![0.0; n]);
             state
-                .run(
-                    &p,
-                    &options,
-                    &limits(1).start(),
-                    &mut r4,
-                    &mut u4,
-                    &mut |_| {},
-                )
+                .run(&p, &limits(1).start(), &mut r4, &mut u4, &mut |_| {})
                 .unwrap();
             assert_eq!(r3 == r4, !restart, "restart {restart}");
         }

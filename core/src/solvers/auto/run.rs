@@ -262,7 +262,7 @@ pub(crate) fn auto_with<'a>(
                 Prox => {
                     let state = prox.as_mut().expect("built above");
                     let l = stage_limits(tolerance, chunk, stage_deadline);
-                    let o = state.run(problem, &prox_options, &l.start(), r, u, &mut shifted)?;
+                    let o = state.run(problem, &l.start(), r, u, &mut shifted)?;
                     fill = Fill::largest(fill, o.fill);
                     (o.iterations, o.final_error, o.out_of_time)
                 }
