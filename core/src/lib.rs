@@ -20,6 +20,7 @@ pub mod config;
 pub mod contract;
 pub mod diagnostics;
 pub mod error;
+pub mod global;
 pub mod io;
 pub mod local;
 pub mod math;

@@ -22,6 +22,7 @@ const LAYERS: &[(&str, usize)] = &[
     ("config", 8),
     ("solve", 9),
     ("workspace", 10),
+    ("global", 10),
 ];
 
 fn layer(module: &str) -> usize {

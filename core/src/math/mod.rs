@@ -7,4 +7,5 @@ pub mod linalg;
 pub mod lu_cost;
 pub mod lu_fill;
 pub mod rolling;
+pub mod sparse_lu;
 pub mod step;

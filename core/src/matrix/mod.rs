@@ -13,12 +13,16 @@ mod block_rows;
 mod block_sparse;
 mod csr;
 mod dense;
+mod hform;
+mod mass;
 pub(crate) mod storage;
 
 pub use block_rows::BlockRows;
 pub use block_sparse::BlockSparseMatrix;
 pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
+pub use hform::{transpose, transpose_mul_add, HForm};
+pub use mass::{MassFactor, DENSE_BLOCK_MAX};
 pub use storage::{BlockValues, Shared};
 
 use crate::error::Fc3dError;

@@ -1,0 +1,102 @@
+//! Which global solver runs ([`GlobalMethod`], Siconos' gfc3d ids) and how far
+//! ([`GlobalConfig`]: tolerance, iteration limit, time budget).
+
+use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
+use crate::error::Fc3dError;
+use crate::solvers::rolling::RollingMethod;
+
+/// A global solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GlobalMethod {
+    /// Reduce to the local problem FC(H^T M^-1 H, H^T M^-1 q + b, mu) (W assembled block-sparse
+    /// through a factorization of M, see [`crate::matrix::HForm`]), solve it with a local
+    /// method, then `v = M^-1 (q + H r)`: Siconos' `_WR` ids with their local solver, 600
+    /// NSGS_WR (NSGS 500), 602 PROX_WR (PROX 502), 603 DSFP_WR (DSFP 505), 604 TFP_WR (TFP 503),
+    /// 606 NSN_AC_WR (NSN-AC 504), 614 ADMM_WR (ADMM 523); any other local method (AUTO
+    /// included) works the same way.
+    Reduced(Method),
+}
+
+/// The global id of Siconos' `_WR` solver built on each local id.
+const REDUCED_IDS: [(i32, i32); 6] = [
+    (500, 600),
+    (502, 602),
+    (505, 603),
+    (503, 604),
+    (504, 606),
+    (523, 614),
+];
+
+impl GlobalMethod {
+    /// Siconos' id (600-615); a reduction over a local method Siconos has no `_WR` id for
+    /// keeps the local id.
+    pub fn siconos_id(&self) -> i32 {
+        match self {
+            GlobalMethod::Reduced(m) => {
+                let local = m.siconos_id();
+                REDUCED_IDS
+                    .iter()
+                    .find(|(l, _)| *l == local)
+                    .map_or(local, |(_, g)| *g)
+            }
+        }
+    }
+
+    /// The local id a `_WR` id reduces to (600 -> 500, ...), `None` for the other ids.
+    pub fn reduced_local_id(global_id: i32) -> Option<i32> {
+        REDUCED_IDS
+            .iter()
+            .find(|(_, g)| *g == global_id)
+            .map(|(l, _)| *l)
+    }
+
+    /// Short label for tables: `WR-NSGS/565`, ...
+    pub fn label(&self) -> String {
+        match self {
+            GlobalMethod::Reduced(m) => format!("WR-{}", m.label()),
+        }
+    }
+
+    /// Siconos' default `(tolerance, max_iter)` for the id (a `_WR` id takes its local
+    /// solver's).
+    pub fn default_limits(&self) -> (f64, usize) {
+        match self {
+            GlobalMethod::Reduced(m) => m.default_limits(),
+        }
+    }
+
+    pub fn validate(&self) -> Result<(), Fc3dError> {
+        match self {
+            GlobalMethod::Reduced(m) => m.family().validate(),
+        }
+    }
+}
+
+impl MethodChoice for GlobalMethod {
+    fn default_limits(&self) -> (f64, usize) {
+        GlobalMethod::default_limits(self)
+    }
+    fn validate(&self) -> Result<(), Fc3dError> {
+        GlobalMethod::validate(self)
+    }
+}
+
+/// Which global solver to run and how far.
+///
+/// ```
+/// use fc3d_core::global::{GlobalConfig, GlobalMethod};
+/// use fc3d_core::{Method, NsgsOptions};
+/// let config = GlobalConfig::new(GlobalMethod::Reduced(Method::Nsgs(NsgsOptions::default())));
+/// assert_eq!((config.tolerance, config.max_iter), (1e-4, 1000));
+/// assert_eq!(config.method.siconos_id(), 600);
+/// ```
+pub type GlobalConfig = MethodConfig<GlobalMethod>;
+
+/// The global rolling solver: Siconos' 5000 (`GFC3D_NSGS_WR` for rolling problems) reduces to
+/// the local rolling problem and runs a rolling method (rolling NSGS 3000 by default).
+pub type GlobalRollingConfig = RollingConfig;
+
+/// The rolling method Siconos' id 5000 runs on the reduced problem.
+pub fn global_rolling_default() -> RollingMethod {
+    RollingMethod::Nsgs(Default::default())
+}

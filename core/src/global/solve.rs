@@ -1,0 +1,238 @@
+//! The entry point of a global solve: input checks, the case without contacts, the dispatch,
+//! and the report of the global error of the returned `(r, u, v)` measured on the host's M and
+//! H.
+
+use std::time::{Duration, Instant};
+
+use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
+use super::measure::{global_error, global_rolling_error, ContactLaw};
+use super::problem::{GlobalProblem, GlobalRollingProblem};
+use crate::config::SolverConfig;
+use crate::contract::{SolveReport, SolveStatus};
+use crate::error::{check_finite, Fc3dError};
+use crate::matrix::HForm;
+use crate::solve::{solve, solve_rolling};
+
+/// What a global solve returns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GlobalReport {
+    pub status: SolveStatus,
+    /// Iterations of the method (for a reduction: of its local solves, all rounds).
+    pub iterations: usize,
+    /// Siconos' global error ([`super::global_error`], Coulomb's law) of the returned
+    /// `(r, u, v)`, measured on the host's M and H.
+    pub error: f64,
+    /// For a reduction, the last local solve's report (its error is the local problem's).
+    pub local: Option<SolveReport>,
+}
+
+impl GlobalReport {
+    pub fn converged(&self) -> bool {
+        self.status == SolveStatus::Converged
+    }
+}
+
+/// The host's arrays: `r`, `u` of the problem's size, `v` of M's size, a finite initial `r`.
+fn check_arrays(
+    size: usize,
+    ndof: usize,
+    r: &[f64],
+    u: &[f64],
+    v: &[f64],
+) -> Result<(), Fc3dError> {
+    if r.len() != size {
+        return Err(Fc3dError::dims("reaction", size, r.len()));
+    }
+    if u.len() != size {
+        return Err(Fc3dError::dims("velocity", size, u.len()));
+    }
+    if v.len() != ndof {
+        return Err(Fc3dError::dims("global velocity", ndof, v.len()));
+    }
+    check_finite("initial reaction", r)
+}
+
+/// Solves the global problem from the reaction in `r`; on success `r`, `u = H^T v + b` and
+/// `v` (`M v = q + H r` to round-off) hold the result and the report holds its global error.
+/// M is factored once (block by block when it is block diagonal); neither M nor H is
+/// modified.
+///
+/// On an `Err` found before the run (dimensions, settings, a singular M), the arrays are left
+/// untouched; later errors may leave intermediate values in them (the C API solves into
+/// copies).
+pub fn solve_global(
+    problem: &GlobalProblem<'_>,
+    config: &GlobalConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+) -> Result<GlobalReport, Fc3dError> {
+    check_arrays(problem.size(), problem.ndof(), r, u, v)?;
+    config.validate()?;
+    let mut operator = problem.operator()?;
+    if problem.n_contacts() == 0 {
+        return Ok(without_contacts(
+            &mut operator,
+            problem.q(),
+            v,
+            |v| global_error(problem, ContactLaw::Coulomb, &[], &mut [], v),
+            config.tolerance,
+        ));
+    }
+    match &config.method {
+        GlobalMethod::Reduced(method) => {
+            let local = problem.reduce(&mut operator)?;
+            reduced(
+                config.tolerance,
+                config.max_iter,
+                config.time_budget,
+                r,
+                u,
+                |limits, r, u| {
+                    let local_config = SolverConfig {
+                        tolerance: limits.0,
+                        max_iter: limits.1,
+                        time_budget: limits.2,
+                        ..SolverConfig::new(*method)
+                    };
+                    solve(&local, &local_config, r, u)
+                },
+                |r, u| {
+                    operator.global_velocity(problem.q(), r, v);
+                    global_error(problem, ContactLaw::Coulomb, r, u, v)
+                },
+            )
+        }
+    }
+}
+
+/// Solves a global rolling problem (Siconos' 5000): the reduction to the local rolling problem,
+/// `config`'s rolling method on it, and the rolling global error
+/// ([`super::global_rolling_error`]).
+pub fn solve_global_rolling(
+    problem: &GlobalRollingProblem<'_>,
+    config: &GlobalRollingConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+) -> Result<GlobalReport, Fc3dError> {
+    let base = problem.base();
+    check_arrays(base.size(), base.ndof(), r, u, v)?;
+    config.validate()?;
+    let mut operator = base.operator()?;
+    if base.n_contacts() == 0 {
+        return Ok(without_contacts(
+            &mut operator,
+            base.q(),
+            v,
+            |v| global_rolling_error(problem, &[], &mut [], v),
+            config.tolerance,
+        ));
+    }
+    let local = problem.reduce(&mut operator)?;
+    let method = config.method;
+    reduced(
+        config.tolerance,
+        config.max_iter,
+        config.time_budget,
+        r,
+        u,
+        |limits, r, u| {
+            let local_config = GlobalRollingConfig {
+                tolerance: limits.0,
+                max_iter: limits.1,
+                time_budget: limits.2,
+                method,
+            };
+            solve_rolling(&local, &local_config, r, u)
+        },
+        |r, u| {
+            operator.global_velocity(base.q(), r, v);
+            global_rolling_error(problem, r, u, v)
+        },
+    )
+}
+
+/// A problem without contacts: `v = M^-1 q`.
+fn without_contacts(
+    operator: &mut HForm,
+    q: &[f64],
+    v: &mut [f64],
+    error_of: impl FnOnce(&[f64]) -> f64,
+    tolerance: f64,
+) -> GlobalReport {
+    v.copy_from_slice(q);
+    operator.solve_mass(v);
+    let error = error_of(v);
+    GlobalReport {
+        status: if error <= tolerance {
+            SolveStatus::Converged
+        } else {
+            SolveStatus::MaxIterationsReached
+        },
+        iterations: 0,
+        error,
+        local: None,
+    }
+}
+
+/// The local limits of one round of a reduction: tolerance, iterations, budget.
+type LocalLimits = (f64, usize, Option<Duration>);
+
+/// Solves the reduced problem, recovers v and measures the global error; while the local
+/// solve converged but the global error is above the tolerance (the two normalise the same
+/// residual differently: the global one by `max(||u||, ||r||)`, the local one also by
+/// `||q_loc||`, and adds the balance term), solves again from the result with a tolerance
+/// lowered in the ratio of the two errors, within the iteration limit and the budget.
+fn reduced(
+    tolerance: f64,
+    max_iter: usize,
+    time_budget: Option<Duration>,
+    r: &mut [f64],
+    u: &mut [f64],
+    mut solve_local: impl FnMut(LocalLimits, &mut [f64], &mut [f64]) -> Result<SolveReport, Fc3dError>,
+    mut measure: impl FnMut(&[f64], &mut [f64]) -> f64,
+) -> Result<GlobalReport, Fc3dError> {
+    let start = Instant::now();
+    let mut local_tolerance = tolerance;
+    let mut iterations = 0;
+    loop {
+        let budget = time_budget.map(|b| {
+            b.saturating_sub(start.elapsed())
+                .max(Duration::from_nanos(1))
+        });
+        let report = solve_local((local_tolerance, max_iter - iterations, budget), r, u)?;
+        iterations += report.iterations;
+        let error = measure(r, u);
+        let out_of_time = time_budget.is_some_and(|b| start.elapsed() >= b);
+        let tighten = report.converged()
+            && error > tolerance
+            && error.is_finite()
+            && iterations < max_iter
+            && !out_of_time
+            && local_tolerance > f64::EPSILON;
+        if !tighten {
+            let status = if error <= tolerance {
+                SolveStatus::Converged
+            } else if report.converged() {
+                if out_of_time {
+                    SolveStatus::TimeBudgetExhausted
+                } else {
+                    SolveStatus::MaxIterationsReached
+                }
+            } else {
+                report.status
+            };
+            return Ok(GlobalReport {
+                status,
+                iterations,
+                error,
+                local: Some(report),
+            });
+        }
+        // The local error measured on the returned pair is at most the local tolerance;
+        // aim below the global tolerance by the ratio seen, with a margin.
+        let ratio = (report.error.max(f64::MIN_POSITIVE) / error).min(1.0);
+        local_tolerance = (0.5 * tolerance * ratio).min(0.5 * local_tolerance);
+    }
+}
