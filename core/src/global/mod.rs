@@ -2,7 +2,8 @@
 //! `M v = q + H r`, `u = H^T v + b` and the contact law between u and r. The host's M and H are
 //! never modified; every reported error is Siconos' global error measured on them.
 //!
-//! * [`GlobalProblem`], [`GlobalRollingProblem`]: the data, validated;
+//! * [`GlobalProblem`], [`GlobalRollingProblem`]: the data, validated (in `problem`, so that
+//!   readers and scenes can build them);
 //! * [`GlobalConfig`], [`GlobalMethod`]: which solver (Siconos' ids 600-615, 5000) and how far;
 //! * [`solve_global`], [`solve_global_rolling`]: the solve and its [`GlobalReport`];
 //! * [`global_error`]: Siconos' `gfc3d_compute_error` (and its convex variant).
@@ -11,11 +12,11 @@
 //! with M factored block by block, never a dense inverse).
 
 mod config;
-mod measure;
-mod problem;
 mod solve;
 
+pub use crate::measure::{
+    global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork,
+};
+pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
-pub use measure::{global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork};
-pub use problem::{GlobalProblem, GlobalRollingProblem};
 pub use solve::{solve_global, solve_global_rolling, GlobalReport};

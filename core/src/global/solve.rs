@@ -5,12 +5,12 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
-use super::measure::{global_error, global_rolling_error, ContactLaw};
-use super::problem::{GlobalProblem, GlobalRollingProblem};
 use crate::config::SolverConfig;
 use crate::contract::{SolveReport, SolveStatus};
 use crate::error::{check_finite, Fc3dError};
 use crate::matrix::HForm;
+use crate::measure::{global_error, global_rolling_error, ContactLaw};
+use crate::problem::{GlobalProblem, GlobalRollingProblem};
 use crate::solve::{solve, solve_rolling};
 
 /// What a global solve returns.
@@ -19,7 +19,7 @@ pub struct GlobalReport {
     pub status: SolveStatus,
     /// Iterations of the method (for a reduction: of its local solves, all rounds).
     pub iterations: usize,
-    /// Siconos' global error ([`super::global_error`], Coulomb's law) of the returned
+    /// Siconos' global error ([`global_error`], Coulomb's law) of the returned
     /// `(r, u, v)`, measured on the host's M and H.
     pub error: f64,
     /// For a reduction, the last local solve's report (its error is the local problem's).
@@ -108,7 +108,7 @@ pub fn solve_global(
 
 /// Solves a global rolling problem (Siconos' 5000): the reduction to the local rolling problem,
 /// `config`'s rolling method on it, and the rolling global error
-/// ([`super::global_rolling_error`]).
+/// ([`global_rolling_error`]).
 pub fn solve_global_rolling(
     problem: &GlobalRollingProblem<'_>,
     config: &GlobalRollingConfig,

@@ -8,13 +8,12 @@
 //! `gfc3d_compute_error_convex` drops the De Saxcé term: the error of the convex relaxation
 //! (the associated law, `u ∈ K*`), which Siconos' IPM and ADMM report with `UPDATE_S = NO`.
 
+use super::contact_residual_sq_d;
 use crate::math::cone::project_on_cone;
 use crate::math::linalg::{contact_of, norm};
 use crate::math::rolling::rolling_residual_sq;
 use crate::matrix::transpose_mul_add;
-use crate::measure::contact_residual_sq_d;
-
-use super::problem::{GlobalProblem, GlobalRollingProblem};
+use crate::problem::{GlobalProblem, GlobalRollingProblem};
 
 /// The contact law a global error measures.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,6 +6,10 @@
 //!
 //! (the normalisation falls back to 1 when all three norms are zero).
 
+mod global;
+
+pub use global::{global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork};
+
 use crate::math::cone::{
     modified_velocity, modified_velocity_d, project_on_cone, project_on_cone_d,
 };

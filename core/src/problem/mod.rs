@@ -3,6 +3,10 @@
 //! tangential component, Siconos' `fc2d` problems). The dimension is a type parameter, so that
 //! every 3D path keeps its fixed 3x3 kernels and a 2D problem cannot reach a 3D-only solver.
 
+mod global;
+
+pub use global::{GlobalProblem, GlobalRollingProblem};
+
 use std::borrow::Cow;
 
 use crate::error::{check_finite, Fc3dError};

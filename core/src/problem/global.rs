@@ -10,9 +10,9 @@
 
 use std::borrow::Cow;
 
+use super::{FrictionProblem, RollingProblem};
 use crate::error::{check_finite, Fc3dError};
 use crate::matrix::{CsrMatrix, HForm};
-use crate::problem::{FrictionProblem, RollingProblem};
 
 /// `M` (`ndof x ndof`, invertible), `H` (`ndof x D nc`), `q` (`ndof`), `b` (`D nc`), `mu` (`nc`).
 /// M and H are the host's values in compressed rows (whatever storage the host gave); the
