@@ -5,6 +5,8 @@ use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
+use super::jacobi::JacobiOptions;
+
 /// A global solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum GlobalMethod {
@@ -15,6 +17,9 @@ pub enum GlobalMethod {
     /// 606 NSN_AC_WR (NSN-AC 504), 614 ADMM_WR (ADMM 523); any other local method (AUTO
     /// included) works the same way.
     Reduced(Method),
+    /// Siconos' `GFC3D_NSGS` (605): projected Jacobi on the reaction with `v` solved exactly
+    /// at every iteration.
+    ProjectedJacobi(JacobiOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -39,6 +44,7 @@ impl GlobalMethod {
                     .find(|(l, _)| *l == local)
                     .map_or(local, |(_, g)| *g)
             }
+            GlobalMethod::ProjectedJacobi(_) => 605,
         }
     }
 
@@ -54,6 +60,7 @@ impl GlobalMethod {
     pub fn label(&self) -> String {
         match self {
             GlobalMethod::Reduced(m) => format!("WR-{}", m.label()),
+            GlobalMethod::ProjectedJacobi(_) => "GFC3D-NSGS".to_string(),
         }
     }
 
@@ -62,12 +69,14 @@ impl GlobalMethod {
     pub fn default_limits(&self) -> (f64, usize) {
         match self {
             GlobalMethod::Reduced(m) => m.default_limits(),
+            GlobalMethod::ProjectedJacobi(_) => (1e-4, 1000),
         }
     }
 
     pub fn validate(&self) -> Result<(), Fc3dError> {
         match self {
             GlobalMethod::Reduced(m) => m.family().validate(),
+            GlobalMethod::ProjectedJacobi(o) => o.validate(),
         }
     }
 }

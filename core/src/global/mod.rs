@@ -12,6 +12,7 @@
 //! with M factored block by block, never a dense inverse).
 
 mod config;
+mod jacobi;
 mod solve;
 
 pub use crate::measure::{
@@ -19,4 +20,5 @@ pub use crate::measure::{
 };
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
-pub use solve::{solve_global, solve_global_rolling, GlobalReport};
+pub use jacobi::JacobiOptions;
+pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};

@@ -5,13 +5,14 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
+use super::jacobi;
 use crate::config::SolverConfig;
-use crate::contract::{SolveReport, SolveStatus};
+use crate::contract::{Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
 use crate::matrix::HForm;
 use crate::measure::{global_error, global_rolling_error, ContactLaw};
 use crate::problem::{GlobalProblem, GlobalRollingProblem};
-use crate::solve::{solve, solve_rolling};
+use crate::solve::{solve_rolling, solve_with_observer};
 
 /// What a global solve returns.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,6 +68,19 @@ pub fn solve_global(
     u: &mut [f64],
     v: &mut [f64],
 ) -> Result<GlobalReport, Fc3dError> {
+    solve_global_with_observer(problem, config, r, u, v, &mut |_| {})
+}
+
+/// [`solve_global`] with an observer called after every iteration (for a reduction: of the
+/// local solver, with the local error).
+pub fn solve_global_with_observer(
+    problem: &GlobalProblem<'_>,
+    config: &GlobalConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<GlobalReport, Fc3dError> {
     check_arrays(problem.size(), problem.ndof(), r, u, v)?;
     config.validate()?;
     let mut operator = problem.operator()?;
@@ -79,10 +93,11 @@ pub fn solve_global(
             config.tolerance,
         ));
     }
-    match &config.method {
+    let limits = config.limits();
+    let outcome = match &config.method {
         GlobalMethod::Reduced(method) => {
             let local = problem.reduce(&mut operator)?;
-            reduced(
+            return reduced(
                 config.tolerance,
                 config.max_iter,
                 config.time_budget,
@@ -95,14 +110,76 @@ pub fn solve_global(
                         time_budget: limits.2,
                         ..SolverConfig::new(*method)
                     };
-                    solve(&local, &local_config, r, u)
+                    solve_with_observer(&local, &local_config, r, u, observer)
                 },
                 |r, u| {
                     operator.global_velocity(problem.q(), r, v);
                     global_error(problem, ContactLaw::Coulomb, r, u, v)
                 },
-            )
+            );
         }
+        GlobalMethod::ProjectedJacobi(options) => {
+            jacobi::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+    };
+    Ok(finish(
+        problem,
+        &mut operator,
+        config.tolerance,
+        outcome,
+        r,
+        u,
+        v,
+    ))
+}
+
+/// The post-processing of a direct global solver: `v = M^-1 (q + H r)` and `u = H^T v + b`
+/// from the returned reaction (unless the run's last step left exactly that triple and
+/// measured it), the global error of the triple, and the status from it.
+fn finish(
+    problem: &GlobalProblem<'_>,
+    operator: &mut HForm,
+    tolerance: f64,
+    outcome: SolverOutcome,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+) -> GlobalReport {
+    let mut error = match outcome.final_error {
+        Some(e) => e,
+        None => {
+            operator.global_velocity(problem.q(), r, v);
+            global_error(problem, ContactLaw::Coulomb, r, u, v)
+        }
+    };
+    // As in the local solve: a host never gets infinities; r = 0 and its velocities instead.
+    if !error.is_finite()
+        || !r
+            .iter()
+            .chain(u.iter())
+            .chain(v.iter())
+            .all(|x| x.is_finite())
+    {
+        r.iter_mut().for_each(|x| *x = 0.0);
+        operator.global_velocity(problem.q(), r, v);
+        error = global_error(problem, ContactLaw::Coulomb, r, u, v);
+    }
+    let status = if error <= tolerance {
+        SolveStatus::Converged
+    } else if outcome.diverged {
+        SolveStatus::Unbounded
+    } else if outcome.relaxation_converged {
+        SolveStatus::RelaxationNotCoulomb
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    GlobalReport {
+        status,
+        iterations: outcome.iterations,
+        error,
+        local: None,
     }
 }
 

@@ -242,7 +242,7 @@ pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dErr
     Ok(pile_world(spec)?.problem(super::Storage::SparseBlock))
 }
 
-fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
+pub(super) fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     // Three radii of empty ground between piles.
     piles_side_by_side(
         spec,

@@ -25,6 +25,7 @@ use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 use crate::problem::FrictionProblem;
 
 mod boxes;
+mod global_form;
 mod granular;
 pub use boxes::box_piles;
 pub use granular::{sphere_piles, PileSpec};
