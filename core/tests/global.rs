@@ -4,7 +4,8 @@
 //! Siconos' global error, and reaches the tolerance where it says it converged.
 
 use fc3d_core::global::{
-    solve_global, GlobalConfig, GlobalMethod, GlobalProblem, GlobalReport, JacobiOptions,
+    solve_global, GlobalConfig, GlobalMethod, GlobalNewtonOptions, GlobalProblem, GlobalReport,
+    JacobiOptions,
 };
 use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
 use fc3d_core::{Method, NsgsOptions, NsnOptions, SolveStatus};
@@ -70,7 +71,11 @@ fn independent_error(p: &GlobalProblem, r: &[f64], v: &[f64]) -> f64 {
 
 /// Checks the triple and the report; returns the report.
 fn check(p: &GlobalProblem, config: &GlobalConfig) -> GlobalReport {
-    let (mut r, mut u, mut v) = (vec![0.0; p.size()], vec![0.0; p.size()], vec![0.0; p.ndof()]);
+    let (mut r, mut u, mut v) = (
+        vec![0.0; p.size()],
+        vec![0.0; p.size()],
+        vec![0.0; p.ndof()],
+    );
     let report = solve_global(p, config, &mut r, &mut u, &mut v).unwrap();
     let expected = independent_error(p, &r, &v);
     assert!(
@@ -85,7 +90,11 @@ fn check(p: &GlobalProblem, config: &GlobalConfig) -> GlobalReport {
     p.m().for_each_entry(|i, j, x| residual[i] += x * v[j]);
     p.h().for_each_entry(|i, j, x| residual[i] -= x * r[j]);
     let scale = norm(p.q()).max(1.0);
-    assert!(norm(&residual) <= 1e-12 * scale * n as f64, "balance {:e}", norm(&residual));
+    assert!(
+        norm(&residual) <= 1e-12 * scale * n as f64,
+        "balance {:e}",
+        norm(&residual)
+    );
     // u = H^T v + b.
     let mut uu = p.b().to_vec();
     p.h().for_each_entry(|i, j, x| uu[j] += x * v[i]);
@@ -110,7 +119,11 @@ fn reduced_nsgs_reaches_the_global_tolerance_on_piles() {
             ..GlobalConfig::new(GlobalMethod::Reduced(Method::Nsgs(NsgsOptions::default())))
         };
         let report = check(&p, &config);
-        assert_eq!(report.status, SolveStatus::Converged, "{shape:?}: {report:?}");
+        assert_eq!(
+            report.status,
+            SolveStatus::Converged,
+            "{shape:?}: {report:?}"
+        );
         assert!(report.local.unwrap().error <= 1e-6);
     }
 }
@@ -157,4 +170,23 @@ fn bad_arrays_and_settings_are_refused_before_touching_them() {
     r[1] = f64::NAN;
     assert!(solve_global(&p, &config, &mut r, &mut u, &mut v).is_err());
     assert!(u.iter().all(|&x| x == 0.25) && v.iter().all(|&x| x == 0.125));
+}
+
+#[test]
+fn global_newton_converges_without_forming_w() {
+    for (shape, contacts) in [(PileShape::Spheres, 60), (PileShape::Boxes, 24)] {
+        let p = scene(contacts, shape);
+        let config = GlobalConfig {
+            tolerance: 1e-9,
+            max_iter: 500,
+            ..GlobalConfig::new(GlobalMethod::Newton(GlobalNewtonOptions::default()))
+        };
+        let report = check(&p, &config);
+        eprintln!("{shape:?} {contacts}: {report:?}");
+        assert_eq!(
+            report.status,
+            SolveStatus::Converged,
+            "{shape:?}: {report:?}"
+        );
+    }
 }

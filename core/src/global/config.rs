@@ -6,6 +6,7 @@ use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
 use super::jacobi::JacobiOptions;
+use super::newton::GlobalNewtonOptions;
 
 /// A global solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,6 +21,9 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D_NSGS` (605): projected Jacobi on the reaction with `v` solved exactly
     /// at every iteration.
     ProjectedJacobi(JacobiOptions),
+    /// Siconos' `GFC3D_NSN_AC` (607): semismooth Newton on `(v, u, r)` with the sparse
+    /// Jacobian of the unreduced system (no W formed).
+    Newton(GlobalNewtonOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -45,6 +49,7 @@ impl GlobalMethod {
                     .map_or(local, |(_, g)| *g)
             }
             GlobalMethod::ProjectedJacobi(_) => 605,
+            GlobalMethod::Newton(_) => 607,
         }
     }
 
@@ -61,6 +66,7 @@ impl GlobalMethod {
         match self {
             GlobalMethod::Reduced(m) => format!("WR-{}", m.label()),
             GlobalMethod::ProjectedJacobi(_) => "GFC3D-NSGS".to_string(),
+            GlobalMethod::Newton(o) => format!("GFC3D-{}", o.formulation.short_name()),
         }
     }
 
@@ -70,6 +76,7 @@ impl GlobalMethod {
         match self {
             GlobalMethod::Reduced(m) => m.default_limits(),
             GlobalMethod::ProjectedJacobi(_) => (1e-4, 1000),
+            GlobalMethod::Newton(_) => (1e-10, 200),
         }
     }
 
@@ -77,6 +84,7 @@ impl GlobalMethod {
         match self {
             GlobalMethod::Reduced(m) => m.family().validate(),
             GlobalMethod::ProjectedJacobi(o) => o.validate(),
+            GlobalMethod::Newton(o) => o.validate(),
         }
     }
 }

@@ -13,6 +13,7 @@
 
 mod config;
 mod jacobi;
+mod newton;
 mod solve;
 
 pub use crate::measure::{
@@ -21,4 +22,5 @@ pub use crate::measure::{
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
 pub use jacobi::JacobiOptions;
+pub use newton::GlobalNewtonOptions;
 pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};

@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
-use super::jacobi;
+use super::{jacobi, newton};
 use crate::config::SolverConfig;
 use crate::contract::{Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
@@ -120,6 +120,9 @@ pub fn solve_global_with_observer(
         }
         GlobalMethod::ProjectedJacobi(options) => {
             jacobi::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::Newton(options) => {
+            newton::run(problem, &mut operator, options, &limits, r, u, v, observer)?
         }
     };
     Ok(finish(
