@@ -7,6 +7,7 @@ use crate::solvers::rolling::RollingMethod;
 
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
+use crate::solvers::vi::{ViOptions, ViSolver};
 
 /// A global solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +25,9 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D_NSN_AC` (607): semismooth Newton on `(v, u, r)` with the sparse
     /// Jacobian of the unreduced system (no W formed).
     Newton(GlobalNewtonOptions),
+    /// Siconos' `GFC3D_VI_FPP` (610) and `GFC3D_VI_EG` (611): the VI fixed point or
+    /// extragradient on `(v, r)` (the local VI solvers' implementation).
+    Vi(ViOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -50,6 +54,10 @@ impl GlobalMethod {
             }
             GlobalMethod::ProjectedJacobi(_) => 605,
             GlobalMethod::Newton(_) => 607,
+            GlobalMethod::Vi(o) => match o.solver {
+                ViSolver::ViExtraGradient => 611,
+                _ => 610,
+            },
         }
     }
 
@@ -67,6 +75,7 @@ impl GlobalMethod {
             GlobalMethod::Reduced(m) => format!("WR-{}", m.label()),
             GlobalMethod::ProjectedJacobi(_) => "GFC3D-NSGS".to_string(),
             GlobalMethod::Newton(o) => format!("GFC3D-{}", o.formulation.short_name()),
+            GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
         }
     }
 
@@ -77,6 +86,7 @@ impl GlobalMethod {
             GlobalMethod::Reduced(m) => m.default_limits(),
             GlobalMethod::ProjectedJacobi(_) => (1e-4, 1000),
             GlobalMethod::Newton(_) => (1e-10, 200),
+            GlobalMethod::Vi(o) => o.solver.default_limits(),
         }
     }
 
@@ -85,6 +95,7 @@ impl GlobalMethod {
             GlobalMethod::Reduced(m) => m.family().validate(),
             GlobalMethod::ProjectedJacobi(o) => o.validate(),
             GlobalMethod::Newton(o) => o.validate(),
+            GlobalMethod::Vi(o) => super::vi::validate(o),
         }
     }
 }

@@ -15,6 +15,7 @@ mod config;
 mod jacobi;
 mod newton;
 mod solve;
+mod vi;
 
 pub use crate::measure::{
     global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork,
