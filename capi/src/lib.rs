@@ -34,6 +34,7 @@ mod native;
 mod options;
 mod params;
 mod problem;
+mod problem_files;
 mod rolling;
 mod solver_entries;
 mod stream;
