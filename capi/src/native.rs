@@ -15,7 +15,8 @@ use std::time::Instant;
 
 use crate::alloc::{c_calloc, c_free};
 use crate::matrix::c_slice;
-use crate::options::{create_options, delete_contents};
+use crate::option_tree::delete_contents;
+use crate::options::create_options;
 use crate::params::{config_from_c, OPTIONS_PARAM_SIZE};
 use crate::types::SolverOptions;
 use crate::{

@@ -6,7 +6,8 @@
 use std::os::raw::c_int;
 
 use super::*;
-use crate::options::{create_options, delete_contents};
+use crate::option_tree::delete_contents;
+use crate::options::create_options;
 
 struct Reference {
     id: c_int,
