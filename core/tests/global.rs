@@ -209,6 +209,8 @@ fn global_vi_reports_the_global_error_of_its_triple() {
     let eg = check(&p, &config(ViSolver::ViExtraGradient, 20_000));
     assert_eq!(eg.status, SolveStatus::MaxIterationsReached, "{eg:?}");
     // The friction-lineage VI ids have no global id.
-    let dsfp = GlobalConfig::new(GlobalMethod::Vi(ViOptions::new(ViSolver::DeSaxceFixedPoint)));
+    let dsfp = GlobalConfig::new(GlobalMethod::Vi(ViOptions::new(
+        ViSolver::DeSaxceFixedPoint,
+    )));
     assert!(dsfp.validate().is_err());
 }

@@ -6,7 +6,8 @@
 //! `b = 0`. Reduced, they give exactly the W and q of [`GeneratedScene::generate`] (up to
 //! round-off).
 
-use super::{inverse, GeneratedScene, PileShape, World};
+use super::world::{inverse, World};
+use super::{GeneratedScene, PileShape};
 use crate::error::Fc3dError;
 use crate::matrix::CsrMatrix;
 use crate::problem::GlobalProblem;
