@@ -4,8 +4,8 @@
 //! Siconos' global error, and reaches the tolerance where it says it converged.
 
 use fc3d_core::global::{
-    solve_global, GlobalConfig, GlobalMethod, GlobalNewtonOptions, GlobalProblem, GlobalReport,
-    JacobiOptions,
+    solve_global, GlobalAdmmOptions, GlobalConfig, GlobalMethod, GlobalNewtonOptions,
+    GlobalProblem, GlobalReport, JacobiOptions,
 };
 use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
 use fc3d_core::{Method, NsgsOptions, NsnOptions, SolveStatus, ViOptions, ViSolver};
@@ -213,4 +213,41 @@ fn global_vi_reports_the_global_error_of_its_triple() {
         ViSolver::DeSaxceFixedPoint,
     )));
     assert!(dsfp.validate().is_err());
+}
+
+#[test]
+fn global_admm_solves_coulomb_and_reports_the_relaxation_as_such() {
+    for (shape, contacts) in [(PileShape::Spheres, 100), (PileShape::Boxes, 48)] {
+        let p = scene(contacts, shape);
+        let config = GlobalConfig {
+            tolerance: 1e-6,
+            ..GlobalConfig::new(GlobalMethod::Admm(GlobalAdmmOptions::default()))
+        };
+        let report = check(&p, &config);
+        eprintln!("{shape:?}: {report:?}");
+        assert_eq!(
+            report.status,
+            SolveStatus::Converged,
+            "{shape:?}: {report:?}"
+        );
+    }
+    // Without the De Saxcé update ADMM solves the convex relaxation: on a pile where
+    // contacts slide its solution is not Coulomb's, and the solve says so.
+    let p = scene(100, PileShape::Spheres);
+    let convex = GlobalConfig {
+        tolerance: 1e-6,
+        ..GlobalConfig::new(GlobalMethod::Admm(GlobalAdmmOptions {
+            update_s: false,
+            ..Default::default()
+        }))
+    };
+    let report = check(&p, &convex);
+    eprintln!("convex: {report:?}");
+    assert!(
+        matches!(
+            report.status,
+            SolveStatus::RelaxationNotCoulomb | SolveStatus::Converged
+        ),
+        "{report:?}"
+    );
 }

@@ -5,6 +5,7 @@ use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
+use super::admm::GlobalAdmmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
 use crate::solvers::vi::{ViOptions, ViSolver};
@@ -28,6 +29,9 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D_VI_FPP` (610) and `GFC3D_VI_EG` (611): the VI fixed point or
     /// extragradient on `(v, r)` (the local VI solvers' implementation).
     Vi(ViOptions),
+    /// Siconos' `GFC3D ADMM` (613): ADMM on the splitting `H^T v + b_s = z ∈ K*` with
+    /// `M + rho H H^T` factored (the local ADMM's engine).
+    Admm(GlobalAdmmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -58,6 +62,7 @@ impl GlobalMethod {
                 ViSolver::ViExtraGradient => 611,
                 _ => 610,
             },
+            GlobalMethod::Admm(_) => 613,
         }
     }
 
@@ -76,6 +81,8 @@ impl GlobalMethod {
             GlobalMethod::ProjectedJacobi(_) => "GFC3D-NSGS".to_string(),
             GlobalMethod::Newton(o) => format!("GFC3D-{}", o.formulation.short_name()),
             GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
+            GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
+            GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
         }
     }
 
@@ -87,6 +94,7 @@ impl GlobalMethod {
             GlobalMethod::ProjectedJacobi(_) => (1e-4, 1000),
             GlobalMethod::Newton(_) => (1e-10, 200),
             GlobalMethod::Vi(o) => o.solver.default_limits(),
+            GlobalMethod::Admm(_) => (1e-6, 20000),
         }
     }
 
@@ -96,6 +104,7 @@ impl GlobalMethod {
             GlobalMethod::ProjectedJacobi(o) => o.validate(),
             GlobalMethod::Newton(o) => o.validate(),
             GlobalMethod::Vi(o) => super::vi::validate(o),
+            GlobalMethod::Admm(o) => o.validate(),
         }
     }
 }
