@@ -5,6 +5,7 @@ use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
+use super::aclm::GlobalAclmOptions;
 use super::admm::GlobalAdmmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
@@ -32,6 +33,9 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D ADMM` (613): ADMM on the splitting `H^T v + b_s = z ∈ K*` with
     /// `M + rho H H^T` factored (the local ADMM's engine).
     Admm(GlobalAdmmOptions),
+    /// Siconos' `GFC3D_ACLMFP` (612): fixed point on De Saxcé's term, each convex problem
+    /// solved by the global ADMM with the term held fixed.
+    Aclm(GlobalAclmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -63,6 +67,7 @@ impl GlobalMethod {
                 _ => 610,
             },
             GlobalMethod::Admm(_) => 613,
+            GlobalMethod::Aclm(_) => 612,
         }
     }
 
@@ -83,6 +88,7 @@ impl GlobalMethod {
             GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
             GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
             GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
+            GlobalMethod::Aclm(_) => "GFC3D-ACLMFP".to_string(),
         }
     }
 
@@ -95,6 +101,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(_) => (1e-10, 200),
             GlobalMethod::Vi(o) => o.solver.default_limits(),
             GlobalMethod::Admm(_) => (1e-6, 20000),
+            GlobalMethod::Aclm(_) => (1e-4, 1000),
         }
     }
 
@@ -105,6 +112,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(o) => o.validate(),
             GlobalMethod::Vi(o) => super::vi::validate(o),
             GlobalMethod::Admm(o) => o.validate(),
+            GlobalMethod::Aclm(o) => o.validate(),
         }
     }
 }
