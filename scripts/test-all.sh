@@ -28,7 +28,6 @@ command -v valgrind >/dev/null || packages+=(valgrind)
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
 command -v pkg-config >/dev/null || packages+=(pkg-config)
 command -v ctags >/dev/null || packages+=(universal-ctags)
-command -v curl >/dev/null || packages+=(curl)
 command -v xz >/dev/null || packages+=(xz-utils)
 [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
 if [ ${#packages[@]} -gt 0 ]; then

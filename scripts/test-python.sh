@@ -4,8 +4,8 @@
 #   bash scripts/test-python.sh [pytest arguments]
 #
 # builds the native-only C library with cargo, creates a virtual environment in a temporary
-# folder, pip-installs numpy, scipy, pytest and ./python into it (from PyPI: needs network
-# access, or a pip configured for a mirror), and runs python/tests with pytest. The virtual
+# folder, pip-installs numpy, scipy, pytest and ./python into it (from the index pip is configured
+# with: needs network access or a mirror), and runs python/tests with pytest. The virtual
 # environment is removed at the end.
 #
 # Environment: PYTHON (interpreter, default python3; CPython >= 3.8), FC3D_DATA (the shared
