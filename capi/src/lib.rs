@@ -1,7 +1,7 @@
 //! The C ABI: a thin layer that converts Siconos-layout structs into core types, validates
 //! them, calls the core and converts back. It holds no numerics.
 //!
-//! Contract (also in README.md, "C API contract"):
+//! Contract (also in docs/c-api.md):
 //! * Every `extern "C"` function runs inside [`ffi_guard`]: a Rust panic is caught and turned into
 //!   [`FC3D_ERR_INTERNAL`]; nothing unwinds into C, nothing aborts or exits.
 //! * Functions returning `int` return 0 on success, 1 when a solver ran but did not reach its
