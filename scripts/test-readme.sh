@@ -66,6 +66,7 @@ done
 n=0
 while IFS= read -r -d '' script; do
   n=$((n + 1))
+  script=${script%$'\n'}
   echo "-- run block $n:"
   sed 's/^/   $ /' <<<"$script"
   (cd "$WORK" && PREFIX=$PREFIX PKG_CONFIG_PATH=$PREFIX/lib/pkgconfig LD_LIBRARY_PATH=$PREFIX/lib \
