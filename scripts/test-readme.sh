@@ -100,6 +100,9 @@ env -u PKG_CONFIG_PATH -u LD_LIBRARY_PATH bash -e -c "$script" >"$WORK/in-tree.l
   cat "$WORK/in-tree.log"; echo "test-readme: the in-tree example failed" >&2; exit 1; }
 grep -v '^ *Compiling \|^ *Finished ' "$WORK/in-tree.log" | sed 's/^/   /' || true
 # The program runs without any environment: its rpath finds the SONAME link the install made.
-env -u LD_LIBRARY_PATH ldd "$ROOT/local/stack" | grep -q "libfc3d.so.0 => $ROOT/local/lib/" || {
-  echo "test-readme: local/stack does not load local/lib/libfc3d.so.0" >&2; exit 1; }
+# (ldd's output is taken whole first: grep -q stopping early would end ldd by SIGPIPE, a failure
+# under pipefail.)
+loaded=$(env -u LD_LIBRARY_PATH ldd "$ROOT/local/stack")
+grep -q "libfc3d.so.0 => $ROOT/local/lib/" <<<"$loaded" || {
+  echo "test-readme: local/stack does not load local/lib/libfc3d.so.0:" >&2; echo "$loaded" >&2; exit 1; }
 echo "== README examples: all passed"
