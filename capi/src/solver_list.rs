@@ -10,7 +10,8 @@ use std::sync::OnceLock;
 
 use crate::alloc::c_free;
 use crate::names::{named_ids, solver_constant, solver_name};
-use crate::options::{create_options, delete_contents};
+use crate::option_tree::delete_contents;
+use crate::options::create_options;
 use crate::params::config_from_c;
 use crate::{ffi_guard, CError, FC3D_ERR_INVALID_SIZE};
 
