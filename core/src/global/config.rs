@@ -6,6 +6,7 @@ use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
 use super::admm::GlobalAdmmOptions;
+use super::ipm::IpmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
 use crate::solvers::vi::{ViOptions, ViSolver};
@@ -32,6 +33,10 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D ADMM` (613): ADMM on the splitting `H^T v + b_s = z ∈ K*` with
     /// `M + rho H H^T` factored (the local ADMM's engine).
     Admm(GlobalAdmmOptions),
+    /// Siconos' `GFC3D IPM` (615): a primal-dual interior-point method on the second-order cone
+    /// program; by default (as Siconos) it solves the convex relaxation, reported as
+    /// [`crate::SolveStatus::RelaxationNotCoulomb`] where that is not a Coulomb solution.
+    Ipm(IpmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -63,6 +68,7 @@ impl GlobalMethod {
                 _ => 610,
             },
             GlobalMethod::Admm(_) => 613,
+            GlobalMethod::Ipm(_) => 615,
         }
     }
 
@@ -83,6 +89,11 @@ impl GlobalMethod {
             GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
             GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
             GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
+            GlobalMethod::Ipm(o) => format!(
+                "GFC3D-IPM{}{}",
+                if o.update_s { "" } else { "-convex" },
+                if o.nesterov_todd { "" } else { "-arrow" }
+            ),
         }
     }
 
@@ -95,6 +106,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(_) => (1e-10, 200),
             GlobalMethod::Vi(o) => o.solver.default_limits(),
             GlobalMethod::Admm(_) => (1e-6, 20000),
+            GlobalMethod::Ipm(_) => (1e-8, 200),
         }
     }
 
@@ -105,6 +117,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(o) => o.validate(),
             GlobalMethod::Vi(o) => super::vi::validate(o),
             GlobalMethod::Admm(o) => o.validate(),
+            GlobalMethod::Ipm(o) => o.validate(),
         }
     }
 }
