@@ -7,7 +7,8 @@ mod common;
 
 use common::global::{check, scene};
 use fc3d_core::global::{
-    solve_global, GlobalAdmmOptions, GlobalConfig, GlobalMethod, GlobalNewtonOptions, JacobiOptions,
+    solve_global, GlobalAclmOptions, GlobalAdmmOptions, GlobalConfig, GlobalMethod,
+    GlobalNewtonOptions, JacobiOptions,
 };
 use fc3d_core::scenes::PileShape;
 use fc3d_core::{Method, NsgsOptions, NsnOptions, SolveStatus, ViOptions, ViSolver};
@@ -153,4 +154,22 @@ fn global_admm_solves_coulomb_and_reports_the_relaxation_as_such() {
         ),
         "{report:?}"
     );
+}
+
+#[test]
+fn global_aclm_fixed_point_over_the_convex_admm() {
+    for (shape, contacts) in [(PileShape::Spheres, 100), (PileShape::Boxes, 48)] {
+        let p = scene(contacts, shape);
+        let config = GlobalConfig {
+            tolerance: 1e-6,
+            ..GlobalConfig::new(GlobalMethod::Aclm(GlobalAclmOptions::default()))
+        };
+        let report = check(&p, &config);
+        eprintln!("{shape:?}: {report:?}");
+        assert_eq!(
+            report.status,
+            SolveStatus::Converged,
+            "{shape:?}: {report:?}"
+        );
+    }
 }

@@ -15,7 +15,7 @@
 
 use std::time::Instant;
 
-use crate::contract::{IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::{require_setting, try_vec, Fc3dError};
 use crate::math::cone::{modified_velocity, project_on_dual_cone};
 use crate::math::linalg::{bounded, norm};
@@ -78,6 +78,8 @@ impl GlobalAdmmOptions {
 /// `M + rho H H^T` on a fixed pattern.
 struct ShiftedMass {
     lu: SparseLu,
+    /// The rho of the last successful factorization.
+    rho: f64,
     /// M's values and `H H^T`'s, slot by slot of the pattern.
     m_values: Vec<f64>,
     hht_values: Vec<f64>,
@@ -118,6 +120,7 @@ impl ShiftedMass {
         }
         Ok(ShiftedMass {
             lu,
+            rho: f64::NAN,
             m_values,
             hht_values,
         })
@@ -128,7 +131,11 @@ impl ShiftedMass {
         for ((x, m), h) in values.iter_mut().zip(&self.m_values).zip(&self.hht_values) {
             *x = m + rho * h;
         }
-        self.lu.factor().is_ok()
+        let ok = self.lu.factor().is_ok();
+        if ok {
+            self.rho = rho;
+        }
+        ok
     }
 }
 
@@ -137,7 +144,9 @@ struct GlobalSplitting<'p, 'a, 'r> {
     problem: &'p GlobalProblem<'a>,
     operator: &'p mut HForm,
     options: GlobalAdmmOptions,
-    system: ShiftedMass,
+    system: &'p mut ShiftedMass,
+    /// A De Saxcé term held fixed (the inner problems of ACLMFP, 612), measured with.
+    fixed_s: Option<&'p [f64]>,
     /// `b_s`, the current v and work vectors of the sizes of v (`t`) and of z (`d`).
     b_s: Vec<f64>,
     v: Vec<f64>,
@@ -156,10 +165,17 @@ struct GlobalSplitting<'p, 'a, 'r> {
 }
 
 impl GlobalSplitting<'_, '_, '_> {
-    /// `b_s = b + s(H^T v + b)` (De Saxcé's term at the current v), or b.
+    /// `b_s = b + s(H^T v + b)` (De Saxcé's term at the current v), `b + s` for a fixed s, or
+    /// b.
     fn update_b_s(&mut self) {
         let p = self.problem;
         self.b_s.copy_from_slice(p.b());
+        if let Some(s) = self.fixed_s {
+            for (b, x) in self.b_s.iter_mut().zip(s) {
+                *b += x;
+            }
+            return;
+        }
         if !self.options.update_s {
             return;
         }
@@ -256,6 +272,7 @@ impl Splitting for GlobalSplitting<'_, '_, '_> {
             self.r,
             self.u,
             self.v_out,
+            self.fixed_s,
             &mut self.work,
         );
         self.last_error = error;
@@ -318,7 +335,85 @@ fn initial_rho(problem: &GlobalProblem<'_>, operator: &mut HForm, options: &Admm
     }
 }
 
-/// Runs the global ADMM from the reaction in `r`.
+/// The global ADMM's factorization and current rho, kept from run to run (ACLMFP's outer
+/// iterations solve a sequence of problems with the same M and H).
+pub(super) struct GlobalAdmm {
+    system: ShiftedMass,
+}
+
+impl GlobalAdmm {
+    /// Builds `M + rho H H^T` (pattern, symbolic analysis) and factors it for the first rho.
+    pub fn new(
+        problem: &GlobalProblem<'_>,
+        operator: &mut HForm,
+        options: &AdmmOptions,
+    ) -> Result<Self, Fc3dError> {
+        let rho = initial_rho(problem, operator, options);
+        let mut system = ShiftedMass::new(problem)?;
+        if !system.factor(rho) {
+            return Err(Fc3dError::Unsupported(format!(
+                "global ADMM: M + rho H H^T is singular for rho = {rho}"
+            )));
+        }
+        Ok(GlobalAdmm { system })
+    }
+
+    /// Runs ADMM from the reaction in `r` with the current rho; `fixed_s`: a De Saxcé term
+    /// held fixed (and measured with: the convex error of the problem with `b + s`). Returns
+    /// the outcome and the error measured last (in that measure).
+    #[allow(clippy::too_many_arguments)]
+    pub fn run(
+        &mut self,
+        problem: &GlobalProblem<'_>,
+        operator: &mut HForm,
+        options: &GlobalAdmmOptions,
+        run: &Run,
+        fixed_s: Option<&[f64]>,
+        r: &mut [f64],
+        u: &mut [f64],
+        v: &mut [f64],
+        observer: &mut Observer<'_>,
+    ) -> Result<(SolverOutcome, f64), Fc3dError> {
+        let (n, m) = (problem.ndof(), problem.size());
+        let rho = self.system.rho;
+        // Siconos starts from u = 0 and the given reaction as the multiplier.
+        let z0 = vec![0.0; m];
+        let xi0: Vec<f64> = r.iter().map(|x| -x / rho).collect();
+        let mut v0 = try_vec(n, 0.0, "the global ADMM velocity")?;
+        operator.global_velocity(problem.q(), r, &mut v0);
+        let mut splitting = GlobalSplitting {
+            problem,
+            operator,
+            options: *options,
+            system: &mut self.system,
+            fixed_s,
+            b_s: vec![0.0; m],
+            v: v0,
+            t: vec![0.0; n],
+            d: vec![0.0; m],
+            r,
+            u,
+            v_out: v,
+            tolerance: run.tolerance,
+            work: ErrorWork::new(n),
+            last_error: f64::INFINITY,
+            primal_scale: 0.0,
+        };
+        let outcome = iterate(
+            &mut splitting,
+            &options.admm,
+            run,
+            rho,
+            1.0,
+            &z0,
+            &xi0,
+            observer,
+        );
+        Ok((outcome, splitting.last_error))
+    }
+}
+
+/// Runs the global ADMM (613) from the reaction in `r`.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn run(
     problem: &GlobalProblem<'_>,
@@ -331,47 +426,10 @@ pub(super) fn run(
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     let run = limits.start();
-    let (n, m) = (problem.ndof(), problem.size());
-    let rho = initial_rho(problem, operator, &options.admm);
-    let mut system = ShiftedMass::new(problem)?;
-    if !system.factor(rho) {
-        return Err(Fc3dError::Unsupported(format!(
-            "global ADMM: M + rho H H^T is singular for rho = {rho}"
-        )));
-    }
-    // Siconos starts from u = 0 and the given reaction as the multiplier.
-    let z0 = vec![0.0; m];
-    let xi0: Vec<f64> = r.iter().map(|x| -x / rho).collect();
-    let mut v0 = try_vec(n, 0.0, "the global ADMM velocity")?;
-    operator.global_velocity(problem.q(), r, &mut v0);
-    let mut splitting = GlobalSplitting {
-        problem,
-        operator,
-        options: *options,
-        system,
-        b_s: vec![0.0; m],
-        v: v0,
-        t: vec![0.0; n],
-        d: vec![0.0; m],
-        r,
-        u,
-        v_out: v,
-        tolerance: run.tolerance,
-        work: ErrorWork::new(n),
-        last_error: f64::INFINITY,
-        primal_scale: 0.0,
-    };
-    let outcome = iterate(
-        &mut splitting,
-        &options.admm,
-        &run,
-        rho,
-        1.0,
-        &z0,
-        &xi0,
-        observer,
-    );
-    let relaxation_converged = !options.update_s && splitting.last_error <= run.tolerance;
+    let mut admm = GlobalAdmm::new(problem, operator, &options.admm)?;
+    let (outcome, last_error) =
+        admm.run(problem, operator, options, &run, None, r, u, v, observer)?;
+    let relaxation_converged = !options.update_s && last_error <= run.tolerance;
     // The solve measures the Coulomb error of the returned triple.
     Ok(SolverOutcome {
         relaxation_converged,

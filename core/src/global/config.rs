@@ -5,6 +5,7 @@ use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
+use super::aclm::GlobalAclmOptions;
 use super::admm::GlobalAdmmOptions;
 use super::ipm::IpmOptions;
 use super::jacobi::JacobiOptions;
@@ -33,6 +34,9 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D ADMM` (613): ADMM on the splitting `H^T v + b_s = z ∈ K*` with
     /// `M + rho H H^T` factored (the local ADMM's engine).
     Admm(GlobalAdmmOptions),
+    /// Siconos' `GFC3D_ACLMFP` (612): fixed point on De Saxcé's term, each convex problem
+    /// solved by the global ADMM with the term held fixed.
+    Aclm(GlobalAclmOptions),
     /// Siconos' `GFC3D IPM` (615): a primal-dual interior-point method on the second-order cone
     /// program; by default (as Siconos) it solves the convex relaxation, reported as
     /// [`crate::SolveStatus::RelaxationNotCoulomb`] where that is not a Coulomb solution.
@@ -68,6 +72,7 @@ impl GlobalMethod {
                 _ => 610,
             },
             GlobalMethod::Admm(_) => 613,
+            GlobalMethod::Aclm(_) => 612,
             GlobalMethod::Ipm(_) => 615,
         }
     }
@@ -89,6 +94,7 @@ impl GlobalMethod {
             GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
             GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
             GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
+            GlobalMethod::Aclm(_) => "GFC3D-ACLMFP".to_string(),
             GlobalMethod::Ipm(o) => format!(
                 "GFC3D-IPM{}{}",
                 if o.update_s { "" } else { "-convex" },
@@ -106,6 +112,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(_) => (1e-10, 200),
             GlobalMethod::Vi(o) => o.solver.default_limits(),
             GlobalMethod::Admm(_) => (1e-6, 20000),
+            GlobalMethod::Aclm(_) => (1e-4, 1000),
             GlobalMethod::Ipm(_) => (1e-8, 200),
         }
     }
@@ -117,6 +124,7 @@ impl GlobalMethod {
             GlobalMethod::Newton(o) => o.validate(),
             GlobalMethod::Vi(o) => super::vi::validate(o),
             GlobalMethod::Admm(o) => o.validate(),
+            GlobalMethod::Aclm(o) => o.validate(),
             GlobalMethod::Ipm(o) => o.validate(),
         }
     }

@@ -751,7 +751,7 @@ pub(super) fn run(
         // The triple the solve returns, and its error in the law solved.
         ipm.reaction(r);
         operator.global_velocity(problem.q(), r, v);
-        let error = global_error_with(problem, law, r, u, v, &mut work);
+        let error = global_error_with(problem, law, r, u, v, None, &mut work);
         last_error = Some(error);
         observer(&IterationEvent {
             iteration,

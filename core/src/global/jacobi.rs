@@ -72,7 +72,7 @@ pub(super) fn run(
         let measured = iteration % options.error_frequency == 0;
         if measured {
             // Sets u = H^T v + b.
-            let error = global_error_with(problem, ContactLaw::Coulomb, r, u, v, &mut work);
+            let error = global_error_with(problem, ContactLaw::Coulomb, r, u, v, None, &mut work);
             observer(&IterationEvent {
                 iteration,
                 reaction: r,

@@ -11,6 +11,7 @@
 //! The reduction to the local problem goes through [`crate::matrix::HForm`] (W = H^T M^-1 H
 //! with M factored block by block, never a dense inverse).
 
+mod aclm;
 mod admm;
 mod config;
 mod ipm;
@@ -23,6 +24,7 @@ pub use crate::measure::{
     global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork,
 };
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
+pub use aclm::GlobalAclmOptions;
 pub use admm::GlobalAdmmOptions;
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
 pub use ipm::IpmOptions;

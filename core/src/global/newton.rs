@@ -309,7 +309,7 @@ pub(super) fn run(
         r.copy_from_slice(&z[n + m..]);
         if iteration % options.error_frequency == 0 {
             operator.global_velocity(problem.q(), r, v);
-            let error = global_error_with(problem, ContactLaw::Coulomb, r, u, v, &mut work);
+            let error = global_error_with(problem, ContactLaw::Coulomb, r, u, v, None, &mut work);
             observer(&IterationEvent {
                 iteration,
                 reaction: r,
