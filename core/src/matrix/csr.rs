@@ -1,4 +1,5 @@
-use crate::error::{check_finite, Fc3dError};
+use crate::alloc::reserve;
+use crate::error::{check_finite, try_copy, try_vec, Fc3dError};
 
 /// General sparse matrix in compressed sparse row form, column indices sorted within each row and
 /// free of duplicates (constructors sort and sum).
@@ -12,11 +13,22 @@ pub struct CsrMatrix {
 }
 
 impl CsrMatrix {
-    /// `alpha * self`, same structure.
-    pub fn scaled(&self, alpha: f64) -> CsrMatrix {
-        let mut m = self.clone();
+    /// `alpha * self`, same structure, allocated fallibly.
+    pub fn scaled(&self, alpha: f64) -> Result<CsrMatrix, Fc3dError> {
+        let mut m = self.try_clone()?;
         m.values.iter_mut().for_each(|v| *v *= alpha);
-        m
+        Ok(m)
+    }
+
+    /// A copy, allocated fallibly.
+    pub fn try_clone(&self) -> Result<CsrMatrix, Fc3dError> {
+        Ok(CsrMatrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            row_ptr: try_copy(&self.row_ptr, "the row pointers of a sparse W")?,
+            col_idx: try_copy(&self.col_idx, "the column indices of a sparse W")?,
+            values: try_copy(&self.values, "the values of a sparse W")?,
+        })
     }
 
     /// From triplets `(row, col, value)`, in any order; duplicates are summed.
@@ -38,25 +50,56 @@ impl CsrMatrix {
                 });
             }
         }
-        let mut order: Vec<usize> = (0..triplets.len()).collect();
-        order.sort_by_key(|&k| (triplets[k].0, triplets[k].1));
-        let mut row_ptr = vec![0usize; nrows + 1];
-        let mut col_idx = Vec::with_capacity(triplets.len());
-        let mut values: Vec<f64> = Vec::with_capacity(triplets.len());
-        let mut last: Option<(usize, usize)> = None;
-        for k in order {
-            let (i, j, v) = triplets[k];
-            if last == Some((i, j)) {
-                *values.last_mut().expect("a previous entry exists") += v;
-            } else {
-                col_idx.push(j);
-                values.push(v);
-                row_ptr[i + 1] += 1;
-                last = Some((i, j));
-            }
+        // The entries grouped by row (a counting sort, stable: filled from the last entry back
+        // into each row's end), then each row's by column and entry index: the order of a stable
+        // sort by (row, column), so duplicates are summed in input order. Memory: the row
+        // pointers, one index per entry and the result, all allocated fallibly.
+        let rows_plus_one = nrows
+            .checked_add(1)
+            .ok_or_else(|| Fc3dError::InvalidStructure(format!("{nrows} rows")))?;
+        let mut row_ptr = try_vec(rows_plus_one, 0usize, "the row pointers of a sparse W")?;
+        for &(i, _, _) in triplets {
+            row_ptr[i + 1] += 1;
         }
         for i in 0..nrows {
             row_ptr[i + 1] += row_ptr[i];
+        }
+        let mut order = try_vec(triplets.len(), 0usize, "the entries of a sparse W by row")?;
+        for (k, &(i, _, _)) in triplets.iter().enumerate().rev() {
+            row_ptr[i + 1] -= 1;
+            order[row_ptr[i + 1]] = k;
+        }
+        // row_ptr[i + 1] is now where row i starts.
+        let mut col_idx = Vec::new();
+        reserve(
+            &mut col_idx,
+            triplets.len(),
+            "the column indices of a sparse W",
+        )?;
+        let mut values: Vec<f64> = Vec::new();
+        reserve(&mut values, triplets.len(), "the values of a sparse W")?;
+        for i in 0..nrows {
+            let start = row_ptr[i + 1];
+            let end = if i + 1 < nrows {
+                row_ptr[i + 2]
+            } else {
+                triplets.len()
+            };
+            let row = &mut order[start..end];
+            row.sort_unstable_by_key(|&k| (triplets[k].1, k));
+            row_ptr[i + 1] = row_ptr[i];
+            let mut last = None;
+            for &k in row.iter() {
+                let (_, j, v) = triplets[k];
+                if last == Some(j) {
+                    *values.last_mut().expect("a previous entry exists") += v;
+                } else {
+                    col_idx.push(j);
+                    values.push(v);
+                    row_ptr[i + 1] += 1;
+                    last = Some(j);
+                }
+            }
         }
         Ok(CsrMatrix {
             nrows,
@@ -168,7 +211,8 @@ fn compressed_to_triplets(
         ));
     }
     check_finite("W", &values[..nnz])?;
-    let mut out = Vec::with_capacity(nnz);
+    let mut out = Vec::new();
+    reserve(&mut out, nnz, "the entries of a sparse W")?;
     for o in 0..n_outer {
         for k in ptr[o]..ptr[o + 1] {
             out.push((o, idx[k], values[k]));
