@@ -214,7 +214,7 @@ pub unsafe extern "C" fn fc2d_compute_error(
             let r = c_slice(z as *const c_double, n, "z")?;
             c_slice(w as *const c_double, n, "w")?;
             fc3d_core::error::check_finite("z", r)?;
-            let mut u = vec![0.0; n];
+            let mut u = fc3d_core::error::try_vec(n, 0.0, "w")?;
             p.velocity(r, &mut u);
             let absolute = absolute_natural_map_residual_d::<2>(r, &u, p.mu());
             let norm_of = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
