@@ -222,18 +222,15 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         let mut scratch_cols: Vec<usize> = Vec::new();
         let mut scratch: Vec<f64> = Vec::new();
         for bi in 0..nc {
-            let entries = rp[D * bi]..rp[D * bi + D];
-            scratch_cols.clear();
-            reserve(&mut scratch_cols, entries.len() + 1, "a block row of W")?;
-            scratch_cols.extend(ci[entries.clone()].iter().map(|&j| j / D));
-            scratch_cols.push(bi);
-            scratch_cols.sort_unstable();
-            scratch_cols.dedup();
+            s.block_columns(D, bi, &mut scratch_cols)?;
             scratch.clear();
             reserve(&mut scratch, D * D * scratch_cols.len(), "a block row of W")?;
             scratch.resize(D * D * scratch_cols.len(), 0.0);
             for i in 0..D {
                 for k in rp[D * bi + i]..rp[D * bi + i + 1] {
+                    if vals[k] == 0.0 {
+                        continue;
+                    }
                     let (bj, j) = (ci[k] / D, ci[k] % D);
                     let slot = scratch_cols.binary_search(&bj).expect("gathered above");
                     scratch[D * D * slot + i + D * j] += vals[k];

@@ -172,6 +172,28 @@ impl CsrMatrix {
         }
     }
 
+    /// Into `cols`, sorted: the block columns (`d x d` blocks) of block row `bi` (rows `d bi` to
+    /// `d bi + d - 1`) that hold a non-zero entry, and `bi` itself (room allocated fallibly).
+    pub(crate) fn block_columns(
+        &self,
+        d: usize,
+        bi: usize,
+        cols: &mut Vec<usize>,
+    ) -> Result<(), Fc3dError> {
+        let entries = self.row_ptr[d * bi]..self.row_ptr[d * bi + d];
+        cols.clear();
+        reserve(cols, entries.len() + 1, "a block row of W")?;
+        cols.extend(
+            entries
+                .filter(|&k| self.values[k] != 0.0)
+                .map(|k| self.col_idx[k] / d),
+        );
+        cols.push(bi);
+        cols.sort_unstable();
+        cols.dedup();
+        Ok(())
+    }
+
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
         for i in 0..self.nrows {
             for k in self.row_ptr[i]..self.row_ptr[i + 1] {
@@ -235,6 +257,30 @@ mod tests {
         assert_eq!(m.values(), &[2.0, 3.0, 5.0]);
         assert_eq!(m.get(1, 2), 5.0);
         assert_eq!(m.get(0, 0), 0.0);
+    }
+
+    /// Duplicates are summed in input order (1e16 + 1 rounds to 1e16, then -1e16 gives 0; in
+    /// another order the sum would be 1), whatever the order of the rows around them; empty
+    /// rows and a matrix without entries have their pointers.
+    #[test]
+    fn duplicates_are_summed_in_input_order() {
+        let m = CsrMatrix::from_triplets(
+            3,
+            2,
+            &[
+                (2, 1, 5.0),
+                (0, 0, 1e16),
+                (2, 0, 4.0),
+                (0, 0, 1.0),
+                (0, 0, -1e16),
+            ],
+        )
+        .unwrap();
+        assert_eq!(m.row_ptr(), &[0, 1, 1, 3]);
+        assert_eq!(m.col_idx(), &[0, 0, 1]);
+        assert_eq!(m.values(), &[0.0, 4.0, 5.0]);
+        let empty = CsrMatrix::from_triplets(4, 4, &[]).unwrap();
+        assert_eq!((empty.row_ptr(), empty.nnz()), (&[0, 0, 0, 0, 0][..], 0));
     }
 
     #[test]

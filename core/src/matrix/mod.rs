@@ -21,7 +21,7 @@ pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
 pub use storage::{BlockValues, Shared};
 
-use crate::alloc::{reserve, try_push};
+use crate::alloc::try_push;
 use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::linalg::Mat3;
 
@@ -170,21 +170,10 @@ impl<'a> Delassus<'a> {
         };
         let nc = n / 3;
         let (rp, ci, vals) = (csr.row_ptr(), csr.col_idx(), csr.values());
-        // The block columns of block row bi holding a non-zero entry, and the diagonal, sorted.
-        let gather = |bi: usize, cols: &mut Vec<usize>| -> Result<(), Fc3dError> {
-            let entries = rp[3 * bi]..rp[3 * bi + 3];
-            cols.clear();
-            reserve(cols, entries.len() + 1, "a block row of W")?;
-            cols.extend(entries.filter(|&k| vals[k] != 0.0).map(|k| ci[k] / 3));
-            cols.push(bi);
-            cols.sort_unstable();
-            cols.dedup();
-            Ok(())
-        };
         let mut cols = Vec::new();
         let mut row_ptr = try_vec(nc + 1, 0usize, "the block rows of W")?;
         for bi in 0..nc {
-            gather(bi, &mut cols)?;
+            csr.block_columns(3, bi, &mut cols)?;
             row_ptr[bi + 1] = row_ptr[bi] + cols.len();
         }
         let nb = row_ptr[nc];
@@ -192,7 +181,7 @@ impl<'a> Delassus<'a> {
         let mut blocks = try_vec(nb, [0.0; 9], "the blocks of W")?;
         for bi in 0..nc {
             let start = row_ptr[bi];
-            gather(bi, &mut cols)?;
+            csr.block_columns(3, bi, &mut cols)?;
             col_idx[start..start + cols.len()].copy_from_slice(&cols);
             for i in 0..3 {
                 for k in rp[3 * bi + i]..rp[3 * bi + i + 1] {
@@ -394,5 +383,42 @@ fn dense_block_column_pattern(
     }
     for (f, r) in flags.iter_mut().zip(rows.chunks_exact(3)) {
         *f = (r[0] | r[1] | r[2]) != 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// From every storage, the sparse-block copy holds each diagonal block and each block with
+    /// a non-zero entry (duplicates summed; a block holding only an explicit zero is left out),
+    /// with W's values.
+    #[test]
+    fn block_sparse_copies_keep_the_values_and_the_non_zero_blocks() {
+        let triplets = [
+            (0, 0, 1.0),
+            (1, 1, 2.0),
+            (2, 2, 3.0),
+            (0, 4, 1.5),
+            (0, 4, 0.5),
+            (7, 1, 0.0),
+            (4, 4, 1.0),
+            (6, 6, 1.0),
+            (8, 3, -2.0),
+        ];
+        let csr = Delassus::Sparse(CsrMatrix::from_triplets(9, 9, &triplets).unwrap());
+        let dense = Delassus::Dense(csr.to_dense());
+        let blocks = Delassus::SparseBlock(csr.to_block_sparse().unwrap());
+        for w in [&csr, &dense, &blocks] {
+            let b = w.to_block_sparse().unwrap();
+            assert_eq!(b.row_ptr(), &[0, 2, 3, 5]);
+            assert_eq!(b.col_idx(), &[0, 1, 1, 1, 2]);
+            for i in 0..9 {
+                for j in 0..9 {
+                    assert_eq!(b.get(i, j), csr.get(i, j), "({i}, {j})");
+                }
+            }
+        }
+        assert_eq!(csr.get(0, 4), 2.0);
     }
 }
