@@ -11,8 +11,8 @@ use hdf5_metno as hdf5;
 
 use super::reader::Reader;
 use super::sparse::SparseEntries;
+use crate::alloc::{bytes_of, ensure_headroom};
 use crate::error::Fc3dError;
-use crate::io::alloc::{bytes_of, ensure_headroom};
 use crate::problem::FrictionProblem;
 
 /// Right-hand sides solved together when reducing a global problem.
