@@ -90,7 +90,7 @@ pub fn write_dat_file<const D: usize>(
 }
 
 /// Values separated by spaces on one line, each in the shortest form that reads back exactly.
-fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
+pub(super) fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
     for (k, v) in values.iter().enumerate() {
         if k > 0 {
             out.write_all(b" ")?;
@@ -101,7 +101,10 @@ fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
 }
 
 /// Integers separated (and ended) by tabs on one line, as Siconos prints index arrays.
-fn write_usizes_line<W: Write>(out: &mut W, values: impl Iterator<Item = usize>) -> io::Result<()> {
+pub(super) fn write_usizes_line<W: Write>(
+    out: &mut W,
+    values: impl Iterator<Item = usize>,
+) -> io::Result<()> {
     for v in values {
         write!(out, "{v}\t")?;
     }
@@ -119,7 +122,7 @@ fn write_dense<W: Write>(d: &DenseMatrix<'_>, out: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-fn write_triplet_dump<W: Write>(s: &CsrMatrix, out: &mut W) -> io::Result<()> {
+pub(super) fn write_triplet_dump<W: Write>(s: &CsrMatrix, out: &mut W) -> io::Result<()> {
     let (m, n, nnz) = (s.nrows(), s.ncols(), s.nnz());
     writeln!(out, "{STORAGE_SPARSE}\n{m}\n{n}\n{ORIGIN_TRIPLET}")?;
     // Siconos skips this banner line unread; the header after it must keep single spaces because
