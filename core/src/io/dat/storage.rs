@@ -203,6 +203,9 @@ pub(super) fn parse_sparse_block<S: DatStore>(
     })
 }
 
+/// The cumulative row and column block sizes of a sparse-block matrix.
+pub(super) type CumulativeSizes = (Vec<usize>, Vec<usize>);
+
 /// A sparse-block body as a general sparse matrix of the declared `shape`: the `b x b` blocks
 /// of a 2D problem's W ([`BlockSizes::Uniform`]), or blocks of any sizes ([`BlockSizes::Any`]:
 /// the matrices of a global problem). Exact zeros inside stored blocks are kept, so that the
@@ -213,7 +216,7 @@ pub(super) fn parse_sparse_block_as_csr(
     shape: (usize, usize),
     require_diagonal: bool,
     sizes: BlockSizes,
-) -> Result<(CsrMatrix, (Vec<usize>, Vec<usize>)), Fc3dError> {
+) -> Result<(CsrMatrix, CumulativeSizes), Fc3dError> {
     let mut triplets: Vec<(usize, usize, f64)> = Vec::new();
     let layout = parse_sparse_block_with::<Vec<usize>>(
         r,
