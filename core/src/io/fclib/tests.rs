@@ -6,6 +6,9 @@ use super::local::blocks_of;
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus};
 use crate::problem::GlobalProblem;
 
+/// W as `(row, col, value)` entries, and q.
+type Reduced = (Vec<(usize, usize, f64)>, Vec<f64>);
+
 /// The reduced W (as `(row, col, value)`) and q of M (`ndof`), H (`ndof x n`), f and w.
 fn reduce(
     ndof: usize,
@@ -13,7 +16,7 @@ fn reduce(
     h: &[(usize, usize, f64)],
     f: &[f64],
     w: &[f64],
-) -> Result<(Vec<(usize, usize, f64)>, Vec<f64>), String> {
+) -> Result<Reduced, String> {
     let n = w.len();
     let p = GlobalProblem::<3>::new(
         CsrMatrix::from_triplets(ndof, ndof, m).unwrap(),
