@@ -1,4 +1,5 @@
-//! `FrictionContactProblem` functions: creation, release, files, display, and the conversion
+//! `FrictionContactProblem` functions: creation, release, files, display (through
+//! `host_problem`, shared with the other problem structs), copy, rescaling, and the conversion
 //! to the core problem type.
 //!
 //! Ownership (as in Siconos): `frictionContactProblem_new_with_data` keeps the given pointers
@@ -13,13 +14,14 @@ use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free, CStore};
+use super::host_problem::{self, release_array, release_matrix, HostProblem};
 use super::matrix::{
     c_slice, delassus_from_c_blocks, matrix_from_read, matrix_to_c, nm_clear_impl, nm_duplicate,
-    nm_scale_in_place, read_from_stream,
+    nm_scale_in_place,
 };
-use super::stream::{c_filename, write_file, write_stream};
 use super::types::{FrictionContactProblem, NumericsMatrix};
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
+use fc3d_core::error::Fc3dError;
 use fc3d_core::io::dat::{read_dat_file_into, read_dat_into, ReadProblem};
 use fc3d_core::matrix::{Delassus, DenseMatrix};
 use fc3d_core::problem::{FrictionProblem, FrictionProblem2d};
@@ -288,6 +290,66 @@ pub unsafe extern "C" fn frictionContact_rescaling(
     )
 }
 
+impl HostProblem for FrictionContactProblem {
+    type View<'a> = AnyProblem<'a>;
+    type Read = ReadProblem<CStore>;
+
+    fn empty() -> Self {
+        FrictionContactProblem {
+            dimension: 0,
+            numberOfContacts: 0,
+            M: null_mut(),
+            q: null_mut(),
+            mu: null_mut(),
+        }
+    }
+
+    unsafe fn release(&mut self) {
+        release_matrix(&mut self.M);
+        release_array(&mut self.q);
+        release_array(&mut self.mu);
+    }
+
+    unsafe fn view(&self) -> CResult<AnyProblem<'_>> {
+        any_problem_from_c(self)
+    }
+
+    fn write(view: &AnyProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        match view {
+            AnyProblem::Spatial(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+            AnyProblem::Planar(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+        }
+    }
+
+    fn display(view: &AnyProblem<'_>) {
+        match view {
+            AnyProblem::Spatial(p) => display(p),
+            AnyProblem::Planar(p) => display(p),
+        }
+    }
+
+    fn read(
+        stream: &mut dyn std::io::Read,
+        len: Option<u64>,
+        label: &str,
+    ) -> Result<(ReadProblem<CStore>, u64), Fc3dError> {
+        read_dat_into::<CStore, _>(stream, len, label)
+    }
+
+    fn to_c(read: ReadProblem<CStore>) -> CResult<*mut Self> {
+        problem_from_read(read)
+    }
+
+    /// A `.dat` file, or an FCLIB file (one that starts with the HDF5 signature or is named
+    /// `.hdf5` / `.h5`) as `frictionContact_fclib_read` reads it.
+    fn read_file(path: &str) -> CResult<*mut Self> {
+        if super::fclib::is_fclib_file(path) {
+            return super::fclib::read_fclib_problem(path);
+        }
+        problem_from_read(read_dat_file_into::<CStore>(std::path::Path::new(path))?)
+    }
+}
+
 /// An empty problem (dimension 0, no data). Release with `frictionContactProblem_free`.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
@@ -295,15 +357,7 @@ pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
     ffi_guard(
         "frictionContactProblem_new",
         |_| null_mut(),
-        || {
-            c_box(FrictionContactProblem {
-                dimension: 0,
-                numberOfContacts: 0,
-                M: null_mut(),
-                q: null_mut(),
-                mu: null_mut(),
-            })
-        },
+        host_problem::new::<FrictionContactProblem>,
     )
 }
 
@@ -340,18 +394,7 @@ pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionConta
     ffi_guard(
         "frictionContactProblem_free",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Ok(());
-            }
-            let p = &mut *problem;
-            nm_clear_impl(p.M);
-            c_free(p.M);
-            c_free(p.q);
-            c_free(p.mu);
-            c_free(problem);
-            Ok(())
-        },
+        || host_problem::free(problem),
     )
 }
 
@@ -368,14 +411,7 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
     ffi_guard(
         "frictionContact_new_from_filename",
         |_| null_mut(),
-        || {
-            let path = c_filename(filename)?;
-            if super::fclib::is_fclib_file(path) {
-                return super::fclib::read_fclib_problem(path);
-            }
-            let p = read_dat_file_into::<CStore>(std::path::Path::new(path))?;
-            problem_from_read(p)
-        },
+        || host_problem::new_from_filename(filename),
     )
 }
 
@@ -394,22 +430,8 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
     ffi_guard(
         "frictionContact_newFromFile",
         |_| null_mut(),
-        || {
-            read_from_stream(
-                file,
-                |stream, len| read_dat_into::<CStore, _>(stream, len, "<FILE stream>"),
-                problem_from_read,
-            )
-        },
+        || host_problem::new_from_file(file),
     )
-}
-
-/// Writes `p` in the .dat format with `out`, as it is produced.
-fn write_dat_to(p: &AnyProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
-    match p {
-        AnyProblem::Spatial(p) => fc3d_core::io::dat::write_dat(p, &mut out),
-        AnyProblem::Planar(p) => fc3d_core::io::dat::write_dat(p, &mut out),
-    }
 }
 
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
@@ -423,14 +445,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
     ffi_guard(
         "frictionContact_printInFile",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_problem_from_c(&*problem)?;
-            write_stream(file, |out| write_dat_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_file(problem, file),
     )
 }
 
@@ -444,15 +459,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
     ffi_guard(
         "frictionContact_printInFilename",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_problem_from_c(&*problem)?;
-            let path = c_filename(filename)?;
-            write_file(path, |out| write_dat_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_filename(problem, filename),
     )
 }
 
@@ -463,16 +470,7 @@ pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactPr
     ffi_guard(
         "frictionContact_display",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            match any_problem_from_c(&*problem)? {
-                AnyProblem::Spatial(p) => display(&p),
-                AnyProblem::Planar(p) => display(&p),
-            }
-            Ok(())
-        },
+        || host_problem::display(problem),
     )
 }
 

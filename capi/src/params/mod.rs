@@ -8,6 +8,7 @@
 mod admm;
 pub(crate) mod auto;
 mod fixed_point;
+pub(crate) mod global;
 mod local;
 mod nsgs;
 mod nsn;
@@ -349,7 +350,12 @@ pub(crate) unsafe fn rolling_config_from_c(
 
 /// `config_from_c` of a node of a checked tree.
 pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig> {
-    let id = o.solverId;
+    config_from_node_as(o, o.solverId)
+}
+
+/// [`config_from_node`] reading the options as those of solver `id` (a global `_WR` id reads
+/// its slots as its local solver does: 600 as 500, ...).
+pub(crate) unsafe fn config_from_node_as(o: &SolverOptions, id: c_int) -> CResult<SolverConfig> {
     let what = solver_name(id).to_string_lossy();
     let p = Params::of(o, &format!("{what} options"))?;
     let internal = first_internal(o);

@@ -8,7 +8,7 @@ use std::path::Path;
 use super::dat::{read_dat_file, write_dat_file};
 use super::info::FclibInfo;
 use crate::error::Fc3dError;
-use crate::problem::{FrictionProblem, GlobalProblem};
+use crate::problem::{FrictionProblem, GlobalProblem, GlobalRollingProblem};
 
 /// Whether this build reads and writes FCLIB `.hdf5` files (the `fclib` cargo feature).
 pub const FCLIB_AVAILABLE: bool = cfg!(feature = "fclib");
@@ -123,6 +123,24 @@ pub fn write_fclib_global_file(
 ) -> Result<(), Fc3dError> {
     #[cfg(feature = "fclib")]
     return super::fclib::write_fclib_global_file(problem, path, info);
+    #[cfg(not(feature = "fclib"))]
+    {
+        let _ = (problem, info);
+        Err(without_fclib(path, "written"))
+    }
+}
+
+/// Writes `problem` as an FCLIB global rolling problem (`/fclib_global_rolling`, as FCLIB's
+/// `fclib_write_global_rolling`), replacing the file; see
+/// `io::fclib::write_fclib_global_rolling_file` with the `fclib` feature. Without the feature, an
+/// [`Fc3dError::Unsupported`] naming the file and the feature, and nothing is written.
+pub fn write_fclib_global_rolling_file(
+    problem: &GlobalRollingProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    #[cfg(feature = "fclib")]
+    return super::fclib::write_fclib_global_rolling_file(problem, path, info);
     #[cfg(not(feature = "fclib"))]
     {
         let _ = (problem, info);

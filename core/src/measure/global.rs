@@ -41,11 +41,13 @@ impl ErrorWork {
     }
 }
 
-/// The balance term `||q + H r - M v|| / max(||q||, ||M v||, ||H r||)`.
+/// The balance term `||q + H r - M v|| / max(norm_q, ||M v||, ||H r||)` (`norm_q` is `||q||`
+/// but where a host passes its own, as to Siconos' `gfc3d_compute_error`).
 fn balance<const D: usize>(
     problem: &GlobalProblem<'_, D>,
     r: &[f64],
     v: &[f64],
+    norm_q: f64,
     work: &mut ErrorWork,
 ) -> f64 {
     let n = problem.ndof();
@@ -67,8 +69,8 @@ fn balance<const D: usize>(
         })
         .sum::<f64>()
         .sqrt();
-    let scale = norm(problem.q()).max(norm(mv)).max(norm(hr));
-    if scale > f64::EPSILON {
+    let scale = norm_q.max(norm(mv)).max(norm(hr));
+    if scale.abs() > f64::EPSILON {
         residual / scale
     } else {
         residual
@@ -112,6 +114,22 @@ pub fn global_error_with<const D: usize>(
     v: &[f64],
     work: &mut ErrorWork,
 ) -> f64 {
+    let norm_q = norm(problem.q());
+    global_error_with_norm_q(problem, law, r, u, v, norm_q, work)
+}
+
+/// [`global_error_with`] with the balance term scaled by `max(norm_q, ||M v||, ||H r||)` for a
+/// given `norm_q` (Siconos' `gfc3d_compute_error` takes it from its caller; every caller passes
+/// `||q||`, which [`global_error`] uses).
+pub fn global_error_with_norm_q<const D: usize>(
+    problem: &GlobalProblem<'_, D>,
+    law: ContactLaw,
+    r: &[f64],
+    u: &mut [f64],
+    v: &[f64],
+    norm_q: f64,
+    work: &mut ErrorWork,
+) -> f64 {
     local_velocity(problem, v, u);
     let absolute = match law {
         ContactLaw::Coulomb => problem
@@ -123,7 +141,7 @@ pub fn global_error_with<const D: usize>(
             .sqrt(),
         ContactLaw::Convex => convex_residual::<D>(problem.mu(), r, u),
     };
-    balance(problem, r, v, work) + law_term(absolute, r, u)
+    balance(problem, r, v, norm_q, work) + law_term(absolute, r, u)
 }
 
 /// `sqrt(sum_c ||r_c - P_K(r_c - u_c)||^2)`: the residual of the associated law.
@@ -166,5 +184,5 @@ pub fn global_rolling_error(
         })
         .sum::<f64>()
         .sqrt();
-    balance(base, r, v, &mut ErrorWork::default()) + law_term(absolute, r, u)
+    balance(base, r, v, norm(base.q()), &mut ErrorWork::default()) + law_term(absolute, r, u)
 }

@@ -484,10 +484,6 @@ pub fn write_stored_matrix<W: Write>(
     }
 }
 
-fn invalid_input(message: String) -> io::Error {
-    io::Error::new(io::ErrorKind::InvalidInput, message)
-}
-
 fn out_of_memory(e: Fc3dError) -> io::Error {
     io::Error::new(io::ErrorKind::OutOfMemory, e.to_string())
 }
@@ -520,14 +516,80 @@ fn write_dense_csr<W: Write>(m: &CsrMatrix, out: &mut W) -> io::Result<()> {
 }
 
 /// Checks cumulative block sizes against the size they must cover.
-fn check_cumulative(sizes: &[usize], n: usize, what: &str) -> io::Result<()> {
+fn check_cumulative(sizes: &[usize], n: usize, what: &str) -> Result<(), Fc3dError> {
     let increasing = sizes.windows(2).all(|w| w[0] < w[1]) && sizes.first().is_none_or(|&s| s > 0);
     if !increasing || sizes.last().copied().unwrap_or(0) != n {
-        return Err(invalid_input(format!(
-            "sparse-block {what} sizes {sizes:?} do not cover {n} {what}s"
+        return Err(Fc3dError::InvalidStructure(format!(
+            "sparse-block {what} sizes {sizes:?} do not cover the {n} {what}s of the matrix"
         )));
     }
     Ok(())
+}
+
+/// The blocks of a matrix cut by cumulative row and column sizes (Siconos' sparse-block
+/// storage of it): `row_ptr` (one more than the block rows) and `col_idx` (in order within a
+/// block row) of every block holding a stored entry of the matrix.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BlockCut {
+    pub row_ptr: Vec<usize>,
+    pub col_idx: Vec<usize>,
+}
+
+/// The [`BlockCut`] of `m` for the cumulative sizes `row_sizes` and `col_sizes`, which must
+/// increase and end at the rows and columns of `m` ([`Fc3dError::InvalidStructure`]
+/// otherwise). Allocated fallibly.
+pub fn block_cut(
+    m: &CsrMatrix,
+    row_sizes: &[usize],
+    col_sizes: &[usize],
+) -> Result<BlockCut, Fc3dError> {
+    check_cumulative(row_sizes, m.nrows(), "row")?;
+    check_cumulative(col_sizes, m.ncols(), "column")?;
+    let mut row_ptr = Vec::new();
+    crate::io::alloc::reserve(&mut row_ptr, row_sizes.len() + 1, "the block rows")?;
+    row_ptr.push(0);
+    let mut col_idx = Vec::new();
+    let mut seen = try_vec(col_sizes.len(), usize::MAX, "the block columns")?;
+    let mut first_row = 0;
+    for (bi, &end) in row_sizes.iter().enumerate() {
+        let first = col_idx.len();
+        for i in first_row..end {
+            for &j in &m.col_idx()[m.row_ptr()[i]..m.row_ptr()[i + 1]] {
+                let bj = col_sizes.partition_point(|&c| c <= j);
+                if seen[bj] != bi {
+                    seen[bj] = bi;
+                    try_push(&mut col_idx, bj, "the block columns")?;
+                }
+            }
+        }
+        col_idx[first..].sort_unstable();
+        row_ptr.push(col_idx.len());
+        first_row = end;
+    }
+    Ok(BlockCut { row_ptr, col_idx })
+}
+
+/// The block of `m` over `rows` x `cols`, column-major into `out` (cleared first; zeros where
+/// `m` stores nothing, stored values as they are).
+pub fn block_values(
+    m: &CsrMatrix,
+    rows: std::ops::Range<usize>,
+    cols: std::ops::Range<usize>,
+    out: &mut Vec<f64>,
+) {
+    out.clear();
+    for j in cols {
+        out.extend(rows.clone().map(|i| m.get(i, j)));
+    }
+}
+
+/// The first row (or column) of block `k` of cumulative sizes `sizes`.
+pub fn block_start(sizes: &[usize], k: usize) -> usize {
+    if k == 0 {
+        0
+    } else {
+        sizes[k - 1]
+    }
 }
 
 /// The sparse-block body of `m` for the given cumulative block sizes: every block holding a
@@ -544,28 +606,11 @@ fn write_blocks<W: Write>(
         // Siconos' matrix without blocks.
         return writeln!(out, "0");
     }
-    check_cumulative(row_sizes, rows, "row")?;
-    check_cumulative(col_sizes, cols, "column")?;
-    let block_of_col = |j: usize| col_sizes.partition_point(|&c| c <= j);
-    let start = |sizes: &[usize], k: usize| if k == 0 { 0 } else { sizes[k - 1] };
-    // The block columns of each block row, in order.
-    let mut row_ptr = vec![0usize];
-    let mut col_idx = Vec::new();
-    let mut seen = vec![usize::MAX; col_sizes.len()];
-    for (bi, &end) in row_sizes.iter().enumerate() {
-        let first = col_idx.len();
-        for i in start(row_sizes, bi)..end {
-            for &j in &m.col_idx()[m.row_ptr()[i]..m.row_ptr()[i + 1]] {
-                let bj = block_of_col(j);
-                if seen[bj] != bi {
-                    seen[bj] = bi;
-                    col_idx.push(bj);
-                }
-            }
-        }
-        col_idx[first..].sort_unstable();
-        row_ptr.push(col_idx.len());
-    }
+    let cut = block_cut(m, row_sizes, col_sizes).map_err(|e| match e {
+        Fc3dError::OutOfMemory { .. } => out_of_memory(e),
+        e => io::Error::new(io::ErrorKind::InvalidInput, e.to_string()),
+    })?;
+    let (row_ptr, col_idx) = (&cut.row_ptr, &cut.col_idx);
     writeln!(out, "{}", col_idx.len())?;
     writeln!(out, "{}\n{}", row_sizes.len(), col_sizes.len())?;
     write_usizes_line(out, row_sizes.iter().copied())?;
@@ -573,18 +618,21 @@ fn write_blocks<W: Write>(
     writeln!(out, "{}\n{}", row_ptr.len(), col_idx.len())?;
     write_usizes_line(out, row_ptr.iter().copied())?;
     write_usizes_line(out, col_idx.iter().copied())?;
-    let mut number = 0;
+    let mut values = Vec::new();
     for bi in 0..row_sizes.len() {
-        let (r0, r1) = (start(row_sizes, bi), row_sizes[bi]);
-        for &bj in &col_idx[row_ptr[bi]..row_ptr[bi + 1]] {
-            let (c0, c1) = (start(col_sizes, bj), col_sizes[bj]);
-            writeln!(out, "{number}")?;
-            number += 1;
-            // Column-major, one value a line as Siconos prints blocks.
-            for j in c0..c1 {
-                for i in r0..r1 {
-                    writeln!(out, "{:e}", m.get(i, j))?;
-                }
+        let rows = block_start(row_sizes, bi)..row_sizes[bi];
+        for k in row_ptr[bi]..row_ptr[bi + 1] {
+            let bj = col_idx[k];
+            writeln!(out, "{k}")?;
+            block_values(
+                m,
+                rows.clone(),
+                block_start(col_sizes, bj)..col_sizes[bj],
+                &mut values,
+            );
+            // One value a line, as Siconos prints blocks.
+            for v in &values {
+                writeln!(out, "{v:e}")?;
             }
         }
     }

@@ -67,10 +67,10 @@ mod tokens;
 mod write;
 
 pub use global::{
-    csr_of_dense, parse_global_dat, read_global_dat, read_global_dat_file, read_global_rolling_dat,
-    read_global_rolling_dat_file, write_global_dat, write_global_dat_file,
-    write_global_rolling_dat, write_stored_matrix, GlobalDat, GlobalDatProblem, GlobalStorage,
-    MatrixStorage,
+    block_cut, block_start, block_values, csr_of_dense, parse_global_dat, read_global_dat,
+    read_global_dat_file, read_global_rolling_dat, read_global_rolling_dat_file, write_global_dat,
+    write_global_dat_file, write_global_rolling_dat, write_stored_matrix, BlockCut, GlobalDat,
+    GlobalDatProblem, GlobalStorage, MatrixStorage,
 };
 pub use parse::{
     parse_dat, parse_dat_any, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix,

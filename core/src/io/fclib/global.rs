@@ -1,7 +1,9 @@
 //! `/fclib_global`: read into a [`GlobalProblem`] (M and H in compressed rows), reduced to the
 //! local form for [`super::read_fclib_file`] through the problem's own reduction (M factored
 //! block by block, [`crate::matrix::HForm`]), and written as Siconos'
-//! `globalFrictionContact_fclib_write` writes it (M and H as triplets).
+//! `globalFrictionContact_fclib_write` writes it (M and H as triplets); a global rolling
+//! problem is written as FCLIB's `fclib_write_global_rolling` lays it out
+//! (`/fclib_global_rolling`, with `vectors/mu_r`).
 
 use std::path::Path;
 
@@ -13,7 +15,7 @@ use crate::error::Fc3dError;
 use crate::io::alloc::{bytes_of, ensure_headroom};
 use crate::io::info::FclibInfo;
 use crate::matrix::CsrMatrix;
-use crate::problem::{FrictionProblem, GlobalProblem, DIMENSION};
+use crate::problem::{FrictionProblem, GlobalProblem, GlobalRollingProblem};
 
 impl Reader {
     /// The global problem of the group `/fclib_global`.
@@ -91,11 +93,58 @@ pub fn write_fclib_global_file(
     path: &Path,
     info: &FclibInfo,
 ) -> Result<(), Fc3dError> {
+    write_global_group(path, "fclib_global", problem, None, info)
+}
+
+/// Writes a global rolling problem to `path` as FCLIB's `fclib_write_global_rolling` lays it out:
+/// `/fclib_global_rolling` with `spacedim` = 5, M and H as triplets, `vectors/f`, `w`, `mu` and
+/// `mu_r`, and the info group (the same file handling and errors as
+/// [`write_fclib_global_file`]).
+pub fn write_fclib_global_rolling_file(
+    problem: &GlobalRollingProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    write_global_group(
+        path,
+        "fclib_global_rolling",
+        problem.base(),
+        Some(problem.mu_r()),
+        info,
+    )
+}
+
+/// Writes the group `name` of a global problem (and its rolling coefficients).
+fn write_global_group<const D: usize>(
+    path: &Path,
+    name: &str,
+    problem: &GlobalProblem<'_, D>,
+    mu_r: Option<&[f64]>,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
     let label = path.display().to_string();
     let m = Triplets::of(problem.m(), &label, "M")?;
     let h = Triplets::of(problem.h(), &label, "H")?;
     string_checks(info, &label)?;
-    replace_file(path, |file| write_global(file, problem, &m, &h, info))
+    let group = Group {
+        name,
+        spacedim: D as i32,
+        q: problem.q(),
+        b: problem.b(),
+        mu: problem.mu(),
+        mu_r,
+    };
+    replace_file(path, |file| write_global(file, &group, &m, &h, info))
+}
+
+/// What a global group holds besides M and H.
+struct Group<'a> {
+    name: &'a str,
+    spacedim: i32,
+    q: &'a [f64],
+    b: &'a [f64],
+    mu: &'a [f64],
+    mu_r: Option<&'a [f64]>,
 }
 
 /// A matrix as FCLIB's triplets (`nz` entries: row `i`, column `p`, value `x`).
@@ -140,40 +189,38 @@ impl Triplets {
     }
 }
 
-/// Writes `/fclib_global` into a new file. Errors are messages naming the object that failed.
+/// Writes the global group into a new file. Errors are messages naming the object that failed.
 fn write_global(
     file: &hdf5::File,
-    problem: &GlobalProblem<'_>,
+    g: &Group<'_>,
     m: &Triplets,
     h: &Triplets,
     info: &FclibInfo,
 ) -> Result<(), String> {
-    let at = |what: &'static str| move |e: hdf5::Error| format!("{what}: {e}");
-    let global = file
-        .create_group("fclib_global")
-        .map_err(at("/fclib_global"))?;
-    ints(&global, "spacedim", &[DIMENSION as i32]).map_err(at("/fclib_global/spacedim"))?;
+    let root = format!("/{}", g.name);
+    let at = |what: &str| {
+        let what = format!("{root}/{what}");
+        move |e: hdf5::Error| format!("{what}: {e}")
+    };
+    let global = file.create_group(g.name).map_err(at(""))?;
+    ints(&global, "spacedim", &[g.spacedim]).map_err(at("spacedim"))?;
     for (name, t) in [("M", m), ("H", h)] {
-        let group = global
-            .create_group(name)
-            .map_err(|e| format!("/fclib_global/{name}: {e}"))?;
+        let group = global.create_group(name).map_err(at(name))?;
         let nz = t.x.len() as i32;
         for (field, value) in [("nzmax", nz), ("m", t.rows), ("n", t.cols), ("nz", nz)] {
-            ints(&group, field, &[value])
-                .map_err(|e| format!("/fclib_global/{name}/{field}: {e}"))?;
+            ints(&group, field, &[value]).map_err(at(&format!("{name}/{field}")))?;
         }
-        ints(&group, "p", &t.p).map_err(|e| format!("/fclib_global/{name}/p: {e}"))?;
-        ints(&group, "i", &t.i).map_err(|e| format!("/fclib_global/{name}/i: {e}"))?;
-        floats(&group, "x", &t.x).map_err(|e| format!("/fclib_global/{name}/x: {e}"))?;
+        ints(&group, "p", &t.p).map_err(at(&format!("{name}/p")))?;
+        ints(&group, "i", &t.i).map_err(at(&format!("{name}/i")))?;
+        floats(&group, "x", &t.x).map_err(at(&format!("{name}/x")))?;
     }
-    let vectors = global
-        .create_group("vectors")
-        .map_err(at("/fclib_global/vectors"))?;
-    floats(&vectors, "f", problem.q()).map_err(at("/fclib_global/vectors/f"))?;
-    floats(&vectors, "w", problem.b()).map_err(at("/fclib_global/vectors/w"))?;
-    floats(&vectors, "mu", problem.mu()).map_err(at("/fclib_global/vectors/mu"))?;
-    let info_group = global
-        .create_group("info")
-        .map_err(at("/fclib_global/info"))?;
-    super::info_group::write_info(&info_group, info).map_err(|e| format!("/fclib_global/{e}"))
+    let vectors = global.create_group("vectors").map_err(at("vectors"))?;
+    floats(&vectors, "f", g.q).map_err(at("vectors/f"))?;
+    floats(&vectors, "w", g.b).map_err(at("vectors/w"))?;
+    floats(&vectors, "mu", g.mu).map_err(at("vectors/mu"))?;
+    if let Some(mu_r) = g.mu_r {
+        floats(&vectors, "mu_r", mu_r).map_err(at("vectors/mu_r"))?;
+    }
+    let info_group = global.create_group("info").map_err(at("info"))?;
+    super::info_group::write_info(&info_group, info).map_err(|e| format!("{root}/{e}"))
 }

@@ -113,7 +113,7 @@ mod write;
 
 use reader::open;
 
-pub use global::write_fclib_global_file;
+pub use global::{write_fclib_global_file, write_fclib_global_rolling_file};
 pub use write::write_fclib_file;
 
 /// The attribute of the W group in which [`write_fclib_file`] records W's storage.
