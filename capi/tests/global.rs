@@ -1,0 +1,959 @@
+//! The global family through the C ABI (issue 26) on every global problem of
+//! `../shared/data/siconos`: `gfc3d_driver` with every `_WR` id returns finite `(r, u, v)` with
+//! `M v = q + H r` to round-off and `u = H^T v + b`, leaves the caller's M, H, q, b and mu
+//! unchanged byte for byte, writes `iparam[1]` and a `dparam[1]` equal to an independent
+//! recomputation of `gfc3d_compute_error`; hostile inputs are refused with a negative code and
+//! nothing written; files, copies and reformulations keep the problem.
+
+use std::ffi::{c_char, c_double, c_int, c_uint, CString};
+use std::path::{Path, PathBuf};
+use std::ptr::{null, null_mut};
+
+use fc3d::types::{
+    FrictionContactProblem, GlobalFrictionContactProblem, GlobalRollingFrictionContactProblem,
+    NumericsMatrix, SolverOptions,
+};
+use fc3d::{
+    FC3D_ERR_INVALID_OPTION, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE, FC3D_ERR_NON_FINITE,
+    FC3D_ERR_NULL_POINTER, FC3D_ERR_UNSUPPORTED_SOLVER,
+};
+use fc3d_core::io::dat::{read_dat_file, read_global_dat_file, GlobalDatProblem};
+use fc3d_core::matrix::CsrMatrix;
+use fc3d_core::problem::GlobalProblem;
+
+mod siconos_api;
+use siconos_api::*;
+
+extern "C" {
+    fn globalFrictionContact_new_from_filename(
+        path: *const c_char,
+    ) -> *mut GlobalFrictionContactProblem;
+    fn globalFrictionContact_free(problem: *mut GlobalFrictionContactProblem);
+    fn globalFrictionContact_copy(
+        problem: *mut GlobalFrictionContactProblem,
+    ) -> *mut GlobalFrictionContactProblem;
+    fn globalFrictionContact_printInFileName(
+        problem: *mut GlobalFrictionContactProblem,
+        filename: *const c_char,
+    ) -> c_int;
+    fn gfc3d_driver(
+        problem: *mut GlobalFrictionContactProblem,
+        reaction: *mut c_double,
+        velocity: *mut c_double,
+        global_velocity: *mut c_double,
+        options: *mut SolverOptions,
+    ) -> c_int;
+    fn gfc3d_compute_error(
+        problem: *mut GlobalFrictionContactProblem,
+        reaction: *mut c_double,
+        velocity: *mut c_double,
+        global_velocity: *mut c_double,
+        tolerance: c_double,
+        options: *mut SolverOptions,
+        norm_q: c_double,
+        norm_b: c_double,
+        error: *mut c_double,
+    ) -> c_int;
+    fn globalFrictionContact_computeGlobalVelocity(
+        problem: *mut GlobalFrictionContactProblem,
+        reaction: *mut c_double,
+        global_velocity: *mut c_double,
+    ) -> c_int;
+    fn globalFrictionContact_reformulation_FrictionContact(
+        problem: *mut GlobalFrictionContactProblem,
+    ) -> *mut FrictionContactProblem;
+    fn fc3d_reformulation_global_problem(
+        problem: *mut FrictionContactProblem,
+    ) -> *mut GlobalFrictionContactProblem;
+    fn gfc3d_nsgs_wr(
+        problem: *mut GlobalFrictionContactProblem,
+        reaction: *mut c_double,
+        velocity: *mut c_double,
+        global_velocity: *mut c_double,
+        info: *mut c_int,
+        options: *mut SolverOptions,
+    );
+    #[allow(clippy::too_many_arguments)]
+    fn gfc3d_LmgcDriver(
+        reaction: *mut c_double,
+        velocity: *mut c_double,
+        global_velocity: *mut c_double,
+        q: *mut c_double,
+        b: *mut c_double,
+        mu: *mut c_double,
+        m_data: *mut c_double,
+        nz_m: c_uint,
+        row_m: *mut c_uint,
+        col_m: *mut c_uint,
+        h_data: *mut c_double,
+        nz_h: c_uint,
+        row_h: *mut c_uint,
+        col_h: *mut c_uint,
+        n: c_uint,
+        nc: c_uint,
+        solver_id: c_int,
+        isize: c_int,
+        iparam: *mut c_int,
+        dsize: c_int,
+        dparam: *mut c_double,
+        verbose: c_int,
+        output_file: c_int,
+        freq_output: c_int,
+    ) -> c_int;
+    fn g_rolling_fc3d_driver(
+        problem: *mut GlobalRollingFrictionContactProblem,
+        reaction: *mut c_double,
+        velocity: *mut c_double,
+        global_velocity: *mut c_double,
+        options: *mut SolverOptions,
+    ) -> c_int;
+}
+
+const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/siconos");
+
+/// The 3D global `.dat` files of the shared collection.
+const GLOBAL_FILES: &[&str] = &[
+    "GFC3D_Example0.dat",
+    "GFC3D_Example00.dat",
+    "GFC3D_Example00_badly_scaled.dat",
+    "GFC3D_Example0_SBM.dat",
+    "GFC3D_Example1.dat",
+    "GFC3D_OneContact.dat",
+    "GFC3D_TwoRods1.dat",
+];
+
+/// The `_WR` ids gfc3d_driver runs.
+const WR_IDS: [c_int; 6] = [600, 602, 603, 604, 606, 614];
+
+fn data(name: &str) -> PathBuf {
+    Path::new(DATA_DIR).join(name)
+}
+
+fn available() -> bool {
+    let ok = data("GFC3D_TwoRods1.dat").is_file();
+    if !ok {
+        eprintln!("../shared/data/siconos missing: skipped");
+    }
+    ok
+}
+
+fn c_path(p: &Path) -> CString {
+    CString::new(p.to_str().unwrap()).unwrap()
+}
+
+/// The core problem of a 3D global file.
+fn core_problem(name: &str) -> GlobalProblem<'static> {
+    match read_global_dat_file(&data(name)).unwrap().problem {
+        GlobalDatProblem::Spatial(p) => p,
+        GlobalDatProblem::Planar(_) => panic!("{name} is 3D"),
+    }
+}
+
+/// A problem read through the C ABI, freed on drop.
+struct CProblem(*mut GlobalFrictionContactProblem);
+
+impl CProblem {
+    fn read(name: &str) -> Self {
+        let path = c_path(&data(name));
+        let p = unsafe { globalFrictionContact_new_from_filename(path.as_ptr()) };
+        assert!(!p.is_null(), "{name}: {}", last_message());
+        CProblem(p)
+    }
+    fn get(&self) -> &GlobalFrictionContactProblem {
+        unsafe { &*self.0 }
+    }
+}
+
+impl Drop for CProblem {
+    fn drop(&mut self) {
+        unsafe { globalFrictionContact_free(self.0) };
+    }
+}
+
+fn last_message() -> String {
+    unsafe {
+        std::ffi::CStr::from_ptr(fc3d_last_error_message())
+            .to_string_lossy()
+            .into_owned()
+    }
+}
+
+/// Every byte a NumericsMatrix holds (its struct, its storage arrays and blocks), for checking
+/// that nothing changed.
+unsafe fn matrix_bytes(m: *const NumericsMatrix) -> Vec<u8> {
+    fn bytes<T>(p: *const T, n: usize) -> Vec<u8> {
+        if p.is_null() || n == 0 {
+            return Vec::new();
+        }
+        unsafe { std::slice::from_raw_parts(p as *const u8, n * std::mem::size_of::<T>()) }.to_vec()
+    }
+    let m = &*m;
+    let mut out = bytes(m as *const NumericsMatrix, 1);
+    let (r, c) = (m.size0 as usize, m.size1 as usize);
+    match m.storageType {
+        0 => out.extend(bytes(m.matrix0, r * c)),
+        1 => {
+            let s = &*m.matrix1;
+            out.extend(bytes(s as *const _, 1));
+            let (nbr, nbc) = (s.blocknumber0 as usize, s.blocknumber1 as usize);
+            let bs0 = std::slice::from_raw_parts(s.blocksize0, nbr);
+            let bs1 = std::slice::from_raw_parts(s.blocksize1, nbc);
+            out.extend(bytes(s.blocksize0, nbr));
+            out.extend(bytes(s.blocksize1, nbc));
+            out.extend(bytes(s.index1_data, s.filled1));
+            out.extend(bytes(s.index2_data, s.filled2));
+            let row_ptr = std::slice::from_raw_parts(s.index1_data, s.filled1);
+            let cols = std::slice::from_raw_parts(s.index2_data, s.filled2);
+            for bi in 0..nbr {
+                let h = bs0[bi] - if bi == 0 { 0 } else { bs0[bi - 1] };
+                for k in row_ptr[bi]..row_ptr[bi + 1] {
+                    let bj = cols[k];
+                    let w = bs1[bj] - if bj == 0 { 0 } else { bs1[bj - 1] };
+                    out.extend(bytes(*s.block.add(k), (h * w) as usize));
+                }
+            }
+        }
+        _ => {
+            let s = &*m.matrix2;
+            out.extend(bytes(s as *const _, 1));
+            for cs in [s.triplet, s.csc, s.csr] {
+                if let Some(cs) = cs.as_ref() {
+                    out.extend(bytes(cs as *const _, 1));
+                    let nzmax = cs.nzmax as usize;
+                    let np = if cs.nz >= 0 { nzmax } else { cs.n as usize + 1 };
+                    out.extend(bytes(cs.p, np));
+                    out.extend(bytes(cs.i, nzmax));
+                    out.extend(bytes(cs.x, nzmax));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Every byte of the problem's data.
+unsafe fn problem_bytes(p: &GlobalFrictionContactProblem) -> Vec<u8> {
+    let n = (*p.M).size0 as usize;
+    let m = 3 * p.numberOfContacts as usize;
+    let f = |x: *const f64, k: usize| std::slice::from_raw_parts(x as *const u8, 8 * k).to_vec();
+    let mut out = f(
+        p as *const _ as *const f64,
+        std::mem::size_of::<GlobalFrictionContactProblem>() / 8,
+    );
+    out.extend(matrix_bytes(p.M));
+    out.extend(matrix_bytes(p.H));
+    out.extend(f(p.q, n));
+    out.extend(f(p.b, m));
+    out.extend(f(p.mu, p.numberOfContacts as usize));
+    out
+}
+
+fn norm(x: &[f64]) -> f64 {
+    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+/// Options of `id` with the tolerance and iteration limit of Siconos' WR collection.
+struct Options(*mut SolverOptions);
+
+impl Options {
+    fn new(id: c_int, tolerance: f64, max_iter: c_int) -> Self {
+        let o = unsafe { solver_options_create(id) };
+        assert!(!o.is_null(), "options of {id}");
+        unsafe {
+            *(*o).iparam = max_iter;
+            *(*o).dparam = tolerance;
+        }
+        Options(o)
+    }
+    fn iparam(&self, k: usize) -> c_int {
+        unsafe { *(*self.0).iparam.add(k) }
+    }
+    fn dparam(&self, k: usize) -> f64 {
+        unsafe { *(*self.0).dparam.add(k) }
+    }
+    fn set_iparam(&self, k: usize, v: c_int) {
+        unsafe { *(*self.0).iparam.add(k) = v }
+    }
+}
+
+impl Drop for Options {
+    fn drop(&mut self) {
+        unsafe { solver_options_delete(self.0) };
+    }
+}
+
+#[test]
+fn every_wr_id_solves_every_global_file_honestly() {
+    if !available() {
+        return;
+    }
+    for &name in GLOBAL_FILES {
+        let core = core_problem(name);
+        let (n, m) = (core.ndof(), core.size());
+        for id in WR_IDS {
+            let p = CProblem::read(name);
+            let before = unsafe { problem_bytes(p.get()) };
+            let o = Options::new(id, 1e-5, 10000);
+            o.set_iparam(1, -7);
+            let (mut r, mut u, mut v) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
+            let info =
+                unsafe { gfc3d_driver(p.0, r.as_mut_ptr(), u.as_mut_ptr(), v.as_mut_ptr(), o.0) };
+            let what = format!("{name} with {id}");
+            assert!(info >= 0, "{what}: {info} {}", last_message());
+            assert!(o.iparam(1) >= 0, "{what}: iparam[1] not written");
+            for x in r.iter().chain(&u).chain(&v) {
+                assert!(x.is_finite(), "{what}: non-finite result");
+            }
+            // The caller's problem is untouched.
+            assert!(
+                before == unsafe { problem_bytes(p.get()) },
+                "{what}: problem modified"
+            );
+            // M v = q + H r to round-off, u = H^T v + b.
+            let mut mv = vec![0.0; n];
+            core.m().mul_add(&v, &mut mv);
+            let mut hr = vec![0.0; n];
+            core.h().mul_add(&r, &mut hr);
+            let residual: Vec<f64> = (0..n).map(|i| core.q()[i] + hr[i] - mv[i]).collect();
+            let scale = norm(core.q()).max(norm(&mv)).max(norm(&hr)).max(1.0);
+            assert!(
+                norm(&residual) <= 1e-12 * scale,
+                "{what}: ||q + H r - M v|| = {:e}",
+                norm(&residual)
+            );
+            let mut ht_v = core.b().to_vec();
+            fc3d_core::matrix::transpose_mul_add(core.h(), &v, &mut ht_v);
+            for (a, b) in u.iter().zip(&ht_v) {
+                assert!(
+                    (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+                    "{what}: u != H^T v + b"
+                );
+            }
+            // dparam[1] is gfc3d_compute_error of the returned triple, recomputed.
+            let (mut u2, mut e) = (vec![0.0; m], f64::NAN);
+            let code = unsafe {
+                gfc3d_compute_error(
+                    p.0,
+                    r.as_mut_ptr(),
+                    u2.as_mut_ptr(),
+                    v.as_mut_ptr(),
+                    1e-5,
+                    null_mut(),
+                    norm(core.q()),
+                    0.0,
+                    &mut e,
+                )
+            };
+            assert!(code >= 0, "{what}: {}", last_message());
+            assert_eq!(o.dparam(1), e, "{what}: dparam[1] vs gfc3d_compute_error");
+            let core_error = fc3d_core::measure::global_error(
+                &core,
+                fc3d_core::measure::ContactLaw::Coulomb,
+                &r,
+                &mut u2,
+                &v,
+            );
+            assert!((core_error - e).abs() <= 1e-14 * (1.0 + e), "{what}");
+            if info == 0 {
+                assert!(e <= 1e-5, "{what}: info 0 with error {e:e}");
+            }
+        }
+    }
+}
+
+/// Sentinel arrays for a refused call: nothing may be written.
+struct Outputs {
+    r: Vec<f64>,
+    u: Vec<f64>,
+    v: Vec<f64>,
+}
+
+impl Outputs {
+    fn new(m: usize, n: usize) -> Self {
+        Outputs {
+            r: vec![0.25; m],
+            u: vec![7.0; m],
+            v: vec![-3.0; n],
+        }
+    }
+    fn untouched(&self) -> bool {
+        self.r.iter().all(|&x| x == 0.25)
+            && self.u.iter().all(|&x| x == 7.0)
+            && self.v.iter().all(|&x| x == -3.0)
+    }
+}
+
+/// A problem whose data the test owns: dense M (`n x n`), dense H (`n x 3nc`).
+struct Owned {
+    m: Vec<f64>,
+    h: Vec<f64>,
+    q: Vec<f64>,
+    b: Vec<f64>,
+    mu: Vec<f64>,
+    nm: NumericsMatrix,
+    nh: NumericsMatrix,
+    problem: GlobalFrictionContactProblem,
+}
+
+impl Owned {
+    /// Two bodies of 3 unknowns, M = diag(2), H = I (6 x 6), 2 contacts pushed in.
+    fn new() -> Box<Self> {
+        let n = 6;
+        let mut m = vec![0.0; n * n];
+        let mut h = vec![0.0; n * n];
+        for i in 0..n {
+            m[i + n * i] = 2.0;
+            h[i + n * i] = 1.0;
+        }
+        let mut o = Box::new(Owned {
+            m,
+            h,
+            q: vec![-1.0, 0.2, 0.0, -0.5, 0.0, 0.1],
+            b: vec![0.0; n],
+            mu: vec![0.5, 0.3],
+            nm: unsafe { std::mem::zeroed() },
+            nh: unsafe { std::mem::zeroed() },
+            problem: unsafe { std::mem::zeroed() },
+        });
+        o.nm.storageType = 0;
+        o.nm.size0 = n as c_int;
+        o.nm.size1 = n as c_int;
+        o.nm.matrix0 = o.m.as_mut_ptr();
+        o.nh.storageType = 0;
+        o.nh.size0 = n as c_int;
+        o.nh.size1 = n as c_int;
+        o.nh.matrix0 = o.h.as_mut_ptr();
+        o.problem.dimension = 3;
+        o.problem.numberOfContacts = 2;
+        o.problem.M = &mut o.nm;
+        o.problem.H = &mut o.nh;
+        o.problem.q = o.q.as_mut_ptr();
+        o.problem.b = o.b.as_mut_ptr();
+        o.problem.mu = o.mu.as_mut_ptr();
+        o
+    }
+
+    fn solve(&mut self, options: &Options) -> (c_int, Outputs) {
+        let mut out = Outputs::new(6, 6);
+        let info = unsafe {
+            gfc3d_driver(
+                &mut self.problem,
+                out.r.as_mut_ptr(),
+                out.u.as_mut_ptr(),
+                out.v.as_mut_ptr(),
+                options.0,
+            )
+        };
+        (info, out)
+    }
+}
+
+#[test]
+fn a_small_problem_solves_and_hostile_inputs_are_refused_writing_nothing() {
+    let o = Options::new(600, 1e-10, 1000);
+    let mut p = Owned::new();
+    let (info, out) = p.solve(&o);
+    assert_eq!(info, 0, "{}", last_message());
+    assert!(o.dparam(1) <= 1e-10);
+    // Contact 0 pushed in with q_T inside the cone: sticks with u = 0.
+    assert!(out.u[..3].iter().all(|x| x.abs() < 1e-9), "{:?}", out.u);
+
+    let cases: Vec<(&str, Box<dyn Fn(&mut Owned)>, c_int)> = vec![
+        (
+            "NaN in q",
+            Box::new(|p| p.q[1] = f64::NAN),
+            FC3D_ERR_NON_FINITE,
+        ),
+        (
+            "inf in M",
+            Box::new(|p| p.m[7] = f64::INFINITY),
+            FC3D_ERR_NON_FINITE,
+        ),
+        (
+            "negative mu",
+            Box::new(|p| p.mu[1] = -0.1),
+            FC3D_ERR_INVALID_PROBLEM,
+        ),
+        (
+            "non-square M",
+            Box::new(|p| p.nm.size1 = 5),
+            FC3D_ERR_INVALID_SIZE,
+        ),
+        (
+            "H rows != M size",
+            Box::new(|p| p.nh.size0 = 5),
+            FC3D_ERR_INVALID_SIZE,
+        ),
+        (
+            "negative contacts",
+            Box::new(|p| p.problem.numberOfContacts = -1),
+            FC3D_ERR_INVALID_SIZE,
+        ),
+        (
+            "H columns != 3 nc",
+            Box::new(|p| p.problem.numberOfContacts = 3),
+            FC3D_ERR_INVALID_SIZE,
+        ),
+        (
+            "NULL q",
+            Box::new(|p| p.problem.q = null_mut()),
+            FC3D_ERR_NULL_POINTER,
+        ),
+        (
+            "NULL H",
+            Box::new(|p| p.problem.H = null_mut()),
+            FC3D_ERR_NULL_POINTER,
+        ),
+        (
+            "dimension 2",
+            Box::new(|p| p.problem.dimension = 2),
+            FC3D_ERR_INVALID_PROBLEM,
+        ),
+        (
+            "unknown storage",
+            Box::new(|p| p.nm.storageType = 9),
+            fc3d::FC3D_ERR_INVALID_STORAGE,
+        ),
+    ];
+    for (what, spoil, code) in cases {
+        let mut p = Owned::new();
+        spoil(&mut p);
+        let (info, out) = p.solve(&o);
+        assert_eq!(info, code, "{what}: {}", last_message());
+        assert!(out.untouched(), "{what}: outputs written");
+    }
+    // A singular M: refused (a negative code), nothing written.
+    let mut p = Owned::new();
+    p.m[0] = 0.0;
+    let (info, out) = p.solve(&o);
+    assert!(info < 0, "singular M: {info}");
+    assert!(last_message().contains("singular"), "{}", last_message());
+    assert!(out.untouched());
+    // NULL arrays and options.
+    let mut p = Owned::new();
+    let mut out = Outputs::new(6, 6);
+    for (r, u, v, options) in [
+        (null_mut(), out.u.as_mut_ptr(), out.v.as_mut_ptr(), o.0),
+        (out.r.as_mut_ptr(), null_mut(), out.v.as_mut_ptr(), o.0),
+        (out.r.as_mut_ptr(), out.u.as_mut_ptr(), null_mut(), o.0),
+        (
+            out.r.as_mut_ptr(),
+            out.u.as_mut_ptr(),
+            out.v.as_mut_ptr(),
+            null_mut(),
+        ),
+    ] {
+        let info = unsafe { gfc3d_driver(&mut p.problem, r, u, v, options) };
+        assert_eq!(info, FC3D_ERR_NULL_POINTER);
+    }
+    assert!(out.untouched());
+    let info = unsafe {
+        gfc3d_driver(
+            null_mut(),
+            out.r.as_mut_ptr(),
+            out.u.as_mut_ptr(),
+            out.v.as_mut_ptr(),
+            o.0,
+        )
+    };
+    assert_eq!(info, FC3D_ERR_NULL_POINTER);
+    // A NaN initial reaction.
+    let mut p = Owned::new();
+    let mut out = Outputs::new(6, 6);
+    out.r[2] = f64::NAN;
+    let info = unsafe {
+        gfc3d_driver(
+            &mut p.problem,
+            out.r.as_mut_ptr(),
+            out.u.as_mut_ptr(),
+            out.v.as_mut_ptr(),
+            o.0,
+        )
+    };
+    assert_eq!(info, FC3D_ERR_NON_FINITE, "{}", last_message());
+    assert!(out.u.iter().all(|&x| x == 7.0));
+}
+
+#[test]
+fn ids_fc3d_does_not_run_are_refused_with_the_reason() {
+    let mut p = Owned::new();
+    for (id, says) in [
+        (601, "exits"),
+        (605, "not implemented yet"),
+        (608, "GAMS"),
+        (609, "GAMS"),
+        (5000, "g_rolling_fc3d_driver"),
+        (500, "not a global friction solver"),
+    ] {
+        let o = Options::new(id, 1e-5, 100);
+        o.set_iparam(1, -7);
+        let (info, out) = p.solve(&o);
+        assert_eq!(info, FC3D_ERR_UNSUPPORTED_SOLVER, "{id}");
+        assert!(last_message().contains(says), "{id}: {}", last_message());
+        assert!(out.untouched());
+        assert_eq!(o.iparam(1), -7, "{id}: iparam[1] written on a refusal");
+    }
+    // A solver entry with options of another id.
+    let o = Options::new(602, 1e-5, 100);
+    let mut out = Outputs::new(6, 6);
+    let mut info = 99;
+    unsafe {
+        gfc3d_nsgs_wr(
+            &mut p.problem,
+            out.r.as_mut_ptr(),
+            out.u.as_mut_ptr(),
+            out.v.as_mut_ptr(),
+            &mut info,
+            o.0,
+        )
+    };
+    assert_eq!(info, FC3D_ERR_INVALID_OPTION);
+    // A _WR id whose local rescaling Siconos would not apply.
+    let o = Options::new(600, 1e-5, 100);
+    o.set_iparam(3, 1);
+    let (info, _) = p.solve(&o);
+    assert_eq!(info, FC3D_ERR_INVALID_OPTION, "{}", last_message());
+}
+
+#[test]
+fn files_copies_and_velocities_keep_the_problem() {
+    if !available() {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("fc3d-global-c-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for &name in GLOBAL_FILES {
+        let p = CProblem::read(name);
+        let copy = CProblem(unsafe { globalFrictionContact_copy(p.0) });
+        assert!(!copy.0.is_null(), "{name}: {}", last_message());
+        assert_eq!(
+            unsafe { ((*p.get().M).storageType, (*copy.get().M).storageType) },
+            unsafe { ((*p.get().M).storageType, (*p.get().M).storageType) }
+        );
+        let (a, b) = (dir.join("a.dat"), dir.join("b.dat"));
+        for (problem, path) in [(&p, &a), (&copy, &b)] {
+            let c = c_path(path);
+            assert_eq!(
+                unsafe { globalFrictionContact_printInFileName(problem.0, c.as_ptr()) },
+                0
+            );
+        }
+        let text = std::fs::read_to_string(&a).unwrap();
+        assert_eq!(text, std::fs::read_to_string(&b).unwrap(), "{name}: copy");
+        // The file written reads back to the same problem.
+        let again = read_global_dat_file(&a).unwrap();
+        let original = read_global_dat_file(&data(name)).unwrap();
+        assert_eq!(again, original, "{name}");
+
+        // v = M^-1 (q + H r) for a reaction.
+        let core = core_problem(name);
+        let r: Vec<f64> = (0..core.size()).map(|k| (k as f64 * 0.37).sin()).collect();
+        let mut v = vec![0.0; core.ndof()];
+        let mut rr = r.clone();
+        let code = unsafe {
+            globalFrictionContact_computeGlobalVelocity(p.0, rr.as_mut_ptr(), v.as_mut_ptr())
+        };
+        assert_eq!(code, 0, "{name}: {}", last_message());
+        let mut mv = vec![0.0; core.ndof()];
+        core.m().mul_add(&v, &mut mv);
+        let mut rhs = core.q().to_vec();
+        core.h().mul_add(&r, &mut rhs);
+        let diff: Vec<f64> = mv.iter().zip(&rhs).map(|(a, b)| a - b).collect();
+        assert!(norm(&diff) <= 1e-12 * norm(&rhs).max(1.0), "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn reformulations_are_exact() {
+    if !available() {
+        return;
+    }
+    // Global -> local: TwoRods1 reduces to Siconos' condensed problem.
+    let p = CProblem::read("GFC3D_TwoRods1.dat");
+    let local = unsafe { globalFrictionContact_reformulation_FrictionContact(p.0) };
+    assert!(!local.is_null(), "{}", last_message());
+    let condensed = read_dat_file(&data("GFC3D_TwoRods1-condensed.dat")).unwrap();
+    let w = unsafe { &*(*local).M };
+    assert_eq!((w.size0, w.size1), (9, 9));
+    // Local -> global -> local: the same W and q.
+    let path = c_path(&data("FC3D_Example1_SBM.dat"));
+    let fc = unsafe { frictionContact_new_from_filename(path.as_ptr()) };
+    assert!(!fc.is_null());
+    let g = unsafe { fc3d_reformulation_global_problem(fc) };
+    assert!(!g.is_null(), "{}", last_message());
+    let back = unsafe { globalFrictionContact_reformulation_FrictionContact(g) };
+    assert!(!back.is_null(), "{}", last_message());
+    let original = read_dat_file(&data("FC3D_Example1_SBM.dat")).unwrap();
+    let dir = std::env::temp_dir().join(format!("fc3d-reform-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (problem, file, expected) in [
+        (local, "local.dat", &condensed),
+        (back, "back.dat", &original),
+    ] {
+        let out = c_path(&dir.join(file));
+        extern "C" {
+            fn frictionContact_printInFilename(
+                problem: *mut FrictionContactProblem,
+                filename: *const c_char,
+            ) -> c_int;
+        }
+        assert_eq!(
+            unsafe { frictionContact_printInFilename(problem, out.as_ptr()) },
+            0
+        );
+        let got = read_dat_file(&dir.join(file)).unwrap();
+        let n = expected.size();
+        let scale = (0..n)
+            .map(|i| expected.w().get(i, i).abs())
+            .fold(0.0, f64::max);
+        // The condensed file has 6 significant digits.
+        let tolerance = if file == "local.dat" { 1e-5 } else { 1e-13 };
+        for i in 0..n {
+            for j in 0..n {
+                let (a, b) = (got.w().get(i, j), expected.w().get(i, j));
+                assert!(
+                    (a - b).abs() <= tolerance * scale,
+                    "{file} W[{i}][{j}] {a} {b}"
+                );
+            }
+            let (a, b) = (got.q()[i], expected.q()[i]);
+            assert!(
+                (a - b).abs() <= tolerance * (1.0 + b.abs()),
+                "{file} q[{i}] {a} {b}"
+            );
+        }
+        assert_eq!(got.mu(), expected.mu());
+        unsafe { frictionContactProblem_free(problem) };
+    }
+    unsafe {
+        frictionContactProblem_free(fc);
+        globalFrictionContact_free(g);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The entries of a matrix in 1-based coordinates, as LMGC90 gives them.
+fn coordinates(m: &CsrMatrix) -> (Vec<c_double>, Vec<c_uint>, Vec<c_uint>) {
+    let (mut x, mut r, mut c) = (Vec::new(), Vec::new(), Vec::new());
+    m.for_each_entry(|i, j, v| {
+        x.push(v);
+        r.push(i as c_uint + 1);
+        c.push(j as c_uint + 1);
+    });
+    (x, r, c)
+}
+
+#[test]
+fn lmgc_driver_gives_gfc3d_drivers_answer() {
+    if !available() {
+        return;
+    }
+    let name = "GFC3D_TwoRods1.dat";
+    let core = core_problem(name);
+    let (n, m) = (core.ndof(), core.size());
+    let (mut mx, mut mr, mut mc) = coordinates(core.m());
+    let (mut hx, mut hr, mut hc) = coordinates(core.h());
+    let (mut q, mut b, mut mu) = (core.q().to_vec(), core.b().to_vec(), core.mu().to_vec());
+    let (mut r, mut u, mut v) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
+    let mut iparam = [0 as c_int; 20];
+    let mut dparam = [0.0; 20];
+    dparam[0] = 1e-8;
+    iparam[0] = 5000;
+    let info = unsafe {
+        gfc3d_LmgcDriver(
+            r.as_mut_ptr(),
+            u.as_mut_ptr(),
+            v.as_mut_ptr(),
+            q.as_mut_ptr(),
+            b.as_mut_ptr(),
+            mu.as_mut_ptr(),
+            mx.as_mut_ptr(),
+            mx.len() as c_uint,
+            mr.as_mut_ptr(),
+            mc.as_mut_ptr(),
+            hx.as_mut_ptr(),
+            hx.len() as c_uint,
+            hr.as_mut_ptr(),
+            hc.as_mut_ptr(),
+            n as c_uint,
+            (m / 3) as c_uint,
+            600,
+            20,
+            iparam.as_mut_ptr(),
+            20,
+            dparam.as_mut_ptr(),
+            0,
+            0,
+            0,
+        )
+    };
+    assert_eq!(info, 0, "{}", last_message());
+    assert!(iparam[1] > 0);
+    assert_eq!(dparam[0], 1e-8);
+    assert!(dparam[1] <= 1e-8);
+    // gfc3d_driver on the file's problem with the same options.
+    let p = CProblem::read(name);
+    let o = Options::new(600, 1e-8, 5000);
+    let (mut r2, mut u2, mut v2) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
+    let info = unsafe { gfc3d_driver(p.0, r2.as_mut_ptr(), u2.as_mut_ptr(), v2.as_mut_ptr(), o.0) };
+    assert_eq!(info, 0);
+    assert_eq!((&r, &v, o.iparam(1)), (&r2, &v2, iparam[1]));
+    // An index outside the matrix is refused.
+    mr[0] = n as c_uint + 1;
+    let mut r3 = vec![0.5; m];
+    let info = unsafe {
+        gfc3d_LmgcDriver(
+            r3.as_mut_ptr(),
+            u.as_mut_ptr(),
+            v.as_mut_ptr(),
+            q.as_mut_ptr(),
+            b.as_mut_ptr(),
+            mu.as_mut_ptr(),
+            mx.as_mut_ptr(),
+            mx.len() as c_uint,
+            mr.as_mut_ptr(),
+            mc.as_mut_ptr(),
+            hx.as_mut_ptr(),
+            hx.len() as c_uint,
+            hr.as_mut_ptr(),
+            hc.as_mut_ptr(),
+            n as c_uint,
+            (m / 3) as c_uint,
+            600,
+            20,
+            iparam.as_mut_ptr(),
+            20,
+            dparam.as_mut_ptr(),
+            0,
+            0,
+            0,
+        )
+    };
+    assert_eq!(info, FC3D_ERR_INVALID_SIZE);
+    assert!(r3.iter().all(|&x| x == 0.5));
+}
+
+#[test]
+fn the_global_rolling_driver_solves_with_5000() {
+    // Two bodies of 5 unknowns, M = diag(1, 2, ...), H = I, 2 rolling contacts pushed in.
+    let n = 10;
+    let mut mdata = vec![0.0; n * n];
+    let mut hdata = vec![0.0; n * n];
+    for i in 0..n {
+        mdata[i + n * i] = 1.0 + i as f64;
+        hdata[i + n * i] = 1.0;
+    }
+    let mut q: Vec<f64> = (0..n)
+        .map(|i| if i % 5 == 0 { -1.0 } else { 0.1 })
+        .collect();
+    let mut b = vec![0.0; n];
+    let (mut mu, mut mu_r) = (vec![0.5, 0.4], vec![0.05, 0.1]);
+    let mut nm: NumericsMatrix = unsafe { std::mem::zeroed() };
+    nm.size0 = n as c_int;
+    nm.size1 = n as c_int;
+    nm.matrix0 = mdata.as_mut_ptr();
+    let mut nh: NumericsMatrix = unsafe { std::mem::zeroed() };
+    nh.size0 = n as c_int;
+    nh.size1 = n as c_int;
+    nh.matrix0 = hdata.as_mut_ptr();
+    let mut p = GlobalRollingFrictionContactProblem {
+        dimension: 5,
+        numberOfContacts: 2,
+        M: &mut nm,
+        H: &mut nh,
+        q: q.as_mut_ptr(),
+        b: b.as_mut_ptr(),
+        mu: mu.as_mut_ptr(),
+        mu_r: mu_r.as_mut_ptr(),
+    };
+    let o = Options::new(5000, 1e-10, 1000);
+    let (mut r, mut u, mut v) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let info = unsafe {
+        g_rolling_fc3d_driver(&mut p, r.as_mut_ptr(), u.as_mut_ptr(), v.as_mut_ptr(), o.0)
+    };
+    assert_eq!(info, 0, "{}", last_message());
+    assert!(o.dparam(1) <= 1e-10);
+    for i in 0..n {
+        // M v = q + r (H = I).
+        assert!((mdata[i + n * i] * v[i] - q[i] - r[i]).abs() < 1e-12);
+        assert_eq!(u[i], v[i]);
+    }
+    // Options of the plain global solver are refused.
+    let o = Options::new(600, 1e-10, 1000);
+    let info = unsafe {
+        g_rolling_fc3d_driver(&mut p, r.as_mut_ptr(), u.as_mut_ptr(), v.as_mut_ptr(), o.0)
+    };
+    assert_eq!(info, FC3D_ERR_UNSUPPORTED_SOLVER);
+    let _ = null::<c_char>();
+}
+
+extern "C" {
+    fn globalFrictionContact_fclib_read(path: *const c_char) -> *mut GlobalFrictionContactProblem;
+    fn globalFrictionContact_fclib_write(
+        problem: *mut GlobalFrictionContactProblem,
+        title: *mut c_char,
+        description: *mut c_char,
+        math_info: *mut c_char,
+        path: *const c_char,
+    ) -> c_int;
+}
+
+/// Box_Stacks' global problem through the FCLIB functions: read (by name and with
+/// `globalFrictionContact_fclib_read`), solved, written and read back the same. Without FCLIB
+/// support every call fails with `FC3D_ERR_IO`, writing nothing.
+#[test]
+fn fclib_global_files_through_the_c_api() {
+    if !available() {
+        return;
+    }
+    let path = c_path(&data("Box_Stacks-i0122-82-5.hdf5"));
+    let dir = std::env::temp_dir().join(format!("fc3d-global-fclib-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = c_path(&dir.join("box.hdf5"));
+    let mut title = *b"Box stacks\0";
+    if !fc3d_core::io::FCLIB_AVAILABLE {
+        let p = unsafe { globalFrictionContact_new_from_filename(path.as_ptr()) };
+        assert!(p.is_null());
+        assert_eq!(unsafe { fc3d_last_error_code() }, fc3d::FC3D_ERR_IO);
+        assert!(last_message().contains("FCLIB"), "{}", last_message());
+        assert!(unsafe { globalFrictionContact_fclib_read(path.as_ptr()) }.is_null());
+        return;
+    }
+    let p = CProblem::read("Box_Stacks-i0122-82-5.hdf5");
+    assert_eq!(
+        (p.get().numberOfContacts, unsafe { (*p.get().M).size0 }),
+        (82, 450)
+    );
+    let o = Options::new(600, 1e-5, 10000);
+    let (n, m) = (450, 246);
+    let (mut r, mut u, mut v) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
+    let info = unsafe { gfc3d_driver(p.0, r.as_mut_ptr(), u.as_mut_ptr(), v.as_mut_ptr(), o.0) };
+    assert_eq!(info, 0, "{}", last_message());
+    assert!(o.dparam(1) <= 1e-5);
+    let written = unsafe {
+        globalFrictionContact_fclib_write(
+            p.0,
+            title.as_mut_ptr().cast(),
+            null_mut(),
+            null_mut(),
+            out.as_ptr(),
+        )
+    };
+    assert_eq!(written, 1, "{}", last_message());
+    let again = CProblem(unsafe { globalFrictionContact_fclib_read(out.as_ptr()) });
+    assert!(!again.0.is_null(), "{}", last_message());
+    let (a, b) = (dir.join("a.dat"), dir.join("b.dat"));
+    for (problem, file) in [(&p, &a), (&again, &b)] {
+        let c = c_path(file);
+        assert_eq!(
+            unsafe { globalFrictionContact_printInFileName(problem.0, c.as_ptr()) },
+            0
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(&a).unwrap(),
+        std::fs::read_to_string(&b).unwrap()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
