@@ -138,6 +138,7 @@ extern "C" {
     pub fn capi_check_hostile_matrices() -> c_int;
     pub fn capi_check_solver_entries(data_dir: *const c_char) -> c_int;
     pub fn capi_check_problem_copy(data_dir: *const c_char) -> c_int;
+    pub fn capi_check_global(data_dir: *const c_char, scratch_dir: *const c_char) -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.

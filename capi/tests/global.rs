@@ -278,7 +278,10 @@ impl Options {
 
 impl Drop for Options {
     fn drop(&mut self) {
-        unsafe { solver_options_delete(self.0) };
+        unsafe {
+            solver_options_delete(self.0);
+            free(self.0.cast());
+        }
     }
 }
 
