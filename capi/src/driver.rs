@@ -42,7 +42,7 @@ const SIZE: usize = crate::OPTIONS_PARAM_SIZE as usize;
 unsafe fn internal_slots(o: &SolverOptions) -> Vec<*mut SolverOptions> {
     let n = o.numberOfInternalSolvers;
     if n == 0
-        || n > crate::options::FC3D_OPTIONS_MAX_INTERNAL_SOLVERS as usize
+        || n > crate::option_tree::FC3D_OPTIONS_MAX_INTERNAL_SOLVERS as usize
         || o.internalSolvers.is_null()
     {
         return Vec::new();

@@ -33,9 +33,11 @@ mod measures;
 /// cbindgen:ignore
 mod names;
 mod native;
+mod option_tree;
 mod options;
 mod params;
 mod problem;
+mod problem_files;
 mod rolling;
 mod solver_entries;
 mod stream;
@@ -48,7 +50,7 @@ pub use codes::*;
 pub use errors::{fc3d_clear_last_error, fc3d_last_error_code, fc3d_last_error_message};
 pub(crate) use errors::{ffi_guard, verbose, CError, CResult};
 pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
-pub use options::{
+pub use option_tree::{
     FC3D_OPTIONS_MAX_DEPTH, FC3D_OPTIONS_MAX_INTERNAL_SOLVERS, FC3D_OPTIONS_MAX_PARAM_SIZE,
 };
 pub use workspace::{

@@ -6,7 +6,8 @@ use std::os::raw::{c_double, c_int, c_uint};
 
 use super::alloc::c_free;
 use super::matrix::c_slice;
-use super::options::{create_options, delete_contents};
+use super::option_tree::delete_contents;
+use super::options::create_options;
 use super::params::config_from_c;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
 use fc3d_core::matrix::{BlockSparseMatrix, Delassus};

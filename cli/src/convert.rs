@@ -67,7 +67,7 @@ pub fn run(args: &ConvertArgs) -> ExitCode {
 /// Reads IN, writes OUT; returns the problem and the info written.
 fn convert(args: &ConvertArgs) -> Result<(FrictionProblem<'static>, FclibInfo), Fc3dError> {
     check_output_name(&args.output)?;
-    let problem = super::read_problem(&args.input)?;
+    let problem = crate::inputs::read_problem(&args.input)?;
     let info = if has_fclib_extension(&args.output) {
         info_for(args)?
     } else {

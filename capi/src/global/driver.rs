@@ -15,7 +15,8 @@ use std::os::raw::{c_double, c_int, c_uint};
 use super::{global_from_c, global_rolling_from_c, GlobalView};
 use crate::alloc::c_free;
 use crate::matrix::c_slice;
-use crate::options::{create_options, delete_contents};
+use crate::option_tree::delete_contents;
+use crate::options::create_options;
 use crate::params::global::{
     global_config_from_c, global_internal_tolerance, global_rolling_config_from_c, lmgc_overrides,
     write_global_outputs,

@@ -51,7 +51,7 @@ unsafe fn compute_error(
     check_finite("globalVelocity", v)?;
     let mut u = vec![0.0; g.size()];
     let mut work = ErrorWork::new(g.ndof());
-    let e = global_error_with_norm_q(g, law, r, &mut u, v, norm_q, &mut work);
+    let e = global_error_with_norm_q(g, law, r, &mut u, v, None, norm_q, &mut work);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, u.len());
     *error = e;
     Ok(c_int::from(e > tolerance))

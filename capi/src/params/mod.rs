@@ -26,7 +26,7 @@ pub(crate) use tolerance::{internal_solver_tolerance, set_tolerance};
 use std::os::raw::{c_double, c_int};
 use std::time::Duration;
 
-use super::options::check_tree;
+use super::option_tree::check_tree;
 use super::types::SolverOptions;
 use super::{CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_UNSUPPORTED_SOLVER};
 use fc3d_core::{Fc3dError, LocalSolverKind, Method, SolverConfig};

@@ -4,19 +4,10 @@
 //! host or a Siconos test that edits a few slots of the defaults runs what it would run with
 //! Siconos; `tests.rs` checks that, read back, they are the core's default configurations.
 
-use std::os::raw::{c_double, c_int};
+use std::os::raw::c_int;
 
-use super::siconos_table::TABLE;
+use super::siconos_table::{Defaults, TABLE};
 use super::Encoded;
-
-/// One options struct of Siconos' defaults: the slots that differ from a fresh struct (0, and
-/// +inf in dparam[1]) and its internal solvers.
-pub(super) struct Defaults {
-    pub id: c_int,
-    pub iparam: &'static [(usize, c_int)],
-    pub dparam: &'static [(usize, c_double)],
-    pub internal: &'static [Defaults],
-}
 
 impl Defaults {
     fn encode(&self) -> Encoded {

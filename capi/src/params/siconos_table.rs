@@ -3,7 +3,16 @@
 //! internal solvers, nested. Generated from the installed libsiconos_numerics by
 //! `scripts/siconos-options.sh --write-table`; do not edit by hand.
 
-use super::siconos::Defaults;
+use std::os::raw::{c_double, c_int};
+
+/// One options struct of Siconos' defaults: the slots that differ from a fresh struct (0, and
+/// +inf in dparam[1]) and its internal solvers.
+pub(super) struct Defaults {
+    pub id: c_int,
+    pub iparam: &'static [(usize, c_int)],
+    pub dparam: &'static [(usize, c_double)],
+    pub internal: &'static [Defaults],
+}
 
 #[rustfmt::skip]
 pub(super) const TABLE: &[Defaults] = &[

@@ -6,7 +6,8 @@
 use std::os::raw::c_int;
 
 use super::*;
-use crate::options::{create_options, delete_contents};
+use crate::option_tree::delete_contents;
+use crate::options::create_options;
 
 struct Reference {
     id: c_int,
@@ -75,7 +76,7 @@ fn defaults_of_fc3d_own_ids_are_the_local_solvers() {
 /// of neither Siconos nor fc3d is refused.
 #[test]
 fn defaults_are_siconos_table() {
-    fn same(e: &Encoded, d: &siconos::Defaults) {
+    fn same(e: &Encoded, d: &siconos_table::Defaults) {
         assert_eq!(e.id, d.id);
         for k in 0..SIZE {
             let i = d

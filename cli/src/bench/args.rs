@@ -28,7 +28,7 @@ pub struct BenchArgs {
     pub solvers: SpecList,
     /// Tolerances on the relative natural-map error, comma-separated [default: 1e-4,1e-6,1e-8;
     /// with --budget: 1e-14, or the smallest given].
-    #[arg(long, value_name = "X,...", value_delimiter = ',', value_parser = crate::parse_tolerance)]
+    #[arg(long, value_name = "X,...", value_delimiter = ',', value_parser = crate::units::parse_tolerance)]
     pub tol: Option<Vec<f64>>,
     /// Iteration (sweep) limit [default: 100000; with --budget: none].
     #[arg(long, value_name = "N")]

@@ -29,5 +29,5 @@ pub(super) fn format_time(secs: f64) -> String {
     if !secs.is_finite() {
         return "-".to_string();
     }
-    crate::format_time(Duration::from_secs_f64(secs))
+    crate::units::format_time(Duration::from_secs_f64(secs))
 }

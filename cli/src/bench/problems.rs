@@ -39,21 +39,21 @@ pub(super) fn load_problems(paths: &[PathBuf], failed: &mut bool) -> Vec<Problem
             })
             .collect();
     }
-    let (inputs, errors) = crate::expand_paths(paths);
+    let (inputs, errors) = crate::inputs::expand_paths(paths);
     for message in &errors {
         eprintln!("fc3d: {message}");
     }
     *failed |= !errors.is_empty();
     let mut problems = Vec::new();
     for input in inputs {
-        match crate::load_input(input) {
-            crate::Loaded::Problem(name, problem) => problems.push(Problem {
+        match crate::inputs::load_input(input) {
+            crate::inputs::Loaded::Problem(name, problem) => problems.push(Problem {
                 family: family_of(&name),
                 name,
                 problem,
             }),
-            crate::Loaded::Skipped => {}
-            crate::Loaded::Failed => *failed = true,
+            crate::inputs::Loaded::Skipped => {}
+            crate::inputs::Loaded::Failed => *failed = true,
         }
     }
     problems

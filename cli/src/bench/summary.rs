@@ -36,7 +36,7 @@ pub(super) fn tolerance_summary(
             out.push_str(&format!(
                 "{:<16} {:>9} {:>10} {:>8} {:>12} {:>14}\n",
                 label,
-                crate::scientific(tol),
+                crate::units::scientific(tol),
                 format!("{}/{}", solved.len(), n_problems),
                 fastest,
                 format_time(total),
@@ -79,7 +79,7 @@ pub(super) fn budget_summary(
 ) -> String {
     let mut out = format!(
         "# error reached within each wall-clock budget (tolerance {}, so the budget stops the run)\n",
-        crate::scientific(tol)
+        crate::units::scientific(tol)
     );
     out.push_str(&format!(
         "{:<16} {:>8} {:>12} {:>12} {:>9} {:>9} {:>9}\n",
@@ -104,8 +104,8 @@ pub(super) fn budget_summary(
                 "{:<16} {:>8} {:>12} {:>12} {:>9} {:>9} {:>9}\n",
                 label,
                 duration_name(b),
-                crate::scientific(median(errors.clone())),
-                crate::scientific(worst),
+                crate::units::scientific(median(errors.clone())),
+                crate::units::scientific(worst),
                 under(1e-4),
                 under(1e-6),
                 under(1e-8),

@@ -84,8 +84,22 @@ impl OuterLoop {
         u: &mut [f64],
         observer: &mut Observer<'_>,
     ) -> (f64, Option<SolverOutcome>) {
+        self.end_iteration_measured(iteration, r, observer, |r| {
+            natural_map_error_by_rows(problem, rows, r, u)
+        })
+    }
+
+    /// [`OuterLoop::end_iteration`] with the error measured by `measure` (the global
+    /// problem's outer loops).
+    pub fn end_iteration_measured(
+        &mut self,
+        iteration: usize,
+        r: &mut [f64],
+        observer: &mut Observer<'_>,
+        measure: impl FnOnce(&[f64]) -> f64,
+    ) -> (f64, Option<SolverOutcome>) {
         let finite = self.accept(r);
-        let error = natural_map_error_by_rows(problem, rows, r, u);
+        let error = measure(r);
         observer(&IterationEvent {
             iteration,
             reaction: r,

@@ -5,6 +5,12 @@ use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
 use crate::solvers::rolling::RollingMethod;
 
+use super::aclm::GlobalAclmOptions;
+use super::admm::GlobalAdmmOptions;
+use super::jacobi::JacobiOptions;
+use super::newton::GlobalNewtonOptions;
+use crate::solvers::vi::{ViOptions, ViSolver};
+
 /// A global solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum GlobalMethod {
@@ -15,6 +21,21 @@ pub enum GlobalMethod {
     /// 606 NSN_AC_WR (NSN-AC 504), 614 ADMM_WR (ADMM 523); any other local method (AUTO
     /// included) works the same way.
     Reduced(Method),
+    /// Siconos' `GFC3D_NSGS` (605): projected Jacobi on the reaction with `v` solved exactly
+    /// at every iteration.
+    ProjectedJacobi(JacobiOptions),
+    /// Siconos' `GFC3D_NSN_AC` (607): semismooth Newton on `(v, u, r)` with the sparse
+    /// Jacobian of the unreduced system (no W formed).
+    Newton(GlobalNewtonOptions),
+    /// Siconos' `GFC3D_VI_FPP` (610) and `GFC3D_VI_EG` (611): the VI fixed point or
+    /// extragradient on `(v, r)` (the local VI solvers' implementation).
+    Vi(ViOptions),
+    /// Siconos' `GFC3D ADMM` (613): ADMM on the splitting `H^T v + b_s = z ∈ K*` with
+    /// `M + rho H H^T` factored (the local ADMM's engine).
+    Admm(GlobalAdmmOptions),
+    /// Siconos' `GFC3D_ACLMFP` (612): fixed point on De Saxcé's term, each convex problem
+    /// solved by the global ADMM with the term held fixed.
+    Aclm(GlobalAclmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -39,6 +60,14 @@ impl GlobalMethod {
                     .find(|(l, _)| *l == local)
                     .map_or(local, |(_, g)| *g)
             }
+            GlobalMethod::ProjectedJacobi(_) => 605,
+            GlobalMethod::Newton(_) => 607,
+            GlobalMethod::Vi(o) => match o.solver {
+                ViSolver::ViExtraGradient => 611,
+                _ => 610,
+            },
+            GlobalMethod::Admm(_) => 613,
+            GlobalMethod::Aclm(_) => 612,
         }
     }
 
@@ -54,6 +83,12 @@ impl GlobalMethod {
     pub fn label(&self) -> String {
         match self {
             GlobalMethod::Reduced(m) => format!("WR-{}", m.label()),
+            GlobalMethod::ProjectedJacobi(_) => "GFC3D-NSGS".to_string(),
+            GlobalMethod::Newton(o) => format!("GFC3D-{}", o.formulation.short_name()),
+            GlobalMethod::Vi(o) => format!("GFC3D-{}", o.solver.short_name()),
+            GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
+            GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
+            GlobalMethod::Aclm(_) => "GFC3D-ACLMFP".to_string(),
         }
     }
 
@@ -62,12 +97,22 @@ impl GlobalMethod {
     pub fn default_limits(&self) -> (f64, usize) {
         match self {
             GlobalMethod::Reduced(m) => m.default_limits(),
+            GlobalMethod::ProjectedJacobi(_) => (1e-4, 1000),
+            GlobalMethod::Newton(_) => (1e-10, 200),
+            GlobalMethod::Vi(o) => o.solver.default_limits(),
+            GlobalMethod::Admm(_) => (1e-6, 20000),
+            GlobalMethod::Aclm(_) => (1e-4, 1000),
         }
     }
 
     pub fn validate(&self) -> Result<(), Fc3dError> {
         match self {
             GlobalMethod::Reduced(m) => m.family().validate(),
+            GlobalMethod::ProjectedJacobi(o) => o.validate(),
+            GlobalMethod::Newton(o) => o.validate(),
+            GlobalMethod::Vi(o) => super::vi::validate(o),
+            GlobalMethod::Admm(o) => o.validate(),
+            GlobalMethod::Aclm(o) => o.validate(),
         }
     }
 }

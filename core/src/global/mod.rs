@@ -11,12 +11,21 @@
 //! The reduction to the local problem goes through [`crate::matrix::HForm`] (W = H^T M^-1 H
 //! with M factored block by block, never a dense inverse).
 
+mod aclm;
+mod admm;
 mod config;
+mod jacobi;
+mod newton;
 mod solve;
+mod vi;
 
 pub use crate::measure::{
     global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork,
 };
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
+pub use aclm::GlobalAclmOptions;
+pub use admm::GlobalAdmmOptions;
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
-pub use solve::{solve_global, solve_global_rolling, GlobalReport};
+pub use jacobi::JacobiOptions;
+pub use newton::GlobalNewtonOptions;
+pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};

@@ -5,13 +5,14 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
+use super::{aclm, admm, jacobi, newton, vi};
 use crate::config::SolverConfig;
-use crate::contract::{SolveReport, SolveStatus};
+use crate::contract::{Limits, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
 use crate::matrix::HForm;
 use crate::measure::{global_error, global_rolling_error, ContactLaw};
 use crate::problem::{GlobalProblem, GlobalRollingProblem};
-use crate::solve::{solve, solve_rolling};
+use crate::solve::{solve_rolling, solve_with_observer};
 
 /// What a global solve returns.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,6 +68,19 @@ pub fn solve_global(
     u: &mut [f64],
     v: &mut [f64],
 ) -> Result<GlobalReport, Fc3dError> {
+    solve_global_with_observer(problem, config, r, u, v, &mut |_| {})
+}
+
+/// [`solve_global`] with an observer called after every iteration (for a reduction: of the
+/// local solver, with the local error).
+pub fn solve_global_with_observer(
+    problem: &GlobalProblem<'_>,
+    config: &GlobalConfig,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<GlobalReport, Fc3dError> {
     check_arrays(problem.size(), problem.ndof(), r, u, v)?;
     config.validate()?;
     let mut operator = problem.operator()?;
@@ -79,30 +93,145 @@ pub fn solve_global(
             config.tolerance,
         ));
     }
-    match &config.method {
+    let limits = config.limits();
+    let outcome = match &config.method {
         GlobalMethod::Reduced(method) => {
             let local = problem.reduce(&mut operator)?;
-            reduced(
+            return tightening(
                 config.tolerance,
                 config.max_iter,
                 config.time_budget,
                 r,
                 u,
-                |limits, r, u| {
+                &mut (&mut operator, v),
+                |_, limits, r, u| {
                     let local_config = SolverConfig {
                         tolerance: limits.0,
                         max_iter: limits.1,
                         time_budget: limits.2,
                         ..SolverConfig::new(*method)
                     };
-                    solve(&local, &local_config, r, u)
+                    solve_with_observer(&local, &local_config, r, u, observer).map(Round::of_local)
                 },
-                |r, u| {
+                |(operator, v), r, u| {
                     operator.global_velocity(problem.q(), r, v);
                     global_error(problem, ContactLaw::Coulomb, r, u, v)
                 },
-            )
+            );
         }
+        GlobalMethod::Aclm(options) => {
+            aclm::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::Admm(options) => {
+            admm::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::ProjectedJacobi(options) => {
+            jacobi::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::Newton(options) => {
+            newton::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::Vi(options) => {
+            return tightening(
+                config.tolerance,
+                config.max_iter,
+                config.time_budget,
+                r,
+                u,
+                &mut (&mut operator, v),
+                |(operator, v), limits, r, u| {
+                    let limits = Limits {
+                        tolerance: limits.0,
+                        max_iter: limits.1,
+                        time_budget: limits.2,
+                    };
+                    let (outcome, vi_error) =
+                        vi::run(problem, operator, options, &limits, r, u, v, observer)?;
+                    Ok(Round {
+                        status: own_status(&outcome, vi_error, limits.tolerance),
+                        iterations: outcome.iterations,
+                        own_error: vi_error,
+                        local: None,
+                    })
+                },
+                |(operator, v), r, u| {
+                    operator.global_velocity(problem.q(), r, v);
+                    global_error(problem, ContactLaw::Coulomb, r, u, v)
+                },
+            );
+        }
+    };
+    Ok(finish(
+        problem,
+        &mut operator,
+        config.tolerance,
+        outcome,
+        r,
+        u,
+        v,
+    ))
+}
+
+/// The status of a run by the error it stopped on, in its own measure.
+fn own_status(outcome: &SolverOutcome, error: f64, tolerance: f64) -> SolveStatus {
+    if error <= tolerance {
+        SolveStatus::Converged
+    } else if outcome.diverged {
+        SolveStatus::Unbounded
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    }
+}
+
+/// The post-processing of a direct global solver: `v = M^-1 (q + H r)` and `u = H^T v + b`
+/// from the returned reaction (unless the run's last step left exactly that triple and
+/// measured it), the global error of the triple, and the status from it.
+fn finish(
+    problem: &GlobalProblem<'_>,
+    operator: &mut HForm,
+    tolerance: f64,
+    outcome: SolverOutcome,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+) -> GlobalReport {
+    let mut error = match outcome.final_error {
+        Some(e) => e,
+        None => {
+            operator.global_velocity(problem.q(), r, v);
+            global_error(problem, ContactLaw::Coulomb, r, u, v)
+        }
+    };
+    // As in the local solve: a host never gets infinities; r = 0 and its velocities instead.
+    if !error.is_finite()
+        || !r
+            .iter()
+            .chain(u.iter())
+            .chain(v.iter())
+            .all(|x| x.is_finite())
+    {
+        r.iter_mut().for_each(|x| *x = 0.0);
+        operator.global_velocity(problem.q(), r, v);
+        error = global_error(problem, ContactLaw::Coulomb, r, u, v);
+    }
+    let status = if error <= tolerance {
+        SolveStatus::Converged
+    } else if outcome.diverged {
+        SolveStatus::Unbounded
+    } else if outcome.relaxation_converged {
+        SolveStatus::RelaxationNotCoulomb
+    } else if outcome.out_of_time {
+        SolveStatus::TimeBudgetExhausted
+    } else {
+        SolveStatus::MaxIterationsReached
+    };
+    GlobalReport {
+        status,
+        iterations: outcome.iterations,
+        error,
+        local: None,
     }
 }
 
@@ -131,22 +260,23 @@ pub fn solve_global_rolling(
     }
     let local = problem.reduce(&mut operator)?;
     let method = config.method;
-    reduced(
+    tightening(
         config.tolerance,
         config.max_iter,
         config.time_budget,
         r,
         u,
-        |limits, r, u| {
+        &mut (&mut operator, v),
+        |_, limits, r, u| {
             let local_config = GlobalRollingConfig {
                 tolerance: limits.0,
                 max_iter: limits.1,
                 time_budget: limits.2,
                 method,
             };
-            solve_rolling(&local, &local_config, r, u)
+            solve_rolling(&local, &local_config, r, u).map(Round::of_local)
         },
-        |r, u| {
+        |(operator, v), r, u| {
             operator.global_velocity(base.q(), r, v);
             global_rolling_error(problem, r, u, v)
         },
@@ -176,63 +306,95 @@ fn without_contacts(
     }
 }
 
-/// The local limits of one round of a reduction: tolerance, iterations, budget.
-type LocalLimits = (f64, usize, Option<Duration>);
+/// The limits of one round of [`tightening`]: tolerance, iterations, budget.
+type RoundLimits = (f64, usize, Option<Duration>);
 
-/// Solves the reduced problem, recovers v and measures the global error; while the local
-/// solve converged but the global error is above the tolerance (the two normalise the same
-/// residual differently: the global one by `max(||u||, ||r||)`, the local one also by
-/// `||q_loc||`, and adds the balance term), solves again from the result with a tolerance
-/// lowered in the ratio of the two errors, within the iteration limit and the budget.
-fn reduced(
+/// One run of a solver that stops on its own error measure (a reduction's local solver, the
+/// VI solvers' VI error).
+struct Round {
+    status: SolveStatus,
+    iterations: usize,
+    /// The error the run stopped on, in its own measure.
+    own_error: f64,
+    /// A reduction's local report.
+    local: Option<SolveReport>,
+}
+
+impl Round {
+    fn of_local(report: SolveReport) -> Round {
+        Round {
+            status: report.status,
+            iterations: report.iterations,
+            own_error: report.error,
+            local: Some(report),
+        }
+    }
+}
+
+/// Runs a solver that stops on its own error measure (the local error of a reduction, the VI
+/// error), then recovers v and measures the global error of the triple; while the run
+/// converged in its measure but the global error is above the tolerance (a reduction's local
+/// error normalises the same residual by `||q_loc||` too and has no balance term; the VI error
+/// mixes the balance and the law), runs again from the result with its tolerance lowered in
+/// the ratio of the two errors, within the iteration limit and the budget.
+/// `state` (the operator and v) is lent to both closures in turn.
+#[allow(clippy::too_many_arguments)]
+fn tightening<S>(
     tolerance: f64,
     max_iter: usize,
     time_budget: Option<Duration>,
     r: &mut [f64],
     u: &mut [f64],
-    mut solve_local: impl FnMut(LocalLimits, &mut [f64], &mut [f64]) -> Result<SolveReport, Fc3dError>,
-    mut measure: impl FnMut(&[f64], &mut [f64]) -> f64,
+    state: &mut S,
+    mut run_round: impl FnMut(&mut S, RoundLimits, &mut [f64], &mut [f64]) -> Result<Round, Fc3dError>,
+    mut measure: impl FnMut(&mut S, &[f64], &mut [f64]) -> f64,
 ) -> Result<GlobalReport, Fc3dError> {
     let start = Instant::now();
-    let mut local_tolerance = tolerance;
+    let mut round_tolerance = tolerance;
     let mut iterations = 0;
     loop {
         let budget = time_budget.map(|b| {
             b.saturating_sub(start.elapsed())
                 .max(Duration::from_nanos(1))
         });
-        let report = solve_local((local_tolerance, max_iter - iterations, budget), r, u)?;
-        iterations += report.iterations;
-        let error = measure(r, u);
+        let round = run_round(
+            state,
+            (round_tolerance, max_iter - iterations, budget),
+            r,
+            u,
+        )?;
+        iterations += round.iterations;
+        let error = measure(state, r, u);
         let out_of_time = time_budget.is_some_and(|b| start.elapsed() >= b);
-        let tighten = report.converged()
+        let converged = round.status == SolveStatus::Converged;
+        let tighten = converged
             && error > tolerance
             && error.is_finite()
             && iterations < max_iter
             && !out_of_time
-            && local_tolerance > f64::EPSILON;
+            && round_tolerance > f64::EPSILON;
         if !tighten {
             let status = if error <= tolerance {
                 SolveStatus::Converged
-            } else if report.converged() {
+            } else if converged {
                 if out_of_time {
                     SolveStatus::TimeBudgetExhausted
                 } else {
                     SolveStatus::MaxIterationsReached
                 }
             } else {
-                report.status
+                round.status
             };
             return Ok(GlobalReport {
                 status,
                 iterations,
                 error,
-                local: Some(report),
+                local: round.local,
             });
         }
-        // The local error measured on the returned pair is at most the local tolerance;
-        // aim below the global tolerance by the ratio seen, with a margin.
-        let ratio = (report.error.max(f64::MIN_POSITIVE) / error).min(1.0);
-        local_tolerance = (0.5 * tolerance * ratio).min(0.5 * local_tolerance);
+        // The run's own error is at most its tolerance; aim below the global tolerance by
+        // the ratio seen, with a margin.
+        let ratio = (round.own_error.max(f64::MIN_POSITIVE) / error).min(1.0);
+        round_tolerance = (0.5 * tolerance * ratio).min(0.5 * round_tolerance);
     }
 }

@@ -104,50 +104,55 @@ impl HForm {
                 "H has {m} columns, not a multiple of the contact dimension {D}"
             )));
         }
-        let blocks = if self.mass.is_block_diagonal() {
-            self.block_contributions::<D>()?
+        if self.mass.is_block_diagonal() {
+            self.block_assembly::<D>()?.into_delassus::<D>()
         } else {
-            self.column_contributions::<D>()?
-        };
-        blocks.into_delassus::<D>(m / D)
+            self.column_contributions::<D>()?.into_delassus::<D>(m / D)
+        }
     }
 
     /// `H_S^T M_S^-1 H_S` for every diagonal block `M_S` of M, as D x D blocks of W: per block
-    /// of M, the contacts whose H columns touch its unknowns (a body and its contacts).
-    fn block_contributions<const D: usize>(&self) -> Result<BlockList, Fc3dError> {
+    /// of M, the contacts whose H columns touch its unknowns (a body and its contacts). W's
+    /// pattern is known before any value: contacts a and b are coupled when some block of M
+    /// touches both, so the blocks are summed in place (no list of contributions to sort).
+    fn block_assembly<const D: usize>(&self) -> Result<BlockAccumulator, Fc3dError> {
         let (dofs, offsets) = self.mass.blocks().expect("block-diagonal M");
+        let n_blocks = offsets.len() - 1;
         let nc = self.size() / D;
-        let dd = D * D;
-        // Contact marks: the block that last listed the contact, and its place in that list.
-        let mut mark = try_vec(nc, usize::MAX, "W's assembly")?;
-        let mut place = try_vec(nc, 0usize, "W's assembly")?;
-        let mut contacts: Vec<usize> = Vec::new();
-        let mut hs: Vec<f64> = Vec::new();
-        let mut xs: Vec<f64> = Vec::new();
-        let mut column: Vec<f64> = Vec::new();
-        let mut list = BlockList::default();
         let (row_ptr, col_idx, values) = (self.h.row_ptr(), self.h.col_idx(), self.h.values());
-        for k in 0..offsets.len() - 1 {
-            let block_dofs = &dofs[offsets[k]..offsets[k + 1]];
-            let s = block_dofs.len();
-            contacts.clear();
-            for &i in block_dofs {
+        // The contacts of every block of M (compressed by block), in increasing order.
+        let mut mark = try_vec(nc, usize::MAX, "W's assembly")?;
+        let mut group_ptr = try_vec(n_blocks + 1, 0usize, "W's assembly")?;
+        let mut group_contacts: Vec<usize> = Vec::new();
+        for k in 0..n_blocks {
+            let start = group_contacts.len();
+            for &i in &dofs[offsets[k]..offsets[k + 1]] {
                 for &j in &col_idx[row_ptr[i]..row_ptr[i + 1]] {
                     let c = j / D;
                     if mark[c] != k {
                         mark[c] = k;
-                        contacts.push(c);
+                        group_contacts.push(c);
                     }
                 }
             }
+            group_contacts[start..].sort_unstable();
+            group_ptr[k + 1] = group_contacts.len();
+        }
+        let mut acc = BlockAccumulator::new(nc, D * D, &group_ptr, &group_contacts)?;
+        let mut place = try_vec(nc, 0usize, "W's assembly")?;
+        let (mut hs, mut xs, mut column) = (Vec::new(), Vec::new(), Vec::new());
+        let mut positions = Vec::new();
+        for k in 0..n_blocks {
+            let contacts = &group_contacts[group_ptr[k]..group_ptr[k + 1]];
             if contacts.is_empty() {
                 continue;
             }
-            contacts.sort_unstable();
+            let block_dofs = &dofs[offsets[k]..offsets[k + 1]];
+            let s = block_dofs.len();
             for (p, &c) in contacts.iter().enumerate() {
                 place[c] = p;
             }
-            // H_S, column-major: s rows, D per contact columns.
+            // H_S, column-major: s rows, D columns a contact.
             let cols = D * contacts.len();
             hs.clear();
             hs.resize(s * cols, 0.0);
@@ -168,23 +173,24 @@ impl HForm {
                 self.mass.solve_block_in_place(k, &mut column);
                 x.copy_from_slice(&column);
             }
-            // W_S = H_S^T X, block (a, b) for every pair of the block's contacts.
+            // W_S = H_S^T X, block (a, b) for every pair of the block's contacts; the places
+            // of a row's blocks by one merge of two increasing lists.
             for (a, &ca) in contacts.iter().enumerate() {
-                for (b, &cb) in contacts.iter().enumerate() {
-                    let start = list.push(ca, cb, dd);
-                    let block = &mut list.values[start..start + dd];
+                acc.places_in_row(ca, contacts, &mut positions);
+                for (b, &p) in positions.iter().enumerate() {
+                    let block = acc.block_at(p);
                     for bj in 0..D {
                         let x = &xs[(D * b + bj) * s..(D * b + bj + 1) * s];
                         for ai in 0..D {
                             let h = &hs[(D * a + ai) * s..(D * a + ai + 1) * s];
                             // Column-major D x D block: entry (ai, bj).
-                            block[ai + D * bj] = h.iter().zip(x).map(|(p, q)| p * q).sum();
+                            block[ai + D * bj] += h.iter().zip(x).map(|(p, q)| p * q).sum::<f64>();
                         }
                     }
                 }
             }
         }
-        Ok(list)
+        Ok(acc)
     }
 
     /// W column by column for a general M: `X = M^-1 H e_j`, `W e_j = H^T X`.
@@ -242,6 +248,90 @@ impl HForm {
     }
 }
 
+/// W's D x D blocks on a pattern fixed in advance (block-sparse rows, columns increasing),
+/// values column-major, summed in place.
+struct BlockAccumulator {
+    dd: usize,
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    values: Vec<f64>,
+}
+
+impl BlockAccumulator {
+    /// The pattern where contacts a and b are coupled when a group holds both (and every
+    /// diagonal block): `group_contacts[group_ptr[k]..group_ptr[k + 1]]` lists group k's.
+    fn new(
+        nc: usize,
+        dd: usize,
+        group_ptr: &[usize],
+        group_contacts: &[usize],
+    ) -> Result<Self, Fc3dError> {
+        // The groups of every contact.
+        let mut count = try_vec(nc + 1, 0usize, "W's pattern")?;
+        for &c in group_contacts {
+            count[c + 1] += 1;
+        }
+        for c in 0..nc {
+            count[c + 1] += count[c];
+        }
+        let mut next = count.clone();
+        let mut groups_of = try_vec(group_contacts.len(), 0usize, "W's pattern")?;
+        for k in 0..group_ptr.len() - 1 {
+            for &c in &group_contacts[group_ptr[k]..group_ptr[k + 1]] {
+                groups_of[next[c]] = k;
+                next[c] += 1;
+            }
+        }
+        let mut row_ptr = try_vec(nc + 1, 0usize, "W's pattern")?;
+        let mut col_idx: Vec<usize> = Vec::new();
+        for a in 0..nc {
+            let start = col_idx.len();
+            col_idx.push(a);
+            for &k in &groups_of[count[a]..count[a + 1]] {
+                col_idx.extend_from_slice(&group_contacts[group_ptr[k]..group_ptr[k + 1]]);
+            }
+            col_idx[start..].sort_unstable();
+            let mut kept = start;
+            for p in start..col_idx.len() {
+                if p == start || col_idx[p] != col_idx[kept - 1] {
+                    col_idx[kept] = col_idx[p];
+                    kept += 1;
+                }
+            }
+            col_idx.truncate(kept);
+            row_ptr[a + 1] = col_idx.len();
+        }
+        let values = try_vec(col_idx.len() * dd, 0.0, "W's blocks")?;
+        Ok(BlockAccumulator {
+            dd,
+            row_ptr,
+            col_idx,
+            values,
+        })
+    }
+
+    /// The places of blocks `(a, b)` for the increasing `columns` b, all in the pattern.
+    fn places_in_row(&self, a: usize, columns: &[usize], places: &mut Vec<usize>) {
+        places.clear();
+        let mut p = self.row_ptr[a];
+        for &b in columns {
+            while self.col_idx[p] != b {
+                p += 1;
+            }
+            places.push(p);
+        }
+    }
+
+    /// The values of the block at place `p`.
+    fn block_at(&mut self, p: usize) -> &mut [f64] {
+        &mut self.values[p * self.dd..(p + 1) * self.dd]
+    }
+
+    fn into_delassus<const D: usize>(self) -> Result<Delassus<'static>, Fc3dError> {
+        blocks_to_delassus::<D>(self.row_ptr, self.col_idx, self.values)
+    }
+}
+
 /// D x D blocks `(block row, block column)` in any order, duplicates to be summed; values
 /// column-major, `D * D` a block.
 #[derive(Default)]
@@ -290,35 +380,47 @@ impl BlockList {
         for c in 0..nc {
             row_ptr[c + 1] += row_ptr[c];
         }
-        if D == 3 {
-            let blocks = summed
-                .chunks_exact(9)
-                .map(|b| b.try_into().expect("9 values a block"))
-                .collect();
-            return Ok(Delassus::SparseBlock(BlockSparseMatrix::new(
-                nc, nc, row_ptr, col_idx, blocks,
-            )?));
-        }
-        let mut triplets = Vec::new();
-        for bi in 0..nc {
-            for p in row_ptr[bi]..row_ptr[bi + 1] {
-                let bj = col_idx[p];
-                for c in 0..D {
-                    for r in 0..D {
-                        let v = summed[p * dd + r + D * c];
-                        if v != 0.0 {
-                            triplets.push((D * bi + r, D * bj + c, v));
-                        }
+        blocks_to_delassus::<D>(row_ptr, col_idx, summed)
+    }
+}
+
+/// W from its blocks (block-sparse rows, values column-major): 3x3 sparse-block storage for
+/// `D = 3`, compressed rows otherwise (exact zeros left out).
+fn blocks_to_delassus<const D: usize>(
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    summed: Vec<f64>,
+) -> Result<Delassus<'static>, Fc3dError> {
+    let nc = row_ptr.len() - 1;
+    let dd = D * D;
+    if D == 3 {
+        let blocks = summed
+            .chunks_exact(9)
+            .map(|b| b.try_into().expect("9 values a block"))
+            .collect();
+        return Ok(Delassus::SparseBlock(BlockSparseMatrix::new(
+            nc, nc, row_ptr, col_idx, blocks,
+        )?));
+    }
+    let mut triplets = Vec::new();
+    for bi in 0..nc {
+        for p in row_ptr[bi]..row_ptr[bi + 1] {
+            let bj = col_idx[p];
+            for c in 0..D {
+                for r in 0..D {
+                    let v = summed[p * dd + r + D * c];
+                    if v != 0.0 {
+                        triplets.push((D * bi + r, D * bj + c, v));
                     }
                 }
             }
         }
-        Ok(Delassus::Sparse(CsrMatrix::from_triplets(
-            D * nc,
-            D * nc,
-            &triplets,
-        )?))
     }
+    Ok(Delassus::Sparse(CsrMatrix::from_triplets(
+        D * nc,
+        D * nc,
+        &triplets,
+    )?))
 }
 
 /// `y <- y + A^T x`.

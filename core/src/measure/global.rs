@@ -29,6 +29,7 @@ pub enum ContactLaw {
 pub struct ErrorWork {
     hr: Vec<f64>,
     mv: Vec<f64>,
+    shifted: Vec<f64>,
 }
 
 impl ErrorWork {
@@ -37,6 +38,7 @@ impl ErrorWork {
         ErrorWork {
             hr: vec![0.0; ndof],
             mv: vec![0.0; ndof],
+            shifted: Vec::new(),
         }
     }
 }
@@ -83,6 +85,18 @@ fn local_velocity<const D: usize>(problem: &GlobalProblem<'_, D>, v: &[f64], u: 
     transpose_mul_add(problem.h(), v, u);
 }
 
+/// `u + shift` into `out`, or u itself without a shift.
+fn shifted<'x>(u: &'x [f64], shift: Option<&[f64]>, out: &'x mut Vec<f64>) -> &'x [f64] {
+    match shift {
+        None => u,
+        Some(s) => {
+            out.clear();
+            out.extend(u.iter().zip(s).map(|(a, b)| a + b));
+            out
+        }
+    }
+}
+
 /// The law's term: the absolute residual over `max(||u||, ||r||)`.
 fn law_term(absolute: f64, r: &[f64], u: &[f64]) -> f64 {
     let scale = norm(u).max(norm(r));
@@ -102,46 +116,57 @@ pub fn global_error<const D: usize>(
     u: &mut [f64],
     v: &[f64],
 ) -> f64 {
-    global_error_with(problem, law, r, u, v, &mut ErrorWork::default())
+    global_error_with(problem, law, r, u, v, None, &mut ErrorWork::default())
 }
 
-/// [`global_error`] in the given work space (allocates nothing once it has the problem's size).
+/// [`global_error`] in the given work space (allocates nothing once it has the problem's
+/// size). With `shift`, the law is measured at `u + shift` (the problem with `b + shift`: the
+/// inner problems of a fixed point on De Saxcé's term); `u` is still `H^T v + b`.
 pub fn global_error_with<const D: usize>(
     problem: &GlobalProblem<'_, D>,
     law: ContactLaw,
     r: &[f64],
     u: &mut [f64],
     v: &[f64],
+    shift: Option<&[f64]>,
     work: &mut ErrorWork,
 ) -> f64 {
     let norm_q = norm(problem.q());
-    global_error_with_norm_q(problem, law, r, u, v, norm_q, work)
+    global_error_with_norm_q(problem, law, r, u, v, shift, norm_q, work)
 }
 
 /// [`global_error_with`] with the balance term scaled by `max(norm_q, ||M v||, ||H r||)` for a
 /// given `norm_q` (Siconos' `gfc3d_compute_error` takes it from its caller; every caller passes
-/// `||q||`, which [`global_error`] uses).
+/// `||q||`, which [`global_error_with`] uses).
+#[allow(clippy::too_many_arguments)]
 pub fn global_error_with_norm_q<const D: usize>(
     problem: &GlobalProblem<'_, D>,
     law: ContactLaw,
     r: &[f64],
     u: &mut [f64],
     v: &[f64],
+    shift: Option<&[f64]>,
     norm_q: f64,
     work: &mut ErrorWork,
 ) -> f64 {
     local_velocity(problem, v, u);
+    let mut shifted_u = std::mem::take(&mut work.shifted);
+    let u_law = shifted(u, shift, &mut shifted_u);
     let absolute = match law {
         ContactLaw::Coulomb => problem
             .mu()
             .iter()
             .enumerate()
-            .map(|(c, &mu)| contact_residual_sq_d::<D>(&contact_of(r, c), &contact_of(u, c), mu))
+            .map(|(c, &mu)| {
+                contact_residual_sq_d::<D>(&contact_of(r, c), &contact_of(u_law, c), mu)
+            })
             .sum::<f64>()
             .sqrt(),
-        ContactLaw::Convex => convex_residual::<D>(problem.mu(), r, u),
+        ContactLaw::Convex => convex_residual::<D>(problem.mu(), r, u_law),
     };
-    balance(problem, r, v, norm_q, work) + law_term(absolute, r, u)
+    let error = balance(problem, r, v, norm_q, work) + law_term(absolute, r, u_law);
+    work.shifted = shifted_u;
+    error
 }
 
 /// `sqrt(sum_c ||r_c - P_K(r_c - u_c)||^2)`: the residual of the associated law.

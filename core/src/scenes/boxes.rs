@@ -21,7 +21,7 @@
 //! its contacts), so the count is exact. Same seed, same bits: see [`super::granular`].
 
 use super::granular::{piles_side_by_side, random_motion, walk_pyramid, Pile, Random};
-use super::{yaw, Body, World, E_Z};
+use super::world::{yaw, Body, Storage, World, E_Z};
 use crate::error::Fc3dError;
 use crate::problem::FrictionProblem;
 
@@ -52,7 +52,7 @@ fn pyramid_contacts(n: usize) -> usize {
 
 /// Generates the box scene of `spec` (sparse-block W).
 pub fn box_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError> {
-    Ok(box_world(spec)?.problem(super::Storage::SparseBlock))
+    Ok(box_world(spec)?.problem(Storage::SparseBlock))
 }
 
 pub(super) fn box_world(spec: &PileSpec) -> Result<World, Fc3dError> {

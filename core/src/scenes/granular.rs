@@ -19,7 +19,7 @@
 //! fixed-order floating-point arithmetic: the same spec gives the same problem, bit for bit, on
 //! every machine. Memory and time are O(contacts): nothing dense is ever built.
 
-use super::{normalize, Body, World, E_Z};
+use super::world::{normalize, Body, Storage, World, E_Z};
 use crate::error::Fc3dError;
 use crate::problem::FrictionProblem;
 
@@ -239,10 +239,10 @@ pub(super) fn random_motion(random: &mut Random) -> ([f64; 3], [f64; 3]) {
 
 /// Generates the scene of `spec` (sparse-block W).
 pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError> {
-    Ok(pile_world(spec)?.problem(super::Storage::SparseBlock))
+    Ok(pile_world(spec)?.problem(Storage::SparseBlock))
 }
 
-fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
+pub(super) fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     // Three radii of empty ground between piles.
     piles_side_by_side(
         spec,
@@ -373,7 +373,7 @@ pub(super) mod tests {
     /// W's stored blocks are exactly the pairs of contacts sharing a body, each stored once, and
     /// no contact before `split` shares a body with one after it (separate piles).
     pub(crate) fn blocks_are_exactly_the_shared_bodies(world: &World, split: usize) {
-        let p = world.problem(crate::scenes::Storage::SparseBlock);
+        let p = world.problem(Storage::SparseBlock);
         let Delassus::SparseBlock(w) = p.w() else {
             panic!("sparse-block W expected");
         };

@@ -11,7 +11,8 @@
 //! may close the gap in this step but not pass through). The generator takes the solver as a
 //! closure (this module sits below the solvers).
 
-use super::{cross, Body, World, DT, E_Z};
+use super::world::{bottom_corners, cross, yaw, Body, Storage, World, E_Z};
+use super::DT;
 use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
 use crate::problem::FrictionProblem;
 
@@ -120,7 +121,7 @@ fn simulate(
             world.add_contact(c.a, c.b, c.point, c.normal, c.mu);
         }
         let ids: Vec<i64> = candidates.iter().map(|c| c.id).collect();
-        let mut problem = world.problem(super::Storage::SparseBlock);
+        let mut problem = world.problem(Storage::SparseBlock);
         let mut q = problem.q().to_vec();
         for (k, c) in candidates.iter().enumerate() {
             if c.gap > 0.0 {
@@ -217,7 +218,7 @@ pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequ
                 shape: Shape::Sphere { radius },
                 mass: 1.0,
                 x: [x, y, radius + 0.01 + layer as f64 * 2.1 * radius],
-                rot: super::yaw(0.0),
+                rot: yaw(0.0),
                 v: [0.05 * jitter(&mut seed), 0.05 * jitter(&mut seed), 0.0],
                 omega: [0.0; 3],
             }
@@ -302,13 +303,13 @@ pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequ
 pub fn box_slide(steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
     let h0 = [0.4, 0.3, 0.1];
     let h1 = [0.2, 0.15, 0.1];
-    let r1 = super::yaw(0.3);
+    let r1 = yaw(0.3);
     let bodies = vec![
         SimBody {
             shape: Shape::Cuboid { h: h0 },
             mass: 4.0,
             x: [0.0, 0.0, h0[2]],
-            rot: super::yaw(0.0),
+            rot: yaw(0.0),
             v: [1.5, 0.2, 0.0],
             omega: [0.0, 0.0, 0.4],
         },
@@ -325,7 +326,7 @@ pub fn box_slide(steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
         let mut found = Vec::new();
         let reach = MARGIN + 0.05;
         let (lower, upper) = (&bodies[0], &bodies[1]);
-        for (k, p) in super::bottom_corners(&lower.x, &h0, &lower.rot)
+        for (k, p) in bottom_corners(&lower.x, &h0, &lower.rot)
             .into_iter()
             .enumerate()
         {
@@ -349,7 +350,7 @@ pub fn box_slide(steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
             lower.x[1] + top[1],
             lower.x[2] + top[2],
         ];
-        for (k, p) in super::bottom_corners(&upper.x, &h1, &upper.rot)
+        for (k, p) in bottom_corners(&upper.x, &h1, &upper.rot)
             .into_iter()
             .enumerate()
         {

@@ -25,9 +25,12 @@
 //! measures it only once its primal and dual residuals pass; fc3d therefore stops at the first
 //! iteration whose error is below the tolerance, never later than Siconos on the same iterates.
 
+mod engine;
 mod settings;
 
 pub use settings::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
+
+pub(crate) use engine::{iterate, Splitting};
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
@@ -380,7 +383,6 @@ fn admm_iterations<P: AdmmProblem>(
 ) -> Result<SolverOutcome, Fc3dError> {
     options.validate()?;
     let n = problem.w().nrows();
-    let q = problem.q();
     let run = limits.start();
     // Neither the analysis nor a factorization can be interrupted: one predicted to end past
     // the deadline is not started, and the run stops out of time with r as it came.
@@ -391,17 +393,8 @@ fn admm_iterations<P: AdmmProblem>(
     }
     let mut system = ShiftedSystem::new(problem.w())?;
 
-    // Work vectors, allocated once.
     let mut x = vec![0.0; n];
-    let mut z = vec![0.0; n];
-    let mut xi = vec![0.0; n];
-    let mut z_prev = vec![0.0; n];
-    let mut xi_prev = vec![0.0; n];
-    let mut z_hat = vec![0.0; n];
-    let mut xi_hat = vec![0.0; n];
-    let mut s = vec![0.0; n];
     let mut scratch = vec![0.0; n];
-
     let mut rho = initial_rho(
         problem.w(),
         options,
@@ -439,114 +432,91 @@ fn admm_iterations<P: AdmmProblem>(
     // what is measured and returned (z = P_K(x + ξ̂) is the feasible copy; x = z at a fixed
     // point). It starts from the given reaction as x, z and ẑ, with ξ = 0.
     problem.velocity(r, u);
-    x.copy_from_slice(r);
-    z_prev.copy_from_slice(r);
-    z_hat.copy_from_slice(r);
+    let z0 = r.to_vec();
+    let xi0 = vec![0.0; n];
+    let mut splitting = LocalSplitting {
+        problem,
+        system,
+        x,
+        s: vec![0.0; n],
+        r,
+        u,
+    };
+    Ok(iterate(
+        &mut splitting,
+        options,
+        &run,
+        rho,
+        scale,
+        &z0,
+        &xi0,
+        observer,
+    ))
+}
 
-    let mut alpha = 1.0_f64;
-    let mut combined_prev = f64::INFINITY;
+/// The local formulation's splitting: `r = z`, `z ∈ K`, the linear step
+/// `(W + rho I) x = rho (ẑ - ξ̂) - q - s(W x_prev + q)`; the measured iterate is x, written to
+/// the host's r (and `u = W r + q`) at every iteration.
+struct LocalSplitting<'p, 'r, P: AdmmProblem> {
+    problem: &'p P,
+    system: ShiftedSystem,
+    x: Vec<f64>,
+    s: Vec<f64>,
+    r: &'r mut [f64],
+    u: &'r mut [f64],
+}
 
-    for iteration in 1..=run.max_iter {
+impl<P: AdmmProblem> Splitting for LocalSplitting<'_, '_, P> {
+    fn split_size(&self) -> usize {
+        self.x.len()
+    }
+    fn factor_ends_by(&self, deadline: Option<Instant>) -> bool {
+        self.system.cost.ends_by(deadline)
+    }
+    fn factor(&mut self, rho: f64) -> bool {
+        self.system.factor(rho)
+    }
+    fn linear_step(&mut self, rho: f64, z_hat: &[f64], xi_hat: &[f64], a: &mut [f64]) -> bool {
         // x-update: (W + rho I) x = rho (ẑ - ξ̂) - q - s(W x_prev + q).
-        problem.de_saxce_term(u, &mut s);
-        for i in 0..n {
-            x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - s[i];
+        let q = self.problem.q();
+        self.problem.de_saxce_term(self.u, &mut self.s);
+        for i in 0..self.x.len() {
+            self.x[i] = rho * (z_hat[i] - xi_hat[i]) - q[i] - self.s[i];
         }
-        system.solve_in_place(&mut x);
-        if !bounded(&x) {
+        self.system.solve_in_place(&mut self.x);
+        if !bounded(&self.x) {
             // Diverging, or the factorization lost all accuracy: keep the last x (r and
             // u = W r + q are still those of the previous iteration) and stop.
-            return Ok(SolverOutcome::diverged(iteration));
+            return false;
         }
-        // z- and dual updates.
-        for i in 0..n {
-            scratch[i] = x[i] + xi_hat[i];
-        }
-        problem.project(&scratch, &mut z);
-        for i in 0..n {
-            xi[i] = xi_hat[i] + x[i] - z[i];
-        }
-        r.copy_from_slice(&x);
-        problem.velocity(r, u);
-        let error = problem.error_of(r, u);
+        a.copy_from_slice(&self.x);
+        true
+    }
+    fn project(&self, w: &[f64], z: &mut [f64]) {
+        self.problem.project(w, z);
+    }
+    fn dual_residual(&mut self, z: &[f64], z_hat: &[f64]) -> f64 {
+        distance_sq(z, z_hat).sqrt()
+    }
+    fn balancing_scales(&mut self, a: &[f64], z: &[f64], xi: &[f64]) -> (f64, f64) {
+        (engine::primal_scale(a, z), norm(xi))
+    }
+    fn measure(
+        &mut self,
+        iteration: usize,
+        _rho: f64,
+        _xi: &[f64],
+        _residuals: (f64, f64),
+        observer: &mut Observer<'_>,
+    ) -> Option<f64> {
+        self.r.copy_from_slice(&self.x);
+        self.problem.velocity(self.r, self.u);
+        let error = self.problem.error_of(self.r, self.u);
         observer(&IterationEvent {
             iteration,
-            reaction: r,
+            reaction: self.r,
             error,
         });
-        if let Some(outcome) = run.end_of_iteration(iteration, error <= run.tolerance) {
-            return Ok(outcome);
-        }
-
-        let primal = distance_sq(&x, &z).sqrt();
-        let dual = rho / scale * distance_sq(&z, &z_hat).sqrt();
-
-        // Next extrapolation point.
-        let combined = primal * primal + dual * dual;
-        match options.acceleration {
-            AdmmAcceleration::None => {
-                z_hat.copy_from_slice(&z);
-                xi_hat.copy_from_slice(&xi);
-            }
-            AdmmAcceleration::Accelerated if combined < options.restart_eta * combined_prev => {
-                let alpha_next = 0.5 * (1.0 + (1.0 + 4.0 * alpha * alpha).sqrt());
-                let beta = (alpha - 1.0) / alpha_next;
-                for i in 0..n {
-                    z_hat[i] = z[i] + beta * (z[i] - z_prev[i]);
-                    xi_hat[i] = xi[i] + beta * (xi[i] - xi_prev[i]);
-                }
-                alpha = alpha_next;
-                combined_prev = combined;
-            }
-            AdmmAcceleration::Accelerated => {
-                // Restart from the previous iterate.
-                alpha = 1.0;
-                z_hat.copy_from_slice(&z_prev);
-                xi_hat.copy_from_slice(&xi_prev);
-                combined_prev /= options.restart_eta;
-            }
-        }
-        z_prev.copy_from_slice(&z);
-        xi_prev.copy_from_slice(&xi);
-
-        // Penalty update (residual balancing); the scaled dual follows rho so that rho ξ is kept.
-        let (p, d) = match options.rho_strategy {
-            AdmmRhoStrategy::Constant => continue,
-            AdmmRhoStrategy::ResidualBalancing => (primal, dual),
-            AdmmRhoStrategy::ScaledResidualBalancing => {
-                let scale_p = norm(&x).max(norm(&z));
-                let scale_d = rho / scale * norm(&xi);
-                (
-                    if scale_p > 0.0 {
-                        primal / scale_p
-                    } else {
-                        primal
-                    },
-                    if scale_d > 0.0 { dual / scale_d } else { dual },
-                )
-            }
-        };
-        let factor = if p > options.balancing_phi * d {
-            options.balancing_tau
-        } else if d > options.balancing_phi * p {
-            1.0 / options.balancing_tau
-        } else {
-            continue;
-        };
-        let new_rho = rho * factor;
-        if !(new_rho.is_finite() && new_rho > 0.0 && system.cost.ends_by(run.deadline())) {
-            // Keep the current factorization (valid for rho).
-            continue;
-        }
-        if !system.factor(new_rho) {
-            system.factor(rho);
-            continue;
-        }
-        rho = new_rho;
-        // Siconos rescales the scaled duals and keeps the extrapolation and its momentum.
-        for v in [&mut xi, &mut xi_hat, &mut xi_prev] {
-            v.iter_mut().for_each(|e| *e /= factor);
-        }
+        Some(error)
     }
-    Ok(run.exhausted())
 }

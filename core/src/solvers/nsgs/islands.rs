@@ -17,9 +17,11 @@
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 
+use super::coloured::{Colouring, Units, UNIT};
 use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlice, SpinBarrier};
 use super::settings::{Decomposition, NsgsOptions};
-use super::sweeper::{new_reaction, Colouring, ContactStep, Sweeper, Units, UNIT};
+use super::step::{new_reaction, ContactStep};
+use super::sweeper::Sweeper;
 use crate::contract::SolverOutcome;
 use crate::contract::{deadline_passed, ErrorSchedule, IterationEvent, Limits, Observer};
 use crate::error::{try_vec, Fc3dError};

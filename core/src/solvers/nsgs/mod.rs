@@ -8,15 +8,18 @@
 //! scalar problem it is: `r_N = max(0, -q_N / W_NN)`, `r_T = 0`, from the normal row only.
 
 mod anderson;
+mod coloured;
 mod islands;
 mod parallel;
 mod settings;
+mod step;
 mod sweeper;
 
+pub(crate) use coloured::Colouring;
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
 pub use settings::{Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
-pub(crate) use sweeper::Colouring;
-pub use sweeper::{ContactStep, GaussSeidel, LocalStep, SweepOptions, Sweeper};
+pub use step::{ContactStep, LocalStep};
+pub use sweeper::{GaussSeidel, SweepOptions, Sweeper};
 
 use crate::contract::{
     BestIterate, ErrorEvaluation, ErrorSchedule, Family, IterationEvent, Limits, Measure, Observer,

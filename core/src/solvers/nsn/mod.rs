@@ -8,8 +8,8 @@
 //! step); a step is only taken if its merit is finite, so r stays finite. A run that does not
 //! converge returns the best iterate it measured.
 
-mod jacobian;
-mod linesearch;
+pub(crate) mod jacobian;
+pub(crate) mod linesearch;
 mod settings;
 mod sparse;
 

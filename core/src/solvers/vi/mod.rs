@@ -32,6 +32,7 @@ pub use settings::{
     ViIteration, ViOptions, ViSolver,
 };
 
+pub(crate) use projection::run as run_projection;
 pub(crate) use settings::Lineage;
 
 use crate::contract::{Family, Limits, Observer, SolverOutcome};
@@ -76,12 +77,73 @@ impl Family for ViOptions {
         self.validate()?;
         match self.solver.iteration() {
             ViIteration::FixedPoint | ViIteration::ExtraGradient => {
-                projection::run(problem, self, limits, r, u, observer)
+                let map = LocalVi::new(problem);
+                projection::run(&map, self, limits, r, u, observer)
             }
             ViIteration::HyperplaneProjection => {
                 hyperplane::run(problem, self, limits, r, u, observer)
             }
         }
+    }
+}
+
+/// A variational inequality `x ∈ X, F(x)·(y - x) >= 0 for all y ∈ X` with X a product of
+/// Coulomb cones (on the reaction part of x) and free unknowns: what the fixed point and the
+/// extragradient iterate on. FC(W, q, mu) in r ([`LocalVi`]), or the global problem in (v, r)
+/// (`crate::global`).
+pub(crate) trait ViMap {
+    /// The unknowns x.
+    fn size(&self) -> usize;
+    /// The contact velocity `u` computed with F (what the host gets beside r).
+    fn velocity_size(&self) -> usize;
+    /// `u` and `f = F(x)`.
+    fn evaluate(&self, x: &[f64], u: &mut [f64], f: &mut [f64]);
+    /// `out = P_X(base - rho f)`.
+    fn project_step(&self, base: &[f64], f: &[f64], rho: f64, out: &mut [f64]);
+    /// `x <- P_X(x - rho f)`.
+    fn project_step_in_place(&self, x: &mut [f64], f: &[f64], rho: f64);
+    /// The error the lineage stops on at `x` (`u` and `f = F(x)` computed there).
+    fn stopping_error(&self, lineage: Lineage, x: &[f64], u: &[f64], f: &[f64]) -> f64;
+    /// The reaction part of x (what an observer is shown).
+    fn reaction<'x>(&self, x: &'x [f64]) -> &'x [f64];
+}
+
+/// FC(W, q, mu) as a VI in r: `F(r) = W r + q + g(W r + q)`, X the cones.
+pub(crate) struct LocalVi<'p, 'a> {
+    problem: &'p FrictionProblem<'a>,
+    norm_q: f64,
+}
+
+impl<'p, 'a> LocalVi<'p, 'a> {
+    pub fn new(problem: &'p FrictionProblem<'a>) -> Self {
+        LocalVi {
+            problem,
+            norm_q: crate::math::linalg::norm(problem.q()),
+        }
+    }
+}
+
+impl ViMap for LocalVi<'_, '_> {
+    fn size(&self) -> usize {
+        self.problem.size()
+    }
+    fn velocity_size(&self) -> usize {
+        self.problem.size()
+    }
+    fn evaluate(&self, x: &[f64], u: &mut [f64], f: &mut [f64]) {
+        evaluate(self.problem, x, u, f);
+    }
+    fn project_step(&self, base: &[f64], f: &[f64], rho: f64, out: &mut [f64]) {
+        project_step(self.problem.mu(), base, f, rho, out);
+    }
+    fn project_step_in_place(&self, x: &mut [f64], f: &[f64], rho: f64) {
+        project_step_in_place(self.problem.mu(), x, f, rho);
+    }
+    fn stopping_error(&self, lineage: Lineage, x: &[f64], u: &[f64], _f: &[f64]) -> f64 {
+        stopping_error(lineage, self.problem, x, u, self.norm_q)
+    }
+    fn reaction<'x>(&self, x: &'x [f64]) -> &'x [f64] {
+        x
     }
 }
 
@@ -92,14 +154,14 @@ fn evaluate(problem: &FrictionProblem<'_>, r: &[f64], u: &mut [f64], f: &mut [f6
 }
 
 /// `f = u + g(u)`, contact by contact.
-fn de_saxce_map(mu: &[f64], u: &[f64], f: &mut [f64]) {
+pub(crate) fn de_saxce_map(mu: &[f64], u: &[f64], f: &mut [f64]) {
     for ((fc, uc), &m) in f.chunks_exact_mut(3).zip(u.chunks_exact(3)).zip(mu) {
         fc.copy_from_slice(&modified_velocity(&[uc[0], uc[1], uc[2]], m));
     }
 }
 
 /// `out = P_K(base - rho f)`, contact by contact.
-fn project_step(mu: &[f64], base: &[f64], f: &[f64], rho: f64, out: &mut [f64]) {
+pub(crate) fn project_step(mu: &[f64], base: &[f64], f: &[f64], rho: f64, out: &mut [f64]) {
     for (c, &m) in mu.iter().enumerate() {
         let k = 3 * c;
         let x = [
@@ -112,7 +174,7 @@ fn project_step(mu: &[f64], base: &[f64], f: &[f64], rho: f64, out: &mut [f64]) 
 }
 
 /// `x <- P_K(x - rho f)`, contact by contact.
-fn project_step_in_place(mu: &[f64], x: &mut [f64], f: &[f64], rho: f64) {
+pub(crate) fn project_step_in_place(mu: &[f64], x: &mut [f64], f: &[f64], rho: f64) {
     for (c, &m) in mu.iter().enumerate() {
         let k = 3 * c;
         let y = [

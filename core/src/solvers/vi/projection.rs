@@ -2,8 +2,8 @@
 
 use super::settings::Lineage;
 use super::{
-    evaluate, project_step, project_step_in_place, stopping_error, ExtraGradientCorrection,
-    StepRatio, StepSize, TrialStart, ViIteration, ViOptions, ViSolver,
+    ExtraGradientCorrection, StepRatio, StepSize, TrialStart, ViIteration, ViMap, ViOptions,
+    ViSolver,
 };
 use crate::contract::{
     ErrorEvaluation, ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome,
@@ -11,7 +11,6 @@ use crate::contract::{
 use crate::error::Fc3dError;
 use crate::math::linalg::{bounded, distance_sq, norm};
 use crate::measure::cheap_error;
-use crate::problem::FrictionProblem;
 
 /// The two quantities Algorithm 3 compares for a trial `r̄` from `r` (F values `f`, `f̄`):
 /// Khobotov's `(||F(r̄) - F(r)||, ||r̄ - r||)` or Solodov-Tseng's
@@ -47,19 +46,17 @@ fn ratio_of(kind: StepRatio, rho: f64, a1: f64, a2: f64) -> f64 {
     }
 }
 
-/// Runs the fixed point or the extragradient of `options` from the reaction in `r`; on return
-/// `u = W r + q`.
-pub(super) fn run(
-    problem: &FrictionProblem<'_>,
+/// Runs the fixed point or the extragradient of `options` on `map` from `r` (the unknowns x:
+/// the reaction, or the global `(v, r)`); on return `u` is the velocity computed with `F(r)`.
+pub(crate) fn run(
+    map: &impl ViMap,
     options: &ViOptions,
     limits: &Limits,
     r: &mut [f64],
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
-    let n = problem.size();
-    let mu = problem.mu();
-    let norm_q = norm(problem.q());
+    let n = map.size();
     let run = limits.start();
     let lineage = options.solver.lineage();
     let iteration_kind = options.solver.iteration();
@@ -74,14 +71,14 @@ pub(super) fn run(
     // velocity and F, and the extragradient's corrected iterate.
     let mut f = vec![0.0; n];
     let mut trial = vec![0.0; n];
-    let mut trial_u = vec![0.0; n];
+    let mut trial_u = vec![0.0; map.velocity_size()];
     let mut trial_f = vec![0.0; n];
     let mut corrected = match iteration_kind {
         ViIteration::ExtraGradient => vec![0.0; n],
         _ => Vec::new(),
     };
 
-    evaluate(problem, r, u, &mut f);
+    map.evaluate(r, u, &mut f);
     let mut rho = match options.step {
         StepSize::Fixed(rho) => rho,
         StepSize::SelfAdaptive(s) => s.initial_rho,
@@ -95,8 +92,8 @@ pub(super) fn run(
         let (mut a1, mut ratio) = (0.0, 0.0);
         match options.step {
             StepSize::Fixed(rho) => {
-                project_step(mu, r, &f, rho, &mut trial);
-                evaluate(problem, &trial, &mut trial_u, &mut trial_f);
+                map.project_step(r, &f, rho, &mut trial);
+                map.evaluate(&trial, &mut trial_u, &mut trial_f);
             }
             StepSize::SelfAdaptive(s) => {
                 // The VI solvers build the trial steps as (rho / nu) nu^(m+1), the friction
@@ -115,13 +112,13 @@ pub(super) fn run(
                     };
                     match (m, s.trial_start) {
                         (0, _) | (_, TrialStart::Iterate) => {
-                            project_step(mu, r, &f, rho_k, &mut trial)
+                            map.project_step(r, &f, rho_k, &mut trial)
                         }
                         (_, TrialStart::PreviousTrial) => {
-                            project_step_in_place(mu, &mut trial, &f, rho_k)
+                            map.project_step_in_place(&mut trial, &f, rho_k)
                         }
                     }
-                    evaluate(problem, &trial, &mut trial_u, &mut trial_f);
+                    map.evaluate(&trial, &mut trial_u, &mut trial_f);
                     let a2;
                     (a1, a2) = trial_measures(s.ratio, r, &trial, &f, &trial_f);
                     ratio = if bounded(&trial_f) {
@@ -149,8 +146,8 @@ pub(super) fn run(
                     ExtraGradientCorrection::FromPrediction => &trial,
                     ExtraGradientCorrection::FromIterate => r,
                 };
-                project_step(mu, base, &trial_f, rho_k, &mut corrected);
-                evaluate(problem, &corrected, &mut trial_u, &mut trial_f);
+                map.project_step(base, &trial_f, rho_k, &mut corrected);
+                map.evaluate(&corrected, &mut trial_u, &mut trial_f);
                 (&mut corrected, &mut trial_u, &mut trial_f)
             }
             _ => (&mut trial, &mut trial_u, &mut trial_f),
@@ -177,9 +174,7 @@ pub(super) fn run(
         f.copy_from_slice(new_f);
 
         // u = W r + q holds exactly here, so the full error costs O(n) on top of the step.
-        let test = schedule.test_light(iteration, light, |_| {
-            stopping_error(lineage, problem, r, u, norm_q)
-        });
+        let test = schedule.test_light(iteration, light, |_| map.stopping_error(lineage, r, u, &f));
         if let StepSize::SelfAdaptive(s) = options.step {
             let easy = ratio < s.l_min && (lineage == Lineage::Vi || test.error < previous_error);
             rho = if easy { rho_k * s.increase } else { rho_k };
@@ -187,7 +182,7 @@ pub(super) fn run(
         previous_error = test.error;
         observer(&IterationEvent {
             iteration,
-            reaction: r,
+            reaction: map.reaction(r),
             error: test.error,
         });
         if let Some(outcome) = run.end_of_iteration(iteration, test.converged) {
