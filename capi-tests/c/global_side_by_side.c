@@ -1,5 +1,5 @@
 /* fc3d's global results scored by the installed Siconos 4.4 (issue 26): each library opened with
-   dlopen (RTLD_LOCAL). For each global .dat file and each _WR id fc3d runs, fc3d's gfc3d_driver
+   dlopen (RTLD_LOCAL). For each global .dat file and each id fc3d runs, fc3d's gfc3d_driver
    solves the problem it read; then Siconos reads the same file itself and computes
    gfc3d_compute_error of fc3d's (reaction, globalVelocity) on its own copy of M and H, with
    norm_q = ||q||, as Siconos' solvers call it. That error must equal fc3d's dparam[1] (to a
@@ -56,7 +56,7 @@ static void fail(const char* file, int id, const char* what, double ours, double
 }
 
 static void check_file(const char* file) {
-  static const int ids[] = {600, 602, 603, 604, 606, 614};
+  static const int ids[] = {600, 602, 603, 604, 605, 606, 607, 610, 611, 612, 613, 614};
   read_fn read[2] = {(read_fn)sym(0, "globalFrictionContact_new_from_filename"),
                      (read_fn)sym(1, "globalFrictionContact_new_from_filename")};
   free_fn release[2] = {(free_fn)sym(0, "globalFrictionContact_free"), (free_fn)sym(1, "globalFrictionContact_free")};

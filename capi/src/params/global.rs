@@ -2,20 +2,33 @@
 //! each in [`global_method`]. A `_WR` id reads its slots as its local solver does (600 as 500,
 //! 602 as 502, 603 as 505, 604 as 503, 606 as 504, 614 as 523: Siconos' `_WR` solvers hand
 //! their options to the local solver as they are) and runs that solver on the reduced problem;
-//! 5000 reads them as the rolling NSGS 3000. 601 and the GAMS ids are refused with Siconos'
-//! own reason; the direct global solvers are refused until the core has them.
+//! 5000 reads them as the rolling NSGS 3000. The direct solvers read Siconos' slots of their id:
+//! 605 (projected Jacobi) iparam[8] the error frequency; 607 (Newton on (v, u, r)) iparam[10]
+//! formulation, dparam[3] rho, iparam[11] line search (0 Goldstein-Price, -1 none), iparam[12]
+//! its trials, iparam[8] the error frequency; 610 / 611 the VI slots of 506 / 507; 612 (ACLMFP)
+//! iparam[2] / dparam[2] the inner tolerance and its internal solver 1203 (ConvexQP ADMM:
+//! iparam[0], iparam[9] rho strategy, iparam[10] acceleration, dparam[3..6]); 613 (ADMM) the
+//! slots of 523 and iparam[15] (De Saxcé update: 0 yes, 1 no, the convex relaxation),
+//! iparam[8] the error frequency. A rescaling (iparam[3]) other than 613's scalar one is refused
+//! (Siconos balances 607's and 613's problems; fc3d's solvers do not). 601 and the GAMS ids are
+//! refused with Siconos' own reason; 615 until the core has it.
 
 use std::os::raw::{c_double, c_int};
 
+use super::fixed_point::inner_tolerance;
 use super::{
-    annotate, check_tree, config_from_node_as, first_internal, invalid, rolling, solver_name,
-    unsupported_solver, Params, DPARAM_INTERNAL_ERROR_RATIO, DPARAM_TOL,
-    IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_MAX_ITER,
+    admm, annotate, check_tree, config_from_node_as, first_internal, invalid, rolling, solver_name,
+    unsupported_solver, vi, Params, DPARAM_INTERNAL_ERROR_RATIO, DPARAM_TOL,
+    IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_MAX_ITER,
+    IPARAM_RESCALING,
 };
 use crate::types::SolverOptions;
 use crate::{CError, CResult, FC3D_ERR_UNSUPPORTED_SOLVER};
-use fc3d_core::global::{GlobalConfig, GlobalMethod, GlobalReport, GlobalRollingConfig};
-use fc3d_core::Rescaling;
+use fc3d_core::global::{
+    GlobalAclmOptions, GlobalAdmmOptions, GlobalConfig, GlobalMethod, GlobalNewtonOptions,
+    GlobalReport, GlobalRollingConfig, JacobiOptions,
+};
+use fc3d_core::{AdmmAcceleration, AdmmRhoStrategy, NsnFormulation, Rescaling};
 
 /// The configuration the options of a global id describe (`gfc3d_driver`), checked by the core.
 /// The tree is checked as in `config_from_c`.
@@ -45,11 +58,16 @@ unsafe fn global_method(o: &SolverOptions, id: c_int) -> CResult<GlobalMethod> {
                  not dense (\"Not yet implemented\"): there is no result to reproduce",
             ))
         }
-        605 | 607 | 610 | 611 | 612 | 613 | 615 => {
+        605 => GlobalMethod::ProjectedJacobi(jacobi(o)?),
+        607 => GlobalMethod::Newton(newton(o)?),
+        610 => GlobalMethod::Vi(vi::read(506, &global_params(o)?)?),
+        611 => GlobalMethod::Vi(vi::read(507, &global_params(o)?)?),
+        612 => GlobalMethod::Aclm(aclm(o)?),
+        613 => GlobalMethod::Admm(global_admm(o)?),
+        615 => {
             return Err(refused(
                 id,
-                "not implemented yet in fc3d (the _WR ids 600, 602, 603, 604, 606 and 614 run \
-                 through the reduced problem)",
+                "not implemented yet in fc3d (the other ids 600-614 but 601, 608 and 609 run)",
             ))
         }
         608 | 609 => return Err(unsupported_solver(id)),
@@ -65,6 +83,114 @@ unsafe fn global_method(o: &SolverOptions, id: c_int) -> CResult<GlobalMethod> {
                 "not a global friction solver: gfc3d_driver runs the ids 600-615",
             ))
         }
+    })
+}
+
+/// The options of a direct global solver, its rescaling (iparam[3]) checked: none (0), or for
+/// 613 scalar (1).
+unsafe fn global_params(o: &SolverOptions) -> CResult<Params<'_>> {
+    let what = solver_name(o.solverId).to_string_lossy();
+    let p = Params::of(o, &format!("{what} options"))?;
+    let scalar_allowed = o.solverId == 613;
+    match p.iparam[IPARAM_RESCALING] {
+        0 => {}
+        1 if scalar_allowed => {}
+        other => {
+            return Err(invalid(format!(
+                "{what}: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none{}; \
+                 Siconos' balancing of M and H, 2-4, is not)",
+                if scalar_allowed { ", 1 scalar" } else { "" }
+            )))
+        }
+    }
+    Ok(p)
+}
+
+/// Every `iparam[8]` iterations (0: every one, as Siconos reads it).
+fn error_frequency(p: &Params<'_>) -> CResult<usize> {
+    Ok(p.count(
+        IPARAM_ERROR_EVALUATION_FREQUENCY,
+        "error evaluation frequency",
+    )?
+    .max(1))
+}
+
+/// 605: Siconos' projected Jacobi (step 1). Siconos exits unless iparam[4] is 0.
+unsafe fn jacobi(o: &SolverOptions) -> CResult<JacobiOptions> {
+    let p = global_params(o)?;
+    p.require(4, 0, "GFC3D_NSGS: iparam[4] (Siconos exits unless 0)")?;
+    Ok(JacobiOptions {
+        error_frequency: error_frequency(&p)?,
+        ..JacobiOptions::default()
+    })
+}
+
+/// 607: Siconos' Newton on (v, u, r).
+unsafe fn newton(o: &SolverOptions) -> CResult<GlobalNewtonOptions> {
+    let p = global_params(o)?;
+    let formulation = match p.iparam[10] {
+        0 | 2 => NsnFormulation::AlartCurnier,
+        1 | 3 => NsnFormulation::JeanMoreau,
+        other => return Err(invalid(format!("GFC3D_NSN_AC: formulation (iparam[10]) = {other} is not implemented in fc3d (0/2 Alart-Curnier, 1/3 Jean-Moreau)"))),
+    };
+    let line_search = match p.iparam[11] {
+        0 => true,
+        -1 => false,
+        other => return Err(invalid(format!("GFC3D_NSN_AC: line search (iparam[11]) = {other} is not implemented (0 Goldstein-Price, -1 none; Siconos refuses Armijo, 1, too)"))),
+    };
+    Ok(GlobalNewtonOptions {
+        formulation,
+        rho: p.dparam[3],
+        line_search,
+        line_search_max_iter: p.count(12, "GFC3D_NSN_AC: line-search trials (iparam[12])")?,
+        error_frequency: error_frequency(&p)?,
+    })
+}
+
+/// 612: the outer fixed point's inner tolerance and its ConvexQP ADMM (1203, required as
+/// Siconos requires it).
+unsafe fn aclm(o: &SolverOptions) -> CResult<GlobalAclmOptions> {
+    let p = global_params(o)?;
+    let internal = first_internal(o);
+    let mut a = GlobalAclmOptions::default();
+    if let Some(i) = internal {
+        if i.solverId != 1203 {
+            return Err(invalid(format!(
+                "GFC3D_ACLMFP: internal solver {} ({}): Siconos' ACLMFP runs the ConvexQP ADMM \
+                 (1203) only",
+                i.solverId,
+                solver_name(i.solverId).to_string_lossy()
+            )));
+        }
+        let ip = Params::of(i, "GFC3D_ACLMFP internal solver options")?;
+        a.inner_max_iter = ip.count(IPARAM_MAX_ITER, "GFC3D_ACLMFP internal max iterations")?;
+        a.inner.rho = ip.dparam[3];
+        a.inner.restart_eta = ip.dparam[4];
+        a.inner.balancing_tau = ip.dparam[5];
+        a.inner.balancing_phi = ip.dparam[6];
+        a.inner.rho_strategy = match ip.iparam[9] {
+            0 => AdmmRhoStrategy::Constant,
+            2 => AdmmRhoStrategy::ResidualBalancing,
+            3 => AdmmRhoStrategy::ScaledResidualBalancing,
+            other => return Err(invalid(format!("GFC3D_ACLMFP: the ConvexQP ADMM's rho strategy (iparam[9]) = {other} is not implemented in fc3d (0 constant, 2 residual balancing, 3 scaled)"))),
+        };
+        a.inner.acceleration = match ip.iparam[10] {
+            0 => AdmmAcceleration::None,
+            1 | 2 => AdmmAcceleration::Accelerated,
+            other => return Err(invalid(format!("GFC3D_ACLMFP: the ConvexQP ADMM's acceleration (iparam[10]) = {other} is not 0, 1 or 2"))),
+        };
+    }
+    a.inner_tolerance = inner_tolerance(&p, internal)?;
+    Ok(a)
+}
+
+/// 613: the ADMM iteration's slots (as 523's), the De Saxcé update and the error frequency.
+unsafe fn global_admm(o: &SolverOptions) -> CResult<GlobalAdmmOptions> {
+    let p = global_params(o)?;
+    Ok(GlobalAdmmOptions {
+        admm: admm::read_iteration(&p)?,
+        update_s: admm::read_update_s(&p)?,
+        error_frequency: error_frequency(&p)?,
     })
 }
 

@@ -621,8 +621,13 @@ fn write_blocks<W: Write>(
     let mut values = Vec::new();
     for bi in 0..row_sizes.len() {
         let rows = block_start(row_sizes, bi)..row_sizes[bi];
-        for k in row_ptr[bi]..row_ptr[bi + 1] {
-            let bj = col_idx[k];
+        for (k, &bj) in col_idx
+            .iter()
+            .enumerate()
+            .take(row_ptr[bi + 1])
+            .skip(row_ptr[bi])
+        {
+            // Blocks are numbered in storage order.
             writeln!(out, "{k}")?;
             block_values(
                 m,
