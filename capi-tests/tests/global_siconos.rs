@@ -9,17 +9,13 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
-}
-
 #[test]
 fn siconos_scores_fc3d_global_results_as_fc3d_does() {
     if !Path::new("/usr/include/siconos/numerics/GlobalFrictionContactProblem.h").is_file() {
         eprintln!("Siconos not installed: skipped");
         return;
     }
-    let data = root().join("../shared/data/siconos");
+    let data = fc3d_capi_tests::data_dir();
     let files: Vec<PathBuf> = [
         "GFC3D_Example0.dat",
         "GFC3D_Example00.dat",
@@ -36,40 +32,11 @@ fn siconos_scores_fc3d_global_results_as_fc3d_does() {
         eprintln!("../shared/data/siconos missing: skipped");
         return;
     }
-    // `cargo test` builds fc3d as an rlib: build the shared library of this profile.
-    let exe = std::env::current_exe().unwrap();
-    let profile_dir = exe.parent().unwrap().parent().unwrap();
-    let mut build = Command::new(env!("CARGO"));
-    build
-        .args(["build", "-p", "fc3d", "--lib"])
-        .current_dir(root());
-    let profile = profile_dir.file_name().unwrap().to_str().unwrap();
-    if profile != "debug" {
-        build.args(["--profile", profile]);
-    }
-    assert!(build.status().unwrap().success(), "cargo build -p fc3d");
-    let lib = profile_dir.join("libfc3d.so");
-
+    let lib = fc3d_capi_tests::shared_library();
     let dir = std::env::temp_dir().join(format!("fc3d-global-side-by-side-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let program = dir.join("global_side_by_side");
-    let out = Command::new("cc")
-        .args(["-O1", "-Wall", "-Wextra", "-Werror"])
-        .arg(format!(
-            "-I{}",
-            root().join("capi/include/siconos-compat").display()
-        ))
-        .arg(format!("-I{}", root().join("capi/include").display()))
-        .arg(root().join("capi-tests/c/global_side_by_side.c"))
-        .args(["-ldl", "-lm", "-o"])
-        .arg(&program)
-        .output()
-        .expect("run cc");
-    assert!(
-        out.status.success(),
-        "cc: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    fc3d_capi_tests::compile_dlopen_program("global_side_by_side.c", &program);
     let run = Command::new(&program)
         .arg(&lib)
         .arg("libsiconos_numerics.so")

@@ -625,7 +625,7 @@ pub unsafe extern "C" fn fc3d_set_internalsolver_tolerance(
                 return Err(CError::null("internalsolver_options"));
             }
             let nc = (*problem).numberOfContacts;
-            if let Some(tol) = internal_solver_tolerance(&*options, nc, error)? {
+            if let Some(tol) = internal_solver_tolerance(&*options, nc, error, true)? {
                 super::params::set_tolerance(&mut *internalsolver_options, tol)?;
             }
             Ok(())

@@ -736,6 +736,17 @@ fn reformulations_are_exact() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// A problem as LMGC90 hands it over: M and H in 1-based coordinates, q, b, mu; its options.
+struct Lmgc {
+    m: (Vec<c_double>, Vec<c_uint>, Vec<c_uint>),
+    h: (Vec<c_double>, Vec<c_uint>, Vec<c_uint>),
+    q: Vec<f64>,
+    b: Vec<f64>,
+    mu: Vec<f64>,
+    iparam: [c_int; 20],
+    dparam: [c_double; 20],
+}
+
 /// The entries of a matrix in 1-based coordinates, as LMGC90 gives them.
 fn coordinates(m: &CsrMatrix) -> (Vec<c_double>, Vec<c_uint>, Vec<c_uint>) {
     let (mut x, mut r, mut c) = (Vec::new(), Vec::new(), Vec::new());
@@ -747,6 +758,53 @@ fn coordinates(m: &CsrMatrix) -> (Vec<c_double>, Vec<c_uint>, Vec<c_uint>) {
     (x, r, c)
 }
 
+impl Lmgc {
+    fn of(p: &GlobalProblem<'_>) -> Self {
+        Lmgc {
+            m: coordinates(p.m()),
+            h: coordinates(p.h()),
+            q: p.q().to_vec(),
+            b: p.b().to_vec(),
+            mu: p.mu().to_vec(),
+            iparam: [0; 20],
+            dparam: [0.0; 20],
+        }
+    }
+
+    /// `gfc3d_LmgcDriver` with solver 600 into `r`, `u`, `v`.
+    fn solve(&mut self, r: &mut [f64], u: &mut [f64], v: &mut [f64]) -> c_int {
+        let (n, nc) = (self.q.len(), self.mu.len());
+        unsafe {
+            gfc3d_LmgcDriver(
+                r.as_mut_ptr(),
+                u.as_mut_ptr(),
+                v.as_mut_ptr(),
+                self.q.as_mut_ptr(),
+                self.b.as_mut_ptr(),
+                self.mu.as_mut_ptr(),
+                self.m.0.as_mut_ptr(),
+                self.m.0.len() as c_uint,
+                self.m.1.as_mut_ptr(),
+                self.m.2.as_mut_ptr(),
+                self.h.0.as_mut_ptr(),
+                self.h.0.len() as c_uint,
+                self.h.1.as_mut_ptr(),
+                self.h.2.as_mut_ptr(),
+                n as c_uint,
+                nc as c_uint,
+                600,
+                20,
+                self.iparam.as_mut_ptr(),
+                20,
+                self.dparam.as_mut_ptr(),
+                0,
+                0,
+                0,
+            )
+        }
+    }
+}
+
 #[test]
 fn lmgc_driver_gives_gfc3d_drivers_answer() {
     if !available() {
@@ -755,85 +813,26 @@ fn lmgc_driver_gives_gfc3d_drivers_answer() {
     let name = "GFC3D_TwoRods1.dat";
     let core = core_problem(name);
     let (n, m) = (core.ndof(), core.size());
-    let (mut mx, mut mr, mut mc) = coordinates(core.m());
-    let (mut hx, mut hr, mut hc) = coordinates(core.h());
-    let (mut q, mut b, mut mu) = (core.q().to_vec(), core.b().to_vec(), core.mu().to_vec());
+    let mut lmgc = Lmgc::of(&core);
+    lmgc.dparam[0] = 1e-8;
+    lmgc.iparam[0] = 5000;
     let (mut r, mut u, mut v) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
-    let mut iparam = [0 as c_int; 20];
-    let mut dparam = [0.0; 20];
-    dparam[0] = 1e-8;
-    iparam[0] = 5000;
-    let info = unsafe {
-        gfc3d_LmgcDriver(
-            r.as_mut_ptr(),
-            u.as_mut_ptr(),
-            v.as_mut_ptr(),
-            q.as_mut_ptr(),
-            b.as_mut_ptr(),
-            mu.as_mut_ptr(),
-            mx.as_mut_ptr(),
-            mx.len() as c_uint,
-            mr.as_mut_ptr(),
-            mc.as_mut_ptr(),
-            hx.as_mut_ptr(),
-            hx.len() as c_uint,
-            hr.as_mut_ptr(),
-            hc.as_mut_ptr(),
-            n as c_uint,
-            (m / 3) as c_uint,
-            600,
-            20,
-            iparam.as_mut_ptr(),
-            20,
-            dparam.as_mut_ptr(),
-            0,
-            0,
-            0,
-        )
-    };
+    let info = lmgc.solve(&mut r, &mut u, &mut v);
     assert_eq!(info, 0, "{}", last_message());
-    assert!(iparam[1] > 0);
-    assert_eq!(dparam[0], 1e-8);
-    assert!(dparam[1] <= 1e-8);
+    assert!(lmgc.iparam[1] > 0);
+    assert_eq!(lmgc.dparam[0], 1e-8);
+    assert!(lmgc.dparam[1] <= 1e-8);
     // gfc3d_driver on the file's problem with the same options.
     let p = CProblem::read(name);
     let o = Options::new(600, 1e-8, 5000);
     let (mut r2, mut u2, mut v2) = (vec![0.0; m], vec![0.0; m], vec![0.0; n]);
     let info = unsafe { gfc3d_driver(p.0, r2.as_mut_ptr(), u2.as_mut_ptr(), v2.as_mut_ptr(), o.0) };
     assert_eq!(info, 0);
-    assert_eq!((&r, &v, o.iparam(1)), (&r2, &v2, iparam[1]));
-    // An index outside the matrix is refused.
-    mr[0] = n as c_uint + 1;
+    assert_eq!((&r, &v, o.iparam(1)), (&r2, &v2, lmgc.iparam[1]));
+    // An index outside the matrix is refused, nothing written.
+    lmgc.m.1[0] = n as c_uint + 1;
     let mut r3 = vec![0.5; m];
-    let info = unsafe {
-        gfc3d_LmgcDriver(
-            r3.as_mut_ptr(),
-            u.as_mut_ptr(),
-            v.as_mut_ptr(),
-            q.as_mut_ptr(),
-            b.as_mut_ptr(),
-            mu.as_mut_ptr(),
-            mx.as_mut_ptr(),
-            mx.len() as c_uint,
-            mr.as_mut_ptr(),
-            mc.as_mut_ptr(),
-            hx.as_mut_ptr(),
-            hx.len() as c_uint,
-            hr.as_mut_ptr(),
-            hc.as_mut_ptr(),
-            n as c_uint,
-            (m / 3) as c_uint,
-            600,
-            20,
-            iparam.as_mut_ptr(),
-            20,
-            dparam.as_mut_ptr(),
-            0,
-            0,
-            0,
-        )
-    };
-    assert_eq!(info, FC3D_ERR_INVALID_SIZE);
+    assert_eq!(lmgc.solve(&mut r3, &mut u, &mut v), FC3D_ERR_INVALID_SIZE);
     assert!(r3.iter().all(|&x| x == 0.5));
 }
 

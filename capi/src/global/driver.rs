@@ -14,19 +14,19 @@ use std::os::raw::{c_double, c_int, c_uint};
 
 use super::{global_from_c, global_rolling_from_c, GlobalView};
 use crate::alloc::c_free;
+use crate::driver::entry_with_info;
 use crate::matrix::c_slice;
 use crate::option_tree::delete_contents;
 use crate::options::create_options;
 use crate::params::global::{
-    global_config_from_c, global_internal_tolerance, global_rolling_config_from_c, lmgc_overrides,
-    write_global_outputs,
+    global_config_from_c, global_rolling_config_from_c, lmgc_overrides, write_global_outputs,
 };
-use crate::params::set_tolerance;
+use crate::params::{internal_solver_tolerance, set_tolerance};
 use crate::solver_entries::{refuse_entry, GAMS};
 use crate::types::{
     GlobalFrictionContactProblem, GlobalRollingFrictionContactProblem, SolverOptions,
 };
-use crate::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION, FC3D_ERR_INVALID_SIZE};
+use crate::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_SIZE};
 use fc3d_core::global::{solve_global, solve_global_rolling, GlobalReport};
 use fc3d_core::matrix::CsrMatrix;
 use fc3d_core::problem::GlobalProblem;
@@ -334,36 +334,15 @@ unsafe fn entry(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    let code = ffi_guard(
-        name,
-        |c| c,
-        || {
-            if info.is_null() {
-                return Err(CError::null("info"));
-            }
-            if let Some(o) = options.as_ref() {
-                if o.solverId != id {
-                    return Err(CError::new(
-                        FC3D_ERR_INVALID_OPTION,
-                        format!(
-                            "{name} called with options for solver {} (it runs solver {id})",
-                            o.solverId
-                        ),
-                    ));
-                }
-            }
-            driver_impl(
-                problem.cast(),
-                reaction.cast(),
-                velocity.cast(),
-                global_velocity.cast(),
-                options,
-            )
-        },
-    );
-    if !info.is_null() {
-        *info = code;
-    }
+    entry_with_info(name, &[id], info, options, || {
+        driver_impl(
+            problem.cast(),
+            reaction.cast(),
+            velocity.cast(),
+            global_velocity.cast(),
+            options,
+        )
+    });
 }
 
 /// Siconos' NSGS on the reduced problem (`SICONOS_GLOBAL_FRICTION_3D_NSGS_WR`, 600).
@@ -826,30 +805,9 @@ pub unsafe extern "C" fn grfc3d_nsgs_wr(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) {
-    let code = ffi_guard(
-        "grfc3d_nsgs_wr",
-        |c| c,
-        || {
-            if info.is_null() {
-                return Err(CError::null("info"));
-            }
-            if let Some(o) = options.as_ref() {
-                if o.solverId != 5000 {
-                    return Err(CError::new(
-                        FC3D_ERR_INVALID_OPTION,
-                        format!(
-                            "grfc3d_nsgs_wr called with options for solver {} (it runs 5000)",
-                            o.solverId
-                        ),
-                    ));
-                }
-            }
-            rolling_driver_impl(problem, reaction, velocity, globalVelocity, options)
-        },
-    );
-    if !info.is_null() {
-        *info = code;
-    }
+    entry_with_info("grfc3d_nsgs_wr", &[5000], info, options, || {
+        rolling_driver_impl(problem, reaction, velocity, globalVelocity, options)
+    });
 }
 
 /// Siconos' rule for the tolerance of the internal solver of a global fixed-point method, by
@@ -874,7 +832,7 @@ pub unsafe extern "C" fn gfc3d_set_internalsolver_tolerance(
             let internal = internalsolver_options
                 .as_mut()
                 .ok_or_else(|| CError::null("internalsolver_options"))?;
-            if let Some(tol) = global_internal_tolerance(o, p.numberOfContacts, error)? {
+            if let Some(tol) = internal_solver_tolerance(o, p.numberOfContacts, error, false)? {
                 set_tolerance(internal, tol)?;
             }
             Ok(())

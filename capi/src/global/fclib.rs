@@ -51,22 +51,34 @@ pub unsafe extern "C" fn globalFrictionContact_fclib_read(
     )
 }
 
-/// The info strings of a writer.
-unsafe fn info(title: *mut c_char, description: *mut c_char, math: *mut c_char) -> FclibInfo {
-    FclibInfo {
+/// The common part of the writers: the checks Siconos makes (a problem with contacts) and the
+/// FCLIB build, the info strings, then `write`; 1 on success. A refusal of the core writer
+/// (matrices too large for FCLIB's int indices) is `FC3D_ERR_INVALID_SIZE`.
+unsafe fn write_with(
+    n_contacts: usize,
+    path: *const c_char,
+    [title, description, math]: [*mut c_char; 3],
+    write: impl FnOnce(&Path, &FclibInfo) -> Result<(), Fc3dError>,
+) -> CResult<c_int> {
+    let path = c_path(path)?;
+    if n_contacts == 0 {
+        return Err(CError::new(
+            FC3D_ERR_INVALID_SIZE,
+            "a problem without contacts is not written (as Siconos)",
+        ));
+    }
+    require_fclib(path, "written")?;
+    let info = FclibInfo {
         title: c_text(title),
         description: c_text(description),
         math_info: c_text(math),
         number_of_degrees_of_freedom: None,
-    }
-}
-
-/// A refusal of the writer: matrices too large for FCLIB's int indices.
-fn write_error(e: Fc3dError) -> CError {
-    match e {
+    };
+    write(Path::new(path), &info).map_err(|e| match e {
         Fc3dError::Unsupported(m) => CError::new(FC3D_ERR_INVALID_SIZE, m),
         other => other.into(),
-    }
+    })?;
+    Ok(1)
 }
 
 /// Writes `problem` (dimension 3) to the FCLIB file `path` (created or replaced) as a global
@@ -91,19 +103,11 @@ pub unsafe extern "C" fn globalFrictionContact_fclib_write(
         |_| 0,
         || {
             let p = problem.as_ref().ok_or_else(|| CError::null("problem"))?;
-            let path = c_path(path)?;
             let view = global_from_c::<3>(p)?;
-            if view.problem.n_contacts() == 0 {
-                return Err(CError::new(
-                    FC3D_ERR_INVALID_SIZE,
-                    "a problem without contacts is not written (as Siconos)",
-                ));
-            }
-            require_fclib(path, "written")?;
-            let info = info(title, description, mathInfo);
-            fc3d_core::io::write_fclib_global_file(&view.problem, Path::new(path), &info)
-                .map_err(write_error)?;
-            Ok(1)
+            let texts = [title, description, mathInfo];
+            write_with(view.problem.n_contacts(), path, texts, |path, info| {
+                fc3d_core::io::write_fclib_global_file(&view.problem, path, info)
+            })
         },
     )
 }
@@ -126,19 +130,16 @@ pub unsafe extern "C" fn globalRollingFrictionContact_fclib_write(
         |_| 0,
         || {
             let p = problem.as_ref().ok_or_else(|| CError::null("problem"))?;
-            let path = c_path(path)?;
             let view = global_rolling_from_c(p)?;
-            if view.problem.base().n_contacts() == 0 {
-                return Err(CError::new(
-                    FC3D_ERR_INVALID_SIZE,
-                    "a problem without contacts is not written (as Siconos)",
-                ));
-            }
-            require_fclib(path, "written")?;
-            let info = info(title, description, mathInfo);
-            fc3d_core::io::write_fclib_global_rolling_file(&view.problem, Path::new(path), &info)
-                .map_err(write_error)?;
-            Ok(1)
+            let texts = [title, description, mathInfo];
+            write_with(
+                view.problem.base().n_contacts(),
+                path,
+                texts,
+                |path, info| {
+                    fc3d_core::io::write_fclib_global_rolling_file(&view.problem, path, info)
+                },
+            )
         },
     )
 }

@@ -18,8 +18,7 @@ use std::os::raw::{c_double, c_int};
 use super::fixed_point::inner_tolerance;
 use super::{
     admm, annotate, check_tree, config_from_node_as, first_internal, invalid, rolling, solver_name,
-    unsupported_solver, vi, Params, DPARAM_INTERNAL_ERROR_RATIO, DPARAM_TOL,
-    IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_INTERNAL_ERROR_STRATEGY, IPARAM_MAX_ITER,
+    unsupported_solver, vi, Params, DPARAM_TOL, IPARAM_ERROR_EVALUATION_FREQUENCY, IPARAM_MAX_ITER,
     IPARAM_RESCALING,
 };
 use crate::types::SolverOptions;
@@ -239,27 +238,6 @@ pub(crate) unsafe fn global_rolling_config_from_c(
     let what = solver_name(id).to_string_lossy();
     let p = Params::of(o, &format!("{what} options"))?;
     rolling::read(3000, 5, &p, first_internal(o))
-}
-
-/// Siconos' `gfc3d_set_internalsolver_tolerance` rule by `iparam[2]`: adaptive (0):
-/// `error / dparam[2]`; adaptive per contact (2): `error / (dparam[2] nc)`; given value (1):
-/// None (the internal solver's tolerance stays). An unknown strategy is an error.
-pub(crate) unsafe fn global_internal_tolerance(
-    o: &SolverOptions,
-    nc: c_int,
-    error: c_double,
-) -> CResult<Option<c_double>> {
-    let p = Params::of(o, "options")?;
-    let ratio = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
-    match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
-        0 => Ok(Some(error / ratio)),
-        1 => Ok(None),
-        2 => Ok(Some(error / (ratio * f64::from(nc)))),
-        other => Err(invalid(format!(
-            "internal error strategy (iparam[2]) = {other} is not 0 (adaptive), 1 (given \
-             value) or 2 (adaptive per contact)"
-        ))),
-    }
 }
 
 /// Writes the outputs of a global solve: `iparam[1]` the iterations, `dparam[1]` the global

@@ -30,14 +30,14 @@
 //! read ([`GlobalDatProblem`]: Siconos 4.5's gfc2d files are dimension 2), 5 by the rolling
 //! reader.
 
-use std::io::{self, BufWriter, Read, Write};
+use std::io::{self, Read, Write};
 use std::path::Path;
 
 use super::csparse::{parse_sparse, SparseEntries};
 use super::storage::{parse_dense, parse_sparse_block_as_csr, BlockSizes};
 use super::store::{OwnStore, ReadMatrix};
 use super::tokens::{try_push, Reader};
-use super::write::{write_reals_line, write_triplet_dump, write_usizes_line};
+use super::write::{write_path, write_reals_line, write_triplet_dump, write_usizes_line};
 use super::{STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
 use crate::error::{try_vec, Fc3dError};
 use crate::matrix::{transpose, CsrMatrix, Delassus};
@@ -458,14 +458,7 @@ pub fn write_global_dat_file<const D: usize>(
     storage: &GlobalStorage,
     path: &Path,
 ) -> Result<(), Fc3dError> {
-    let io_error = |e: io::Error| Fc3dError::Io {
-        file: path.display().to_string(),
-        message: format!("cannot write: {e}"),
-    };
-    let file = std::fs::File::create(path).map_err(io_error)?;
-    let mut out = BufWriter::new(file);
-    write_global_dat(problem, storage, &mut out).map_err(io_error)?;
-    out.flush().map_err(io_error)
+    write_path(path, |out| write_global_dat(problem, storage, out))
 }
 
 /// Writes `m` as Siconos' `NM_write_in_file` does, in `storage`.

@@ -79,13 +79,22 @@ pub fn write_dat_file<const D: usize>(
     problem: &FrictionProblem<'_, D>,
     path: &Path,
 ) -> Result<(), Fc3dError> {
+    write_path(path, |out| write_dat(problem, out))
+}
+
+/// Creates (or truncates) `path` and writes to it with `write`, buffered; an I/O failure is an
+/// [`Fc3dError::Io`] naming the file.
+pub(super) fn write_path(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<std::fs::File>) -> io::Result<()>,
+) -> Result<(), Fc3dError> {
     let io_error = |e: io::Error| Fc3dError::Io {
         file: path.display().to_string(),
         message: format!("cannot write: {e}"),
     };
     let file = std::fs::File::create(path).map_err(io_error)?;
     let mut out = BufWriter::new(file);
-    write_dat(problem, &mut out).map_err(io_error)?;
+    write(&mut out).map_err(io_error)?;
     out.flush().map_err(io_error)
 }
 
