@@ -560,6 +560,15 @@ fn a_small_problem_solves_and_hostile_inputs_are_refused_writing_nothing() {
         )
     };
     assert_eq!(info, FC3D_ERR_NULL_POINTER);
+    // No contacts (H with no columns): v = M^-1 q, as Siconos.
+    let mut p = Owned::new();
+    p.problem.numberOfContacts = 0;
+    p.nh.size1 = 0;
+    let (info, out) = p.solve(&o);
+    assert_eq!(info, 0, "{}", last_message());
+    for (v, q) in out.v.iter().zip(&p.q) {
+        assert_eq!(*v, q / 2.0);
+    }
     // A NaN initial reaction.
     let mut p = Owned::new();
     let mut out = Outputs::new(6, 6);
