@@ -1,7 +1,8 @@
 /* Side-by-side benchmark of fc3d and Siconos Numerics 4.4: one source compiled twice, against
  * fc3d's compat headers or against the installed Siconos (scripts/compare-siconos.sh does both).
  *
- *   cc -O2 -Icapi/include/siconos-compat -Icapi/include bench/siconos_compare.c -Ltarget/release -lfc3d -lm -o cmp_fc3d
+ *   cc -O2 -I$(pkg-config --variable=siconos_includedir fc3d) $(pkg-config --cflags fc3d) \
+ *      bench/siconos_compare.c $(pkg-config --libs fc3d) -lm -o cmp_fc3d   (fc3d installed: README)
  *   cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos bench/siconos_compare.c \
  *      -lsiconos_numerics -lm -o cmp_siconos
  *

@@ -1,7 +1,8 @@
 /* A host program written for Siconos Numerics 4.4's fc3d API, unmodified: it builds against
  * Siconos' own headers and -lsiconos_numerics, or against fc3d's compat headers and -lfc3d.
  *
- *   cc -Icapi/include/siconos-compat -Icapi/include examples-c/siconos_host.c -Ltarget/release -lfc3d -o host_fc3d
+ *   cc -I$(pkg-config --variable=siconos_includedir fc3d) $(pkg-config --cflags fc3d) \
+ *      examples-c/siconos_host.c $(pkg-config --libs fc3d) -lm -o host_fc3d    (fc3d installed: README)
  *   cc -I/usr/include/siconos/numerics -I/usr/include/siconos examples-c/siconos_host.c \
  *      -lsiconos_numerics -o host_siconos
  *   ./host_fc3d problem.dat [tolerance] [max_iter] [local_solver_id]

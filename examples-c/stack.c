@@ -6,9 +6,12 @@
  * We hand W to fc3d in sparse-block storage, built from 1-based block coordinates, solve with
  * NSGS and print r, u, iterations and the error fc3d measured on the answer.
  *
- * Build (from the repository root, after `cargo build --release`):
- *   cc -std=c99 -Wall -Icapi/include/siconos-compat -Icapi/include examples-c/stack.c -Ltarget/release -lfc3d -lm -o stack
- *   LD_LIBRARY_PATH=target/release ./stack
+ * Build (from the repository root, as the README's in-tree example does):
+ *   bash scripts/install.sh --prefix local
+ *   export PKG_CONFIG_PATH=$PWD/local/lib/pkgconfig
+ *   cc -std=c99 examples-c/stack.c -I"$(pkg-config --variable=siconos_includedir fc3d)" \
+ *      $(pkg-config --cflags --libs fc3d) -lm -Wl,-rpath,"$PWD/local/lib" -o local/stack
+ *   local/stack
  */
 #include <stdio.h>
 #include <stdlib.h>

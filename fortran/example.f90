@@ -1,9 +1,10 @@
 ! A Fortran host of fc3d's native entry through the module fc3d (fc3d.f90): one sliding contact
-! with its known answer, three coupled contacts solved in dense, CSR, COO and block storage by
-! NSGS and NSN_AC (which must agree and satisfy the Coulomb law checked here independently),
-! rejected input, and, for every path given, a Siconos .dat problem read with fc3d_problem_read
-! and solved with NSGS (500) and NSN_AC (504) to 1e-8. Any wrong answer stops with `error stop`
-! (non-zero exit status). Built from outside the source tree by scripts/test-fortran.sh:
+! with its known answer (also solved by every solver the library lists), three coupled contacts
+! solved in dense, CSR, COO and block storage by NSGS and NSN_AC (which must agree and satisfy
+! the Coulomb law checked here independently), rejected input, and, for every path given, a
+! Siconos .dat problem read with fc3d_problem_read and solved with NSGS (500) and NSN_AC (504) to
+! 1e-8. Any wrong answer stops with `error stop` (non-zero exit status). Built from outside the
+! source tree by scripts/test-fortran.sh:
 !
 !   export PKG_CONFIG_PATH=PREFIX/lib/pkgconfig LD_LIBRARY_PATH=PREFIX/lib
 !   gfortran -c fc3d.f90 && gfortran example.f90 fc3d.o $(pkg-config --libs fc3d-native) -o example
@@ -23,6 +24,7 @@ program fc3d_example
       'version string "' // version // '"')
 
   call single_contact()
+  call every_solver()
   call coupled_contacts()
   call rejected_input()
 
@@ -130,6 +132,47 @@ contains
     info = fc3d_solve_dense(1_c_int64_t, w, q, mu, r, u, c_null_ptr, res)
     call check(info == 0 .and. abs(r(2) + 0.5d0) < 1d-4, 'fc3d_solve_dense with NULL settings')
   end subroutine single_contact
+
+  ! Every solver the library lists (fc3d_solver_count, fc3d_solver_at) is one of the module's
+  ! named constants and solves the sliding contact of single_contact (SOCLCP, a relaxation,
+  ! reports that its solution is not a Coulomb one).
+  subroutine every_solver()
+    integer(c_int), parameter :: named(20) = [FC3D_AUTO, FC3D_NSGS, FC3D_PROX, FC3D_TFP, &
+        FC3D_NSN_AC, FC3D_DSFP, FC3D_VI_FPP, FC3D_VI_EG, FC3D_HP, FC3D_FPP, FC3D_EG, &
+        FC3D_NSN_FB, FC3D_ACLMFP, FC3D_SOCLCP, FC3D_NSN_NM, FC3D_NSN_AC_TEST, FC3D_PFP, &
+        FC3D_ADMM, FC3D_QUARTIC, FC3D_QUARTIC_NU]
+    real(c_double) :: w(3, 3), q(3), mu(1), r(3), u(3)
+    real(c_double), parameter :: r_want(3) = [1d0, -0.5d0, 0d0]
+    type(fc3d_result) :: res
+    type(c_ptr) :: constant, name
+    integer(c_int) :: k, id, count
+    integer :: info
+
+    count = fc3d_solver_count()
+    call check(count == size(named), 'fc3d_solver_count: every listed solver has a constant')
+    w = 0
+    w(1, 1) = 1
+    w(2, 2) = 1
+    w(3, 3) = 1
+    q = [-1d0, 2d0, 0d0]
+    mu = [0.5d0]
+    do k = 0, count - 1
+      id = fc3d_solver_at(k, constant, name)
+      call check(any(named == id) .and. c_associated(constant) .and. c_associated(name), &
+          'fc3d_solver_at: a named solver')
+      r = 0
+      call fc3d_solve(w, q, mu, r, u, info, solver=id, tolerance=1d-10, result=res)
+      if (id == FC3D_SOCLCP) then
+        call check(info == FC3D_RELAXED_NOT_COULOMB, 'SOCLCP: relaxed solution')
+      else
+        call check(info == 0 .and. maxval(abs(r - r_want)) < 1d-7, 'every solver: sliding contact')
+      end if
+    end do
+    call check(fc3d_solver_at(count, constant, name) == FC3D_ERR_INVALID_SIZE, &
+        'fc3d_solver_at: index out of range')
+    print '(a,i0,a)', 'every solver: the library lists ', count, &
+        ', each a named constant, each solves the sliding contact'
+  end subroutine every_solver
 
   ! Three coupled contacts: sticking, sliding and taking off, with friction 0.5, 0.3, 0.8.
   subroutine coupled_contacts()

@@ -59,7 +59,11 @@ module fc3d
   integer(c_int), parameter, public :: FC3D_ERR_IO = -9
   integer(c_int), parameter, public :: FC3D_ERR_INTERNAL = -99
 
-  ! -- Solver ids (Siconos' SICONOS_FRICTION_3D_* numbers; see README.md for what each does).
+  ! -- Solver ids: every solver the native entry accepts, named as Siconos' constants
+  !    SICONOS_FRICTION_3D_<NAME> (ONECONTACT_ left out) and fc3d's FC3D_AUTO; docs/solvers.md
+  !    says what each does. The library lists them (fc3d_solver_count, fc3d_solver_at), and
+  !    capi/tests/bindings.rs checks that this module names each with its id.
+  integer(c_int), parameter, public :: FC3D_AUTO = 590
   integer(c_int), parameter, public :: FC3D_NSGS = 500
   integer(c_int), parameter, public :: FC3D_PROX = 502
   integer(c_int), parameter, public :: FC3D_TFP = 503
@@ -67,14 +71,20 @@ module fc3d
   integer(c_int), parameter, public :: FC3D_DSFP = 505
   integer(c_int), parameter, public :: FC3D_VI_FPP = 506
   integer(c_int), parameter, public :: FC3D_VI_EG = 507
+  integer(c_int), parameter, public :: FC3D_HP = 508
   integer(c_int), parameter, public :: FC3D_FPP = 511
   integer(c_int), parameter, public :: FC3D_EG = 512
   integer(c_int), parameter, public :: FC3D_NSN_FB = 513
   integer(c_int), parameter, public :: FC3D_ACLMFP = 516
   integer(c_int), parameter, public :: FC3D_SOCLCP = 517
   integer(c_int), parameter, public :: FC3D_NSN_NM = 520
+  integer(c_int), parameter, public :: FC3D_NSN_AC_TEST = 521
   integer(c_int), parameter, public :: FC3D_PFP = 522
   integer(c_int), parameter, public :: FC3D_ADMM = 523
+  ! The exact one-contact enumeration, as a top-level solver (NSGS sweeps with it) and as NSGS's
+  ! local solver.
+  integer(c_int), parameter, public :: FC3D_QUARTIC = 562
+  integer(c_int), parameter, public :: FC3D_QUARTIC_NU = 563
   ! Local (one-contact) solvers of NSGS, for fc3d_settings_set_local_solver.
   integer(c_int), parameter, public :: FC3D_ONECONTACT_NSN = 550
   integer(c_int), parameter, public :: FC3D_ONECONTACT_NSN_GP = 551
@@ -99,7 +109,7 @@ module fc3d
   public :: fc3d_settings_set_local_iparam, fc3d_settings_set_local_dparam, fc3d_settings_set_c
   public :: fc3d_solve_dense, fc3d_solve_csr, fc3d_solve_coo, fc3d_solve_blocks
   public :: fc3d_problem_read_c, fc3d_problem_free, fc3d_problem_contacts, fc3d_problem_nnz
-  public :: fc3d_problem_get, fc3d_problem_solve
+  public :: fc3d_problem_get, fc3d_problem_solve, fc3d_solver_count, fc3d_solver_at
   ! -- The Fortran wrappers.
   public :: fc3d_version, fc3d_last_error_message, fc3d_settings_set, fc3d_problem_read
   public :: fc3d_solve
@@ -351,6 +361,21 @@ module fc3d
       type(fc3d_result), intent(inout) :: result
       integer(c_int) :: code
     end function fc3d_problem_solve
+
+    ! int fc3d_solver_count(void);
+    function fc3d_solver_count() bind(C, name="fc3d_solver_count") result(count)
+      import :: c_int
+      integer(c_int) :: count
+    end function fc3d_solver_count
+
+    ! int fc3d_solver_at(int index, const char **constant, const char **name);
+    ! (index 0-based; constant and name receive static C strings: do not free them)
+    function fc3d_solver_at(index, constant, name) bind(C, name="fc3d_solver_at") result(id)
+      import :: c_int, c_ptr
+      integer(c_int), value :: index
+      type(c_ptr) :: constant, name
+      integer(c_int) :: id
+    end function fc3d_solver_at
 
     ! size_t strlen(const char *), from the C library, to read C strings.
     function c_strlen(s) bind(C, name="strlen") result(n)

@@ -13,7 +13,7 @@
 #   lib/cmake/fc3d/fc3dConfig*.cmake             find_package(fc3d): fc3d::fc3d, fc3d::native,
 #                                                fc3d::fc3d_static, fc3d_SICONOS_INCLUDE_DIR
 #   share/fc3d/fortran/fc3d.f90                  the Fortran module (source)
-#   share/doc/fc3d/                              README.md, LICENSE, CHANGELOG.md
+#   share/doc/fc3d/                              README.md, LICENSE, CHANGELOG.md, docs/
 # --features fclib builds the FCLIB (.hdf5) readers and writers in (needs libhdf5-dev).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -73,4 +73,6 @@ substitute capi/packaging/fc3dConfig.cmake.in > "$lib/cmake/fc3d/fc3dConfig.cmak
 substitute capi/packaging/fc3dConfigVersion.cmake.in > "$lib/cmake/fc3d/fc3dConfigVersion.cmake"
 [ ! -f fortran/fc3d.f90 ] || install -m 644 fortran/fc3d.f90 "$prefix/share/fc3d/fortran/"
 install -m 644 README.md LICENSE CHANGELOG.md "$prefix/share/doc/fc3d/"
+install -d "$prefix/share/doc/fc3d/docs"
+install -m 644 docs/*.md docs/*.png docs/*.svg "$prefix/share/doc/fc3d/docs/"
 echo "installed fc3d $version: $(du -h "$lib/libfc3d.so.$version" | cut -f1) libfc3d.so, $(du -h "$lib/libfc3d.a" | cut -f1) libfc3d.a"

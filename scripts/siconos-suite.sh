@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Siconos 4.4.0's own friction tests, unmodified, run case by case against libfc3d and against the
-# installed Siconos in the same run (issue 12). Siconos' sources are downloaded (Debian's source
-# tarball, checksum pinned) and extracted at test time, never committed.
+# installed Siconos in the same run (issue 12). Siconos' sources are taken at test time by
+# scripts/siconos-src.sh (Debian's source package through apt-get source, checksum pinned), never
+# committed.
 #
 #   scripts/siconos-suite.sh [--lib DIR] [--fclib-lib DIR] [--include DIR]... [--jobs N]
 #                            [--timeout SECONDS] [--only REGEX] [--out DIR] [--report-only]
@@ -79,23 +80,9 @@ fi
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || {
   echo "siconos-suite: needs libsiconos-numerics-dev (the reference library)" >&2; exit 2; }
 
-# --- Siconos 4.4.0's sources: Debian's orig tarball, the same release as the installed library ---
-TARBALL=siconos_4.4.0+dfsg.orig.tar.xz
-SHA256=df9445096559a7352b7a1f16897b4609c26e20caa440ecaf5375b2cdabcb6354
-CACHE=$ROOT/target/siconos-src
-SRC=$CACHE/siconos-4.4.0
-if [ ! -f "$SRC/numerics/numerics_tests.cmake" ]; then
-  mkdir -p "$CACHE"
-  if [ ! -f "$CACHE/$TARBALL" ] || ! echo "$SHA256  $CACHE/$TARBALL" | sha256sum -c --quiet - 2>/dev/null; then
-    echo "== downloading Siconos 4.4.0's sources ($TARBALL)"
-    curl -fsSL --retry 3 -o "$CACHE/$TARBALL.part" \
-      "http://deb.debian.org/debian/pool/main/s/siconos/$TARBALL"
-    mv "$CACHE/$TARBALL.part" "$CACHE/$TARBALL"
-  fi
-  echo "$SHA256  $CACHE/$TARBALL" | sha256sum -c --quiet -
-  tar xJf "$CACHE/$TARBALL" -C "$CACHE" siconos-4.4.0/numerics
-  [ -f "$SRC/numerics/numerics_tests.cmake" ] || { echo "siconos-suite: extraction failed" >&2; exit 1; }
-fi
+# --- Siconos 4.4.0's sources: Debian's source package, the same release as the installed library ---
+SRC=$(bash "$ROOT/scripts/siconos-src.sh")
+CACHE=$(dirname "$SRC")
 NUM=$SRC/numerics
 TESTDIR=$NUM/src/FrictionContact/test
 UTILS=("$NUM/src/tools/test-utils/test_utils.c" "$NUM/src/FrictionContact/test-utils/frictionContact_test_function.c")

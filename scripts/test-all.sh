@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# The whole test suite, set-up included (README's test command; .ci/run calls it).
+# The whole test suite, set-up included (the README's full tier, docs/testing.md; .ci/run calls it).
 #  1. cargo test --workspace: Rust unit/integration tests and the C checks of capi-tests
 #     (compiled with the cc crate against capi/include/), including all shared Siconos problems.
 #  2. scripts/install.sh into a temporary prefix, then hosts built from outside the source tree
 #     against what was installed: a C host with pkg-config (shared and static library, and the
 #     native-only library), the Siconos-style hosts with only the include path and the link flag
 #     changed, a C++ host with CMake's find_package(fc3d), one program linking Siconos and fc3d's
-#     native library side by side, the Fortran module and the Python package.
+#     native library side by side, the Fortran module and the Python package; the README's
+#     quickstarts and in-tree example as written (scripts/test-readme.sh).
 #  3. The C checks linked against the installed libfc3d.so and run under valgrind.
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos
 #     4.4 headers, one unmodified Siconos host program built against both libraries, whose
@@ -28,7 +29,6 @@ command -v valgrind >/dev/null || packages+=(valgrind)
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || packages+=(libsiconos-numerics-dev)
 command -v pkg-config >/dev/null || packages+=(pkg-config)
 command -v ctags >/dev/null || packages+=(universal-ctags)
-command -v curl >/dev/null || packages+=(curl)
 command -v xz >/dev/null || packages+=(xz-utils)
 [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
 if [ ${#packages[@]} -gt 0 ]; then
@@ -91,8 +91,11 @@ cmake --build cmake-build >/dev/null
 echo "== Fortran module (installed source) and example"
 bash "$ROOT/scripts/test-fortran.sh" "$PREFIX"
 
-echo "== Python package (venv, pip install ./python, pytest)"
+echo "== Python package (venv, pip install ./python, pytest, the README's Python quickstart)"
 bash "$ROOT/scripts/test-python.sh"
+
+echo "== the README's quickstarts and in-tree example, as written"
+bash "$ROOT/scripts/test-readme.sh" "$PREFIX"
 
 echo "== Siconos and fc3d's native library in one process"
 cc -O2 -I/usr/include/siconos/numerics -I/usr/include/siconos $(pkg-config --cflags fc3d-native) side_by_side.c \

@@ -4,8 +4,9 @@
 #   bash scripts/test-python.sh [pytest arguments]
 #
 # builds the native-only C library with cargo, creates a virtual environment in a temporary
-# folder, pip-installs numpy, scipy, pytest and ./python into it (from PyPI: needs network
-# access, or a pip configured for a mirror), and runs python/tests with pytest. The virtual
+# folder, pip-installs numpy, scipy, pytest and ./python into it (from the index pip is configured
+# with: needs network access or a mirror), runs python/tests with pytest, then the README's Python
+# quickstart as written (with the venv's python first on PATH). The virtual
 # environment is removed at the end.
 #
 # Environment: PYTHON (interpreter, default python3; CPython >= 3.8), FC3D_DATA (the shared
@@ -66,3 +67,9 @@ echo "== pytest python/tests"
 # or bytecode is written into python/.
 cd "$venv"
 PYTHONDONTWRITEBYTECODE=1 "$vpython" -m pytest -p no:cacheprovider -q "$repo/python/tests" "$@"
+
+echo "== the README's Python quickstart (blocks quickstart.py and run-python, scripts/test-readme.sh)"
+mkdir "$venv/readme"
+bash "$repo/scripts/test-readme.sh" --print quickstart.py >"$venv/readme/quickstart.py"
+run=$(bash "$repo/scripts/test-readme.sh" --print run-python)
+(cd "$venv/readme" && PATH="$venv/bin:$PATH" bash -e -c "$run")

@@ -79,16 +79,6 @@
 // the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 #define FC3D_ONECONTACT_EAL 572
 
-// AUTO, fc3d's solver that chooses (in 568..=599, a range Siconos 4.4 leaves free; named
-// "FC3D_AUTO" by `solver_options_id_to_name`): from cheap features of the problem, the
-// tolerance and the budget it picks a plan of stages (NSGS, NSN-AC, PROX, ADMM, TFP, EG) and
-// switches stage when the error stalls, each stage going on from the best iterate. iparam[0]
-// counts the iterations of all stages, `dparam[FC3D_DPARAM_TIME_BUDGET]` is one budget for all
-// of them; a tolerance of 0 with a budget is an anytime solve (the best iterate reached, with
-// its true error in dparam[1]). The stages taken are written to
-// `iparam[FC3D_IPARAM_AUTO_STAGES]`.
-#define FC3D_AUTO 590
-
 // Output index in AUTO's `iparam`: the stages it took, one decimal digit each, first stage
 // most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG; 12 = NSGS then NSN-AC).
 #define FC3D_IPARAM_AUTO_STAGES 18
@@ -168,6 +158,16 @@
 
 // The largest `iSize` / `dSize` accepted (fc3d reads the first `OPTIONS_PARAM_SIZE` slots).
 #define FC3D_OPTIONS_MAX_PARAM_SIZE 1024
+
+// AUTO, fc3d's solver that chooses (in 568..=599, a range Siconos 4.4 leaves free; named
+// "FC3D_AUTO" by `solver_options_id_to_name`): from cheap features of the problem, the
+// tolerance and the budget it picks a plan of stages (NSGS, NSN-AC, PROX, ADMM, TFP, EG) and
+// switches stage when the error stalls, each stage going on from the best iterate. iparam[0]
+// counts the iterations of all stages, `dparam[FC3D_DPARAM_TIME_BUDGET]` is one budget for all
+// of them; a tolerance of 0 with a budget is an anytime solve (the best iterate reached, with
+// its true error in dparam[1]). The stages taken are written to
+// `iparam[FC3D_IPARAM_AUTO_STAGES]`.
+#define FC3D_AUTO 590
 
 // `fc3d_contact_diagnostics` status: no reaction, separating (`u_N > 0`).
 #define FC3D_CONTACT_TAKE_OFF 0
@@ -1894,6 +1894,19 @@ void fc3d_set_internalsolver_tolerance(struct FrictionContactProblem *problem,
                                        struct SolverOptions *options,
                                        struct SolverOptions *internalsolver_options,
                                        double error);
+
+// The number of solvers `fc3d_settings_new` accepts: every top-level 3D solver of the native
+// entry, AUTO included (list them with `fc3d_solver_at`).
+int fc3d_solver_count(void);
+
+// The solver at `index` (0 <= index < `fc3d_solver_count()`, in increasing id order): returns
+// its Siconos id, and stores in `*constant` the name of the constant that names it in the
+// headers (`"SICONOS_FRICTION_3D_NSGS"`, `"SICONOS_FRICTION_3D_ONECONTACT_QUARTIC"`,
+// `"FC3D_AUTO"`) and in `*name` Siconos' name of the solver (`solver_options_id_to_name`:
+// `"FC3D_NSGS"`, `"FC3D_DeSaxceFixedPoint"`, `"FC3D_AUTO"`); both strings are static (do not
+// free). `constant` and `name` may be NULL. An index out of range returns
+// `FC3D_ERR_INVALID_SIZE` and writes nothing.
+int fc3d_solver_at(int index, const char **constant, const char **name);
 
 // A new, empty workspace (the first solve through it is a cold one); NULL (and the last
 // error) if memory is short. Release it with `fc3d_workspace_free`.

@@ -71,6 +71,16 @@
 // A bug in fc3d (a caught panic). Please report it.
 #define FC3D_ERR_INTERNAL -99
 
+// AUTO, fc3d's solver that chooses (in 568..=599, a range Siconos 4.4 leaves free; named
+// "FC3D_AUTO" by `solver_options_id_to_name`): from cheap features of the problem, the
+// tolerance and the budget it picks a plan of stages (NSGS, NSN-AC, PROX, ADMM, TFP, EG) and
+// switches stage when the error stalls, each stage going on from the best iterate. iparam[0]
+// counts the iterations of all stages, `dparam[FC3D_DPARAM_TIME_BUDGET]` is one budget for all
+// of them; a tolerance of 0 with a budget is an anytime solve (the best iterate reached, with
+// its true error in dparam[1]). The stages taken are written to
+// `iparam[FC3D_IPARAM_AUTO_STAGES]`.
+#define FC3D_AUTO 590
+
 // A problem read from a file (opaque), with W also kept in compressed rows for
 // `fc3d_problem_get`.
 typedef struct Fc3dProblem Fc3dProblem;
@@ -236,6 +246,19 @@ int fc3d_problem_solve(const struct Fc3dProblem *problem,
                        double *u,
                        const struct Fc3dSettings *settings,
                        struct Fc3dResult *result);
+
+// The number of solvers `fc3d_settings_new` accepts: every top-level 3D solver of the native
+// entry, AUTO included (list them with `fc3d_solver_at`).
+int fc3d_solver_count(void);
+
+// The solver at `index` (0 <= index < `fc3d_solver_count()`, in increasing id order): returns
+// its Siconos id, and stores in `*constant` the name of the constant that names it in the
+// headers (`"SICONOS_FRICTION_3D_NSGS"`, `"SICONOS_FRICTION_3D_ONECONTACT_QUARTIC"`,
+// `"FC3D_AUTO"`) and in `*name` Siconos' name of the solver (`solver_options_id_to_name`:
+// `"FC3D_NSGS"`, `"FC3D_DeSaxceFixedPoint"`, `"FC3D_AUTO"`); both strings are static (do not
+// free). `constant` and `name` may be NULL. An index out of range returns
+// `FC3D_ERR_INVALID_SIZE` and writes nothing.
+int fc3d_solver_at(int index, const char **constant, const char **name);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -1,7 +1,7 @@
 //! The C ABI: a thin layer that converts Siconos-layout structs into core types, validates
 //! them, calls the core and converts back. It holds no numerics.
 //!
-//! Contract (also in README.md, "C API contract"):
+//! Contract (also in docs/c-api.md):
 //! * Every `extern "C"` function runs inside [`ffi_guard`]: a Rust panic is caught and turned into
 //!   [`FC3D_ERR_INTERNAL`]; nothing unwinds into C, nothing aborts or exits.
 //! * Functions returning `int` return 0 on success, 1 when a solver ran but did not reach its
@@ -40,6 +40,7 @@ mod problem;
 mod problem_files;
 mod rolling;
 mod solver_entries;
+mod solver_list;
 mod stream;
 mod workspace;
 
@@ -53,6 +54,7 @@ pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
 pub use option_tree::{
     FC3D_OPTIONS_MAX_DEPTH, FC3D_OPTIONS_MAX_INTERNAL_SOLVERS, FC3D_OPTIONS_MAX_PARAM_SIZE,
 };
+pub use solver_list::{fc3d_solver_at, fc3d_solver_count, FC3D_AUTO};
 pub use workspace::{
     Fc3dWorkspace, FC3D_CONTACT_APEX, FC3D_CONTACT_SLIDE, FC3D_CONTACT_STICK, FC3D_CONTACT_TAKE_OFF,
 };
@@ -112,15 +114,6 @@ pub const FC3D_ONECONTACT_EBP: c_int = 571;
 /// Dumont's EAL (2021): Newton on the augmented-Lagrangian fixed point; the same function as
 /// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 pub const FC3D_ONECONTACT_EAL: c_int = 572;
-/// AUTO, fc3d's solver that chooses (in 568..=599, a range Siconos 4.4 leaves free; named
-/// "FC3D_AUTO" by `solver_options_id_to_name`): from cheap features of the problem, the
-/// tolerance and the budget it picks a plan of stages (NSGS, NSN-AC, PROX, ADMM, TFP, EG) and
-/// switches stage when the error stalls, each stage going on from the best iterate. iparam[0]
-/// counts the iterations of all stages, `dparam[FC3D_DPARAM_TIME_BUDGET]` is one budget for all
-/// of them; a tolerance of 0 with a budget is an anytime solve (the best iterate reached, with
-/// its true error in dparam[1]). The stages taken are written to
-/// `iparam[FC3D_IPARAM_AUTO_STAGES]`.
-pub const FC3D_AUTO: c_int = 590;
 /// Output index in AUTO's `iparam`: the stages it took, one decimal digit each, first stage
 /// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG; 12 = NSGS then NSN-AC).
 pub const FC3D_IPARAM_AUTO_STAGES: c_int = 18;

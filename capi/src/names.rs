@@ -28,6 +28,10 @@ macro_rules! solver_names {
         /// (`solver_options_name_to_id` returns the first id of a name given twice); `None`
         /// for a name Siconos declares but does not register.
         const NAMES: &[(Option<c_int>, &CStr)] = &[$( (solver_names!(@id $id), $text), )*];
+
+        /// The name variable of each entry of `NAMES` (`SICONOS_FRICTION_3D_NSGS_STR`): the
+        /// solver's constant in Siconos' headers with `_STR` appended.
+        const NAME_VARIABLES: &[&str] = &[$( stringify!($symbol), )*];
     };
     (@id _) => { None };
     (@id $id:literal) => { Some($id) };
@@ -39,6 +43,9 @@ const OTHER_NAMES: &[(c_int, &CStr)] = &[(202, c"PGS")];
 
 /// fc3d's own top-level solvers (ids Siconos leaves free).
 const FC3D_NAMES: &[(c_int, &CStr)] = &[(crate::FC3D_AUTO, c"FC3D_AUTO")];
+
+/// The constants of `fc3d.h` that name fc3d's own top-level solvers.
+const FC3D_CONSTANTS: &[(c_int, &str)] = &[(crate::FC3D_AUTO, "FC3D_AUTO")];
 
 solver_names! {
     1000 SICONOS_VI_EG_STR = c"VI_EG";
@@ -187,6 +194,30 @@ pub(crate) fn solver_name(id: c_int) -> &'static CStr {
         .map_or(c"NONAME", |(_, n)| n)
 }
 
+/// The constant that names solver `id` in Siconos' headers (`SICONOS_FRICTION_3D_NSGS`, the
+/// first one registered with that id) or in fc3d's (`FC3D_AUTO`); `None` for an id neither names.
+pub(crate) fn solver_constant(id: c_int) -> Option<&'static str> {
+    let siconos = NAMES
+        .iter()
+        .zip(NAME_VARIABLES)
+        .find(|((i, _), _)| *i == Some(id))
+        .and_then(|(_, variable)| variable.strip_suffix("_STR"));
+    siconos.or_else(|| {
+        FC3D_CONSTANTS
+            .iter()
+            .find(|(i, _)| *i == id)
+            .map(|(_, c)| *c)
+    })
+}
+
+/// Every id `solver_name` names (Siconos' registered ids and fc3d's own), each once.
+pub(crate) fn named_ids() -> Vec<c_int> {
+    let mut ids: Vec<c_int> = registered().map(|(id, _)| id).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    ids
+}
+
 /// The id registered under a name (the first one), 0 if none (as Siconos).
 pub(crate) fn solver_name_to_id(name: &CStr) -> c_int {
     registered().find(|(_, n)| *n == name).map_or(0, |(i, _)| i)
@@ -209,6 +240,14 @@ mod tests {
         assert_eq!(solver_name_to_id(c"no such solver"), 0);
         assert_eq!(solver_name(590), c"FC3D_AUTO");
         assert_eq!(solver_name_to_id(c"FC3D_AUTO"), 590);
+        assert_eq!(solver_constant(500), Some("SICONOS_FRICTION_3D_NSGS"));
+        assert_eq!(solver_constant(505), Some("SICONOS_FRICTION_3D_DSFP"));
+        assert_eq!(
+            solver_constant(562),
+            Some("SICONOS_FRICTION_3D_ONECONTACT_QUARTIC")
+        );
+        assert_eq!(solver_constant(590), Some("FC3D_AUTO"));
+        assert_eq!(solver_constant(-1), None);
         for kind in LocalSolverKind::ALL {
             let id = kind.siconos_id();
             assert_ne!(solver_name(id), c"NONAME", "{kind:?}");

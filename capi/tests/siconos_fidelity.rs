@@ -1,7 +1,7 @@
 //! Issue 12 (fidelity): the ids that follow Siconos 4.4's algorithm by default and keep fc3d's
 //! refinement behind `iparam[FC3D_IPARAM_VARIANT]`, QUARTIC (562) and QUARTIC_NU (563) as
 //! top-level solvers, 521 (NSN_AC_TEST), and the id rejected because it is unfinished in
-//! Siconos itself (501). The figures compared with the installed Siconos are in the README ("Solver ids").
+//! Siconos itself (501). The figures compared with the installed Siconos are in docs/solvers.md.
 
 use std::ffi::{CStr, CString};
 use std::os::raw::c_int;

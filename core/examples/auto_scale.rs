@@ -1,5 +1,5 @@
 //! AUTO's candidate plans on a generated pile under wall-clock budgets: the error each plan
-//! reaches, next to the stages it took. Evidence for AUTO's large-problem rule (README "Scale").
+//! reaches, next to the stages it took. Evidence for AUTO's large-problem rule (docs/scale.md).
 //! `cargo run --release -p fc3d-core --example auto_scale -- CONTACTS PILES BUDGET_MS...`
 
 use std::time::Duration;

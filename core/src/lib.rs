@@ -77,3 +77,8 @@ pub use workspace::{WarmStart, Workspace, WorkspaceStats};
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 struct ReadmeDoctests;
+
+/// And those of the docs pages that hold Rust code.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/time-stepping.md")]
+struct TimeSteppingDoctests;

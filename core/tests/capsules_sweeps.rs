@@ -1,5 +1,5 @@
 //! Sweeps of NSGS to the error (133) on the four shared Capsules problems with the options that
-//! the README sets beside So-bogus' Gauss-Seidel (section "The So-bogus gap on the Capsules
+//! docs/nsgs.md sets beside So-bogus' Gauss-Seidel (section "The So-bogus gap on the Capsules
 //! problems"): the full error tested after every sweep at 1e-4, and over-relaxation 1.2 with
 //! freezing for 10 sweeps and the test every 10 sweeps at 1e-6; and, on OneObject-i100000-316,
 //! the stall of Siconos' 551 step that 565 and 551's fc3d variant do not have. Every run is
@@ -47,7 +47,7 @@ fn full_551() -> NsgsOptions {
 }
 
 /// (problem, sweeps at 1e-4 with the full error every sweep, sweeps at 1e-6 plain / with
-/// PSOR 1.2 + freezing 10 + test every 10), as measured on this machine (README table).
+/// PSOR 1.2 + freezing 10 + test every 10), as measured on this machine (docs/nsgs.md).
 const CAPSULES: [(&str, usize, usize, usize); 4] = [
     ("Capsules-i100-1090.dat", 10, 131, 120),
     ("Capsules-i100-889.dat", 12, 200, 120),
@@ -87,7 +87,7 @@ fn relaxation_freezing_and_a_test_every_10_sweeps_reach_1e_6() {
 
 #[test]
 fn siconos_551_step_stalls_on_oneobject_where_565_and_fc3d_variant_pass_1e_4() {
-    // So-bogus' Gauss-Seidel scored every sweep passes 1e-4 at sweep 104 here (README).
+    // So-bogus' Gauss-Seidel scored every sweep passes 1e-4 at sweep 104 here (docs/nsgs.md).
     let p = load("OneObject-i100000-316.hdf5.dat");
     let stalled = run_limited(&p, 1e-4, full_551(), 2000);
     assert!(!stalled.converged() && stalled.error > 1e-3, "{stalled:?}");

@@ -3,111 +3,15 @@
 //! round-off, `u = H^T v + b`) whose reported error equals an independent recomputation of
 //! Siconos' global error, and reaches the tolerance where it says it converged.
 
+mod common;
+
+use common::global::{check, scene};
 use fc3d_core::global::{
     solve_global, GlobalAclmOptions, GlobalAdmmOptions, GlobalConfig, GlobalMethod,
-    GlobalNewtonOptions, GlobalProblem, GlobalReport, JacobiOptions,
+    GlobalNewtonOptions, JacobiOptions,
 };
-use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+use fc3d_core::scenes::PileShape;
 use fc3d_core::{Method, NsgsOptions, NsnOptions, SolveStatus, ViOptions, ViSolver};
-
-fn scene(contacts: usize, shape: PileShape) -> GlobalProblem<'static> {
-    GeneratedScene {
-        pile: PileSpec {
-            contacts,
-            piles: 1,
-            seed: 7,
-        },
-        shape,
-    }
-    .generate_global()
-    .unwrap()
-}
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
-
-/// Siconos' gfc3d_compute_error written out plainly (dense loops over the stored entries, the
-/// cone projection by its three cases), independent of the library's measure.
-fn independent_error(p: &GlobalProblem, r: &[f64], v: &[f64]) -> f64 {
-    let n = p.ndof();
-    let mut hr = vec![0.0; n];
-    p.h().for_each_entry(|i, j, x| hr[i] += x * r[j]);
-    let mut mv = vec![0.0; n];
-    p.m().for_each_entry(|i, j, x| mv[i] += x * v[j]);
-    let balance: Vec<f64> = (0..n).map(|i| p.q()[i] + hr[i] - mv[i]).collect();
-    let scale1 = norm(p.q()).max(norm(&mv)).max(norm(&hr));
-    let e1 = if scale1 > f64::EPSILON {
-        norm(&balance) / scale1
-    } else {
-        norm(&balance)
-    };
-    let mut u = p.b().to_vec();
-    p.h().for_each_entry(|i, j, x| u[j] += x * v[i]);
-    let mut s = 0.0;
-    for (c, &mu) in p.mu().iter().enumerate() {
-        let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
-        let ut = (uc[1] * uc[1] + uc[2] * uc[2]).sqrt();
-        let x = [rc[0] - (uc[0] + mu * ut), rc[1] - uc[1], rc[2] - uc[2]];
-        let xt = (x[1] * x[1] + x[2] * x[2]).sqrt();
-        let proj = if xt <= mu * x[0] {
-            x
-        } else if mu * xt <= -x[0] {
-            [0.0; 3]
-        } else {
-            let a = (x[0] + mu * xt) / (1.0 + mu * mu);
-            [a, mu * a * x[1] / xt, mu * a * x[2] / xt]
-        };
-        s += (0..3).map(|k| (rc[k] - proj[k]).powi(2)).sum::<f64>();
-    }
-    let scale2 = norm(&u).max(norm(r));
-    let e2 = if scale2 > f64::EPSILON {
-        s.sqrt() / scale2
-    } else {
-        s.sqrt()
-    };
-    e1 + e2
-}
-
-/// Checks the triple and the report; returns the report.
-fn check(p: &GlobalProblem, config: &GlobalConfig) -> GlobalReport {
-    let (mut r, mut u, mut v) = (
-        vec![0.0; p.size()],
-        vec![0.0; p.size()],
-        vec![0.0; p.ndof()],
-    );
-    let report = solve_global(p, config, &mut r, &mut u, &mut v).unwrap();
-    let expected = independent_error(p, &r, &v);
-    assert!(
-        (report.error - expected).abs() <= 1e-9 * expected.max(1e-300) + 1e-15,
-        "{}: reported {:e}, recomputed {expected:e}",
-        config.method.label(),
-        report.error
-    );
-    // M v = q + H r to round-off.
-    let n = p.ndof();
-    let mut residual: Vec<f64> = p.q().iter().map(|x| -x).collect();
-    p.m().for_each_entry(|i, j, x| residual[i] += x * v[j]);
-    p.h().for_each_entry(|i, j, x| residual[i] -= x * r[j]);
-    let scale = norm(p.q()).max(1.0);
-    assert!(
-        norm(&residual) <= 1e-12 * scale * n as f64,
-        "balance {:e}",
-        norm(&residual)
-    );
-    // u = H^T v + b.
-    let mut uu = p.b().to_vec();
-    p.h().for_each_entry(|i, j, x| uu[j] += x * v[i]);
-    for (a, b) in u.iter().zip(&uu) {
-        assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()));
-    }
-    if report.converged() {
-        assert!(report.error <= config.tolerance);
-    } else {
-        assert!(report.error > config.tolerance);
-    }
-    report
-}
 
 #[test]
 fn reduced_nsgs_reaches_the_global_tolerance_on_piles() {

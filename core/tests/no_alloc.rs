@@ -513,3 +513,52 @@ fn rolling_solve_allocations_do_not_grow_with_iterations() {
         }
     }
 }
+
+/// A global interior-point solve (615) allocates as many times for 2 iterations as for 12: the
+/// Newton matrix's pattern, analysis and work vectors are set up once; the iterations (blocks,
+/// factorization on the fixed pattern, solves, steps, the error of the triple) allocate nothing.
+#[test]
+fn global_ipm_iterations_allocate_nothing() {
+    use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod, IpmOptions};
+    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    for (shape, update_s, nesterov_todd) in [
+        (PileShape::Spheres, false, true),
+        (PileShape::Boxes, true, false),
+    ] {
+        let p = GeneratedScene {
+            pile: PileSpec {
+                contacts: 60,
+                piles: 1,
+                seed: 3,
+            },
+            shape,
+        }
+        .generate_global()
+        .unwrap();
+        let allocations = |k| {
+            let config = GlobalConfig {
+                tolerance: 0.0,
+                max_iter: k,
+                ..GlobalConfig::new(GlobalMethod::Ipm(IpmOptions {
+                    update_s,
+                    nesterov_todd,
+                    ..Default::default()
+                }))
+            };
+            let (mut r, mut u, mut v) = (
+                vec![0.0; p.size()],
+                vec![0.0; p.size()],
+                vec![0.0; p.ndof()],
+            );
+            let (n, report) =
+                count_allocations(|| solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap());
+            assert_eq!(report.iterations, k);
+            n
+        };
+        let (few, many) = (allocations(2), allocations(12));
+        assert_eq!(
+            few, many,
+            "{shape:?}: {few} for 2 iterations, {many} for 12"
+        );
+    }
+}

@@ -126,7 +126,7 @@ fn results_are_bitwise_identical_for_1_to_4_threads() {
     for (name, p) in problems() {
         for decomposition in [Decomposition::Coloured, Decomposition::Islands] {
             // A fixed number of sweeps (tolerance 0) and a run to the tolerance.
-            // NSGS stalls near 1e-3 on the generated piles (see the README): a looser run there.
+            // NSGS stalls near 1e-3 on the generated piles (docs/scale.md): a looser run there.
             let to_tol = if name.starts_with("generated") || name.starts_with("a dominant") {
                 (1e-3, 300)
             } else {

@@ -87,11 +87,12 @@ def test_bad_options():
     raises(fc3d.ERR_INVALID_OPTION, "time budget", time_budget=-1.0)
     raises(fc3d.ERR_INVALID_OPTION, "parameter index 99", iparam={99: 1})
     raises(fc3d.ERR_INVALID_OPTION, "iparam\\[4\\] = 1.5 must be an integer", iparam={4: 1.5})
-    raises(fc3d.ERR_INVALID_OPTION, "relaxation \\(dparam\\[8\\]\\)", iparam={4: 1},
-           dparam={8: 2.5})
+    raises(fc3d.ERR_INVALID_OPTION, "relaxation \\(dparam\\[8\\]\\)", solver="NSGS",
+           iparam={4: 1}, dparam={8: 2.5})
     raises(fc3d.ERR_INVALID_OPTION, "unknown setting 'colour'", colour=1)
     raises(fc3d.ERR_INVALID_OPTION, "unknown local solver 'NOPE'", local_solver="NOPE")
-    raises(fc3d.ERR_INVALID_OPTION, "500 is not a local \\(one-contact\\) solver id", local_solver=500)
+    raises(fc3d.ERR_INVALID_OPTION, "500 is not a local \\(one-contact\\) solver id", solver="NSGS",
+           local_solver=500)
     raises(fc3d.ERR_INVALID_OPTION, "has no local", solver="NSN_AC", local_solver="HYBRID")
 
 

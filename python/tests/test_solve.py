@@ -34,11 +34,27 @@ def test_single_sliding_contact(solver):
 
 
 def test_single_contact_defaults_and_lists():
-    """Plain lists, a scalar mu and the default solver (NSGS) with the default tolerance."""
+    """Plain lists, a scalar mu and the default solver (AUTO) with the default tolerance."""
     res = fc3d.solve([[1, 0, 0], [0, 1, 0], [0, 0, 1]], [-1, 2, 0], 0.5)
     np.testing.assert_allclose(res.r, [1.0, -0.5, 0.0], atol=1e-6)
-    assert res.solver == 500 and res.n_contacts == 1
-    assert "NSGS" in repr(res)
+    assert res.solver == 590 and res.n_contacts == 1
+    assert "AUTO" in repr(res)
+
+
+def test_solvers_are_the_librarys():
+    """fc3d.SOLVERS is the library's list: every id fc3d_settings_new accepts, AUTO included,
+    each reachable by its short name and by Siconos' name string; help(fc3d.solve) lists them."""
+    listed = fc3d._native.solvers()
+    assert sorted(fc3d.SOLVERS.values()) == [sid for sid, _, _ in listed]
+    assert fc3d.SOLVERS["AUTO"] == 590 and len(fc3d.SOLVERS) >= 20
+    for sid, constant, name in listed:
+        assert fc3d.solver_id(constant) == sid and fc3d.solver_id(name) == sid
+    for name, sid in fc3d.SOLVERS.items():
+        assert "%s (%d)" % (name, sid) in fc3d.solve.__doc__
+    # Ids the library does not solve at top level are refused by it, with its reason.
+    accepted = set(fc3d.SOLVERS.values())
+    for sid in (400, 501, 550, 3000, 600):
+        assert sid not in accepted
 
 
 def test_soclcp_reports_relaxation_not_coulomb():
@@ -53,7 +69,10 @@ def test_soclcp_reports_relaxation_not_coulomb():
     [("NSGS", 500), ("nsgs", 500), ("NSN_AC", 504), ("NSN-AC", 504), ("nsn-ac", 504),
      ("SICONOS_FRICTION_3D_NSN_AC", 504), ("NSN_FB", 513), ("NSN_NM", 520), ("PROX", 502),
      ("TFP", 503), ("PFP", 522), ("ACLMFP", 516), ("SOCLCP", 517), ("ADMM", 523), ("DSFP", 505),
-     ("VI_FPP", 506), ("VI-EG", 507), ("FPP", 511), ("EG", 512), (500, 500), ("504", 504)],
+     ("VI_FPP", 506), ("VI-EG", 507), ("FPP", 511), ("EG", 512), (500, 500), ("504", 504),
+     ("AUTO", 590), ("auto", 590), ("FC3D_AUTO", 590), ("HP", 508), ("NSN_AC_TEST", 521),
+     ("QUARTIC", 562), ("QUARTIC_NU", 563), ("SICONOS_FRICTION_3D_ONECONTACT_QUARTIC", 562),
+     ("FC3D_DeSaxceFixedPoint", 505), ("FC3D ADMM", 523), ("HyperplaneProjection", 508)],
 )
 def test_solver_names(alias, expected):
     """Solver names, aliases and ids map to Siconos ids."""
@@ -175,30 +194,31 @@ def test_time_budget_is_respected(budget):
 
 
 def test_max_iter_and_options(problem30):
-    """max_iter, iparam/dparam mappings, pass-through names, the local solver reach the library."""
+    """max_iter, iparam/dparam mappings, pass-through names, the local solver reach the library
+    (NSGS's slots and local solver)."""
     w, q, mu = problem30
-    one = fc3d.solve(w, q, mu, max_iter=1, tol=1e-10)
+    one = fc3d.solve(w, q, mu, solver="NSGS", max_iter=1, tol=1e-10)
     assert one.info == fc3d.NOT_CONVERGED and one.iterations == 1 and one.status == "max_iter"
     # NSGS with over-relaxation: iparam[4] = 1, omega = dparam[8]; mapping form and the C
     # setter names give the same solve.
-    a = fc3d.solve(w, q, mu, tol=1e-10, iparam={4: 1}, dparam={8: 1.3})
-    b = fc3d.solve(w, q, mu, tol=1e-10, **{"iparam[4]": 1, "dparam[8]": 1.3})
-    c = fc3d.solve(w, q, mu, tol=1e-10, iparam=[(4, 1)], dparam=[(8, 1.3)])
-    plain = fc3d.solve(w, q, mu, tol=1e-10)
+    a = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, iparam={4: 1}, dparam={8: 1.3})
+    b = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, **{"iparam[4]": 1, "dparam[8]": 1.3})
+    c = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, iparam=[(4, 1)], dparam=[(8, 1.3)])
+    plain = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10)
     assert a.converged and a.iterations == b.iterations == c.iterations
     np.testing.assert_array_equal(a.r, b.r)
     assert a.iterations != plain.iterations
     # The local solver by name or id.
-    by_name = fc3d.solve(w, q, mu, tol=1e-10, local_solver="NSN_GP")
-    by_id = fc3d.solve(w, q, mu, tol=1e-10, local_solver=551)
+    by_name = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, local_solver="NSN_GP")
+    by_id = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, local_solver=551)
     assert by_name.converged and by_name.iterations == by_id.iterations
     np.testing.assert_array_equal(by_name.r, by_id.r)
     # Parameters of the local solver after choosing it (local_iparam[0]: its iteration limit).
-    ebp = fc3d.solve(w, q, mu, tol=1e-10, local_solver="EBP", local_iparam={0: 50},
-                     local_dparam={0: 1e-14})
+    ebp = fc3d.solve(w, q, mu, solver="NSGS", tol=1e-10, local_solver="EBP",
+                     local_iparam={0: 50}, local_dparam={0: 1e-14})
     assert ebp.converged
     # Pass-through of the other C setter names.
-    same = fc3d.solve(w, q, mu, **{"tolerance": 1e-10, "max_iter": 1000})
+    same = fc3d.solve(w, q, mu, solver="NSGS", **{"tolerance": 1e-10, "max_iter": 1000})
     assert same.iterations == plain.iterations
 
 

@@ -9,7 +9,7 @@
 #include <fc3d.h>
 
 /* Solver ids (ABI values). solver_options_create returns Siconos 4.4's defaults for every one.
-   fc3d_driver solves the 3D ids listed in README.md and returns FC3D_ERR_UNSUPPORTED_SOLVER,
+   fc3d_driver solves the 3D ids listed in docs/solvers.md and returns FC3D_ERR_UNSUPPORTED_SOLVER,
    with a message naming the solver, for the others (GAMS/PATH ids need a commercial solver;
    global ids are another problem; the 2D and rolling ids run through fc2d_driver and
    rolling_fc3d_driver / rolling_fc2d_driver). */

@@ -1,7 +1,7 @@
 //! One CSV row per run (RFC 4180: comma-separated, a field holding a comma, a quote or a line
 //! break is quoted with its quotes doubled; numbers in Rust's shortest round-trip notation).
 //!
-//! Columns (the README's "Benchmarks: fc3d bench" section documents them for users):
+//! Columns (docs/benchmarks.md documents them for users):
 //!
 //! | column | meaning |
 //! | --- | --- |

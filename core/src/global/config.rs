@@ -7,6 +7,7 @@ use crate::solvers::rolling::RollingMethod;
 
 use super::aclm::GlobalAclmOptions;
 use super::admm::GlobalAdmmOptions;
+use super::ipm::IpmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
 use crate::solvers::vi::{ViOptions, ViSolver};
@@ -36,6 +37,10 @@ pub enum GlobalMethod {
     /// Siconos' `GFC3D_ACLMFP` (612): fixed point on De Saxcé's term, each convex problem
     /// solved by the global ADMM with the term held fixed.
     Aclm(GlobalAclmOptions),
+    /// Siconos' `GFC3D IPM` (615): a primal-dual interior-point method on the second-order cone
+    /// program; by default (as Siconos) it solves the convex relaxation, reported as
+    /// [`crate::SolveStatus::RelaxationNotCoulomb`] where that is not a Coulomb solution.
+    Ipm(IpmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -68,6 +73,7 @@ impl GlobalMethod {
             },
             GlobalMethod::Admm(_) => 613,
             GlobalMethod::Aclm(_) => 612,
+            GlobalMethod::Ipm(_) => 615,
         }
     }
 
@@ -89,6 +95,11 @@ impl GlobalMethod {
             GlobalMethod::Admm(o) if o.update_s => "GFC3D-ADMM".to_string(),
             GlobalMethod::Admm(_) => "GFC3D-ADMM-convex".to_string(),
             GlobalMethod::Aclm(_) => "GFC3D-ACLMFP".to_string(),
+            GlobalMethod::Ipm(o) => format!(
+                "GFC3D-IPM{}{}",
+                if o.update_s { "" } else { "-convex" },
+                if o.nesterov_todd { "" } else { "-arrow" }
+            ),
         }
     }
 
@@ -102,6 +113,7 @@ impl GlobalMethod {
             GlobalMethod::Vi(o) => o.solver.default_limits(),
             GlobalMethod::Admm(_) => (1e-6, 20000),
             GlobalMethod::Aclm(_) => (1e-4, 1000),
+            GlobalMethod::Ipm(_) => (1e-8, 200),
         }
     }
 
@@ -113,6 +125,7 @@ impl GlobalMethod {
             GlobalMethod::Vi(o) => super::vi::validate(o),
             GlobalMethod::Admm(o) => o.validate(),
             GlobalMethod::Aclm(o) => o.validate(),
+            GlobalMethod::Ipm(o) => o.validate(),
         }
     }
 }

@@ -14,6 +14,7 @@
 mod aclm;
 mod admm;
 mod config;
+mod ipm;
 mod jacobi;
 mod newton;
 mod solve;
@@ -26,6 +27,7 @@ pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use aclm::GlobalAclmOptions;
 pub use admm::GlobalAdmmOptions;
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
+pub use ipm::IpmOptions;
 pub use jacobi::JacobiOptions;
 pub use newton::GlobalNewtonOptions;
 pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};

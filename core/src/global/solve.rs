@@ -5,7 +5,7 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
-use super::{aclm, admm, jacobi, newton, vi};
+use super::{aclm, admm, ipm, jacobi, newton, vi};
 use crate::config::SolverConfig;
 use crate::contract::{Limits, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, Fc3dError};
@@ -124,6 +124,9 @@ pub fn solve_global_with_observer(
         }
         GlobalMethod::Admm(options) => {
             admm::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::Ipm(options) => {
+            ipm::run(problem, &mut operator, options, &limits, r, u, v, observer)?
         }
         GlobalMethod::ProjectedJacobi(options) => {
             jacobi::run(problem, &mut operator, options, &limits, r, u, v, observer)?

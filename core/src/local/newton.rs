@@ -184,80 +184,162 @@ fn solve3_partial_pivoting(m: &Mat3, b: &Vec3) -> Option<Vec3> {
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
-/// The Alart-Curnier function and (when `JAC`) its Jacobian `A W + B`, each value formed with
+/// The Alart-Curnier function at a point, with what its Jacobian needs, each value formed with
 /// the operations, in the order, of Siconos 4.4's standard Alart-Curnier function, so that the
 /// Siconos variant's iterates are Siconos' to the last bit (its local Newton, when it does not
 /// converge, amplifies a difference of one ulp into visibly different sweeps). The same function
-/// as [`alart_curnier_function`] otherwise.
+/// as [`alart_curnier_function`] otherwise. Newton evaluates F at a point once: the Jacobian of
+/// the next step is formed from the point's branch and intermediates ([`SiconosAcPoint::jacobian`]),
+/// and a line search's accepted trial is the next point.
+#[derive(Debug, Clone, Copy)]
+struct SiconosAcPoint {
+    f: Vec3,
+    /// `r_N - rho_N u_N > 0`.
+    normal_active: bool,
+    branch: TangentBranch,
+    rvt: f64,
+    rvs: f64,
+    /// `1 / ||r_T - rho_T u_T||` (slide branch only).
+    rv1: f64,
+    radius: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum TangentBranch {
+    Stick,
+    Slide,
+    /// Zero radius, outside the disk: `F_T = r_T`.
+    Free,
+}
+
+impl SiconosAcPoint {
+    #[inline]
+    fn at(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Self {
+        let v = p.velocity(r);
+        let mu = p.mu;
+        let mut f = [0.0; 3];
+        let rvn = r[0] - rho_n * v[0];
+        let rvt = r[1] - rho_t * v[1];
+        let rvs = r[2] - rho_t * v[2];
+        let rv = (rvt * rvt + rvs * rvs).sqrt();
+        let normal_active = rvn > 0.0;
+        let radius = if normal_active {
+            f[0] = rho_n * v[0];
+            mu * rvn
+        } else {
+            f[0] = r[0];
+            0.0
+        };
+        let (branch, rv1) = if rv <= radius {
+            f[1] = rho_t * v[1];
+            f[2] = rho_t * v[2];
+            (TangentBranch::Stick, 0.0)
+        } else if radius > 0.0 {
+            let rv1 = 1.0 / rv;
+            f[1] = r[1] - radius * rvt * rv1;
+            f[2] = r[2] - radius * rvs * rv1;
+            (TangentBranch::Slide, rv1)
+        } else {
+            f[1] = r[1];
+            f[2] = r[2];
+            (TangentBranch::Free, 0.0)
+        };
+        SiconosAcPoint {
+            f,
+            normal_active,
+            branch,
+            rvt,
+            rvs,
+            rv1,
+            radius,
+        }
+    }
+
+    /// The Jacobian `A W + B` at the point (a: derivative in u, Siconos' A; b: in r, its B).
+    #[allow(clippy::needless_range_loop)] // i, j index three matrices at once
+    fn jacobian(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64) -> Mat3 {
+        let mu = p.mu;
+        let mut a: Mat3 = [[0.0; 3]; 3];
+        let mut b: Mat3 = [[0.0; 3]; 3];
+        if self.normal_active {
+            a[0][0] = rho_n;
+        } else {
+            b[0][0] = 1.0;
+        }
+        let (rvt, rvs, rv1, radius) = (self.rvt, self.rvs, self.rv1, self.radius);
+        match self.branch {
+            TangentBranch::Stick => {
+                a[1][1] = rho_t;
+                a[2][2] = rho_t;
+            }
+            TangentBranch::Slide => {
+                let rv3 = rv1 * rv1 * rv1;
+                let g_tt = rv1 - rvt * rvt * rv3;
+                let g_ts = -rvt * rvs * rv3;
+                let g_ss = rv1 - rvs * rvs * rv3;
+                a[1][0] = mu * rho_n * rvt * rv1;
+                a[2][0] = mu * rho_n * rvs * rv1;
+                a[1][1] = g_tt * rho_t * radius;
+                a[1][2] = g_ts * rho_t * radius;
+                a[2][1] = g_ts * rho_t * radius;
+                a[2][2] = g_ss * rho_t * radius;
+                b[1][0] = -mu * rvt * rv1;
+                b[1][1] = 1.0 - g_tt * radius;
+                b[1][2] = -g_ts * radius;
+                b[2][0] = -mu * rvs * rv1;
+                b[2][1] = -g_ts * radius;
+                b[2][2] = 1.0 - g_ss * radius;
+            }
+            TangentBranch::Free => {
+                b[1][1] = 1.0;
+                b[2][2] = 1.0;
+            }
+        }
+        let aw = mat3_mul(&a, p.w);
+        let mut jac = aw;
+        for i in 0..3 {
+            for j in 0..3 {
+                jac[i][j] += b[i][j];
+            }
+        }
+        jac
+    }
+}
+
+/// [`SiconosAcPoint`]'s F and, when `JAC`, its Jacobian (the tests compare it with fc3d's
+/// function).
+#[cfg(test)]
 fn alart_curnier_siconos<const JAC: bool>(
     p: &LocalProblem<'_>,
     rho_n: f64,
     rho_t: f64,
     r: &Vec3,
 ) -> (Vec3, Mat3) {
-    let v = p.velocity(r);
-    let mu = p.mu;
-    let mut f = [0.0; 3];
-    // a: derivative in u (Siconos' A), b: in r (Siconos' B).
-    let mut a: Mat3 = [[0.0; 3]; 3];
-    let mut b: Mat3 = [[0.0; 3]; 3];
-    let rvn = r[0] - rho_n * v[0];
-    let rvt = r[1] - rho_t * v[1];
-    let rvs = r[2] - rho_t * v[2];
-    let rv = (rvt * rvt + rvs * rvs).sqrt();
-    let radius = if rvn > 0.0 {
-        f[0] = rho_n * v[0];
-        a[0][0] = rho_n;
-        mu * rvn
+    let point = SiconosAcPoint::at(p, rho_n, rho_t, r);
+    let jac = if JAC {
+        point.jacobian(p, rho_n, rho_t)
     } else {
-        f[0] = r[0];
-        b[0][0] = 1.0;
-        0.0
+        [[0.0; 3]; 3]
     };
-    if rv <= radius {
-        f[1] = rho_t * v[1];
-        f[2] = rho_t * v[2];
-        a[1][1] = rho_t;
-        a[2][2] = rho_t;
-    } else if radius > 0.0 {
-        let rv1 = 1.0 / rv;
-        f[1] = r[1] - radius * rvt * rv1;
-        f[2] = r[2] - radius * rvs * rv1;
-        if JAC {
-            let rv3 = rv1 * rv1 * rv1;
-            let g_tt = rv1 - rvt * rvt * rv3;
-            let g_ts = -rvt * rvs * rv3;
-            let g_ss = rv1 - rvs * rvs * rv3;
-            a[1][0] = mu * rho_n * rvt * rv1;
-            a[2][0] = mu * rho_n * rvs * rv1;
-            a[1][1] = g_tt * rho_t * radius;
-            a[1][2] = g_ts * rho_t * radius;
-            a[2][1] = g_ts * rho_t * radius;
-            a[2][2] = g_ss * rho_t * radius;
-            b[1][0] = -mu * rvt * rv1;
-            b[1][1] = 1.0 - g_tt * radius;
-            b[1][2] = -g_ts * radius;
-            b[2][0] = -mu * rvs * rv1;
-            b[2][1] = -g_ts * radius;
-            b[2][2] = 1.0 - g_ss * radius;
-        }
-    } else {
-        f[1] = r[1];
-        f[2] = r[2];
-        b[1][1] = 1.0;
-        b[2][2] = 1.0;
-    }
-    if !JAC {
-        return (f, [[0.0; 3]; 3]);
-    }
-    let aw = mat3_mul(&a, p.w);
-    let mut jac = aw;
-    for i in 0..3 {
-        for j in 0..3 {
-            jac[i][j] += b[i][j];
+    (point.f, jac)
+}
+
+/// A Newton point of the Siconos variant: F at r, and how to form the Jacobian there.
+#[derive(Debug, Clone, Copy)]
+enum NewtonPoint {
+    /// Alart-Curnier: the Jacobian from the point's intermediates.
+    AlartCurnier(SiconosAcPoint),
+    /// Jean-Moreau: F; the Jacobian is formed anew (with F) at r.
+    JeanMoreau(Vec3),
+}
+
+impl NewtonPoint {
+    fn f(&self) -> Vec3 {
+        match self {
+            NewtonPoint::AlartCurnier(point) => point.f,
+            NewtonPoint::JeanMoreau(f) => *f,
         }
     }
-    (f, jac)
 }
 
 /// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
@@ -304,12 +386,13 @@ impl AlartCurnierNewton {
         }
     }
 
-    /// F of the formulation, with Siconos' arithmetic for Alart-Curnier.
-    fn residual_siconos(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Vec3 {
+    /// F of the formulation at r, with Siconos' arithmetic for Alart-Curnier.
+    #[inline]
+    fn point_siconos(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> NewtonPoint {
         if self.jean_moreau {
-            ac_eval::<false, true>(p, rho_n, rho_t, r).0
+            NewtonPoint::JeanMoreau(ac_eval::<false, true>(p, rho_n, rho_t, r).0)
         } else {
-            alart_curnier_siconos::<false>(p, rho_n, rho_t, r).0
+            NewtonPoint::AlartCurnier(SiconosAcPoint::at(p, rho_n, rho_t, r))
         }
     }
 
@@ -362,7 +445,9 @@ impl AlartCurnierNewton {
     }
 
     /// Siconos 4.4's Newton iterations from `r` (module documentation); `inv_q` is
-    /// `1 / ||q||` (1 for a tiny q). Returns (converged, iterations).
+    /// `1 / ||q||` (1 for a tiny q). Returns (converged, iterations). F is evaluated once a
+    /// point: the Jacobian of a step is formed from the point (Alart-Curnier), and the point a
+    /// line search accepted is the next one.
     fn newton_siconos(
         &self,
         p: &LocalProblem<'_>,
@@ -372,20 +457,20 @@ impl AlartCurnierNewton {
     ) -> (bool, usize) {
         let (rho_n, rho_t) = rho;
         let tol = self.options.tolerance;
+        let mut point = self.point_siconos(p, rho_n, rho_t, r);
         for it in 0..self.options.max_iter {
             if past_deadline(self.deadline, it) {
                 return (false, it);
             }
-            let (f, jac) = if self.jean_moreau {
-                jean_moreau_function(p, rho_n, rho_t, r)
-            } else {
-                alart_curnier_siconos::<true>(p, rho_n, rho_t, r)
+            let (f, jac) = match point {
+                NewtonPoint::AlartCurnier(ac) => (ac.f, ac.jacobian(p, rho_n, rho_t)),
+                NewtonPoint::JeanMoreau(_) => jean_moreau_function(p, rho_n, rho_t, r),
             };
             // A singular Jacobian ends the iterations where they are.
             let Some(d) = solve3_partial_pivoting(&jac, &[-f[0], -f[1], -f[2]]) else {
                 return (false, it);
             };
-            let t = if self.line_search {
+            let (t, accepted) = if self.line_search {
                 // The slope F . J d (-||F||^2 up to rounding), formed as Siconos forms it.
                 let jd = [
                     jac[0][0] * d[0] + jac[0][1] * d[1] + jac[0][2] * d[2],
@@ -396,14 +481,16 @@ impl AlartCurnierNewton {
                 let f_sq = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
                 self.goldstein_price_siconos(p, rho, r, &d, f_sq, slope)
             } else {
-                1.0
+                (1.0, None)
             };
             let next = [r[0] + t * d[0], r[1] + t * d[1], r[2] + t * d[2]];
             if !next.iter().all(|v| v.is_finite()) {
                 return (false, it + 1);
             }
             *r = next;
-            let f = self.residual_siconos(p, rho_n, rho_t, r);
+            // The accepted trial was evaluated at this very point (same operations).
+            point = accepted.unwrap_or_else(|| self.point_siconos(p, rho_n, rho_t, r));
+            let f = point.f();
             if 0.5 * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * inv_q < tol {
                 return (true, it + 1);
             }
@@ -412,8 +499,9 @@ impl AlartCurnierNewton {
     }
 
     /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` (slope
-    /// `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]` from `alpha = 1`, `hi` starting at 1e20; after the
-    /// last trial the next bisection point is returned untested.
+    /// `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]` from `alpha = 1`, `hi`
+    /// starting at 1e20; after the last trial the next bisection point is returned untested.
+    /// Returns the step and, when a trial was accepted, the point it evaluated there.
     fn goldstein_price_siconos(
         &self,
         p: &LocalProblem<'_>,
@@ -422,7 +510,7 @@ impl AlartCurnierNewton {
         d: &Vec3,
         f_sq: f64,
         slope0: f64,
-    ) -> f64 {
+    ) -> (f64, Option<NewtonPoint>) {
         const UNBOUNDED: f64 = 1e20;
         let psi0 = 0.5 * f_sq;
         let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
@@ -436,13 +524,14 @@ impl AlartCurnierNewton {
                 r[1] + alpha * d[1],
                 r[2] + alpha * d[2],
             ];
-            let ft = self.residual_siconos(p, rho.0, rho.1, &rt);
+            let point = self.point_siconos(p, rho.0, rho.1, &rt);
+            let ft = point.f();
             let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
             let slope = (psi - psi0) / alpha;
             let long_enough = slope >= GP_M2 * slope0;
             let short_enough = slope <= GP_M1 * slope0;
             if long_enough && short_enough {
-                return alpha;
+                return (alpha, Some(point));
             }
             if !long_enough {
                 lo = alpha;
@@ -455,7 +544,7 @@ impl AlartCurnierNewton {
                 10.0 * alpha
             };
         }
-        alpha
+        (alpha, None)
     }
 
     /// Siconos 4.4's 550 / 551 / 565 on one contact (module documentation); `step` is the

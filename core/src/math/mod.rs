@@ -1,8 +1,10 @@
 //! Fixed-size kernels every layer above uses: 3-vectors and 3x3 matrices written by hand, the
 //! projections on the Coulomb cone, its dual, disks and cylinders, the rolling-friction cone
-//! (`rolling`), and the constants of the self-adaptive step rule.
+//! (`rolling`), the Jordan algebra of the second-order cone (`jordan`), and the constants of the
+//! self-adaptive step rule.
 
 pub mod cone;
+pub mod jordan;
 pub mod linalg;
 pub mod lu_cost;
 pub mod lu_fill;

@@ -2,4 +2,5 @@
 #![allow(dead_code)]
 
 pub mod extremes;
+pub mod global;
 pub mod honesty;

@@ -12,10 +12,11 @@ This package calls fc3d's C library (the native entry of ``fc3d_native.h``) thro
     >>> p = fc3d.read_problem("Rover1039.dat")
     >>> fc3d.solve(p, solver="NSN_AC", tol=1e-8).error
 
-Main names: :func:`solve`, :func:`read_problem`, :class:`Problem`, :class:`Result`,
-:class:`Fc3dError`, :data:`SOLVERS`, :data:`LOCAL_SOLVERS`, ``__version__`` (the C library's
-version). The library is the one bundled at build time unless the environment variable
-``FC3D_LIBRARY`` names another (read at import); :data:`library_path` tells which was loaded.
+Main names: :func:`solve` (solver ``"AUTO"`` by default), :func:`read_problem`, :class:`Problem`,
+:class:`Result`, :class:`Fc3dError`, :data:`SOLVERS` (every solver of the library by name, read
+from the library at import), :data:`LOCAL_SOLVERS`, ``__version__`` (the C library's version).
+The library is the one bundled at build time unless the environment variable ``FC3D_LIBRARY``
+names another (read at import); :data:`library_path` tells which was loaded.
 """
 
 from ._errors import (

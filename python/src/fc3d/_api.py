@@ -24,7 +24,7 @@ from ._errors import (
     Fc3dError,
 )
 from ._native import Fc3dResult, check, double_ptr, int64_ptr, lib
-from ._solvers import local_solver_id, solver_id, solver_name
+from ._solvers import SOLVERS, local_solver_id, solver_id, solver_name
 
 try:  # scipy is optional: sparse input and a sparse W from read_problem when available.
     import scipy.sparse as _sparse
@@ -172,7 +172,7 @@ class Problem:
         """Context manager: releases the library's copy of the problem."""
         self.close()
 
-    def solve(self, solver="NSGS", **kwargs):
+    def solve(self, solver="AUTO", **kwargs):
         """Solves this problem: ``fc3d.solve(self, solver=solver, **kwargs)``, see :func:`solve`."""
         return solve(self, solver=solver, **kwargs)
 
@@ -386,7 +386,7 @@ def solve(
     W,
     q=None,
     mu=None,
-    solver="NSGS",
+    solver="AUTO",
     tol=None,
     max_iter=None,
     time_budget=None,
@@ -404,14 +404,17 @@ def solve(
             :func:`read_problem`, then ``q`` and ``mu`` are left out.
         q: the free velocity, ``3nc`` values.
         mu: the friction coefficients, ``nc`` values (>= 0), or one number for every contact.
-        solver: a name (``"NSGS"``, ``"NSN_AC"`` / ``"NSN-AC"``, ``"NSN_FB"``, ``"NSN_NM"``,
-            ``"PROX"``, ``"TFP"``, ``"PFP"``, ``"ACLMFP"``, ``"SOCLCP"``, ``"ADMM"``, ``"DSFP"``,
-            ``"VI_FPP"``, ``"VI_EG"``, ``"FPP"``, ``"EG"``; see ``fc3d.SOLVERS``) or a Siconos
-            solver id (500 = NSGS, ...).
+        solver: a name of ``fc3d.SOLVERS`` (any case, ``-`` or ``_``; Siconos' name strings
+            such as ``"FC3D_DeSaxceFixedPoint"`` too) or a Siconos solver id. The default,
+            ``"AUTO"`` (590), chooses and switches between methods from the problem, the
+            tolerance and the budget. The names, with their ids:
+
+            {solvers}
         tol: tolerance on the relative natural-map error (Siconos' ``dparam[0]``); None keeps the
-            solver's Siconos default.
-        max_iter: iteration limit (``iparam[0]``); None keeps the solver's Siconos default
-            (NSGS 1000 sweeps; note that NSN_NM's is a single Newton step).
+            solver's Siconos default (AUTO's: 1e-4).
+        max_iter: iteration limit (``iparam[0]``); None keeps the solver's default (AUTO 10000
+            iterations over all its stages, NSGS 1000 sweeps; note that NSN_NM's is a single
+            Newton step, as in Siconos).
         time_budget: wall-clock budget in seconds (0 or None: none). When it runs out the best
             iterate is returned with ``info == 2``.
         r0: initial reaction (warm start), ``3nc`` values; zeros when None. Not modified.
@@ -485,3 +488,22 @@ def solve(
         _configure(settings, tol, max_iter, time_budget, options)
         info = check(call(nc, qv, muv, r, u, settings.handle, result))
     return Result(r, u, info, result.error, result.iterations, result.seconds, sid)
+
+
+def _list_solvers_in_docstring():
+    """Writes the library's solver names (``fc3d.SOLVERS``, built at import) into the docstring
+    of :func:`solve`, so that ``help(fc3d.solve)`` lists them; no-op under ``python -OO``."""
+    if solve.__doc__ is None:  # pragma: no cover
+        return
+    entries = ["%s (%d)" % (name, sid) for name, sid in sorted(SOLVERS.items(), key=lambda e: e[1])]
+    lines = [""]
+    for k, entry in enumerate(entries):
+        text = entry + ("," if k + 1 < len(entries) else "")
+        if lines[-1] and len(lines[-1]) + 1 + len(text) > 80:
+            lines.append(text)
+        else:
+            lines[-1] = (lines[-1] + " " + text).lstrip()
+    solve.__doc__ = solve.__doc__.replace("{solvers}", "\n            ".join(lines))
+
+
+_list_solvers_in_docstring()

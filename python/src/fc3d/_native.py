@@ -85,6 +85,8 @@ _PROTOTYPES = {
     "fc3d_problem_nnz": (c_int64, [c_void_p]),
     "fc3d_problem_get": (c_int, [c_void_p, _ip, _ip, _dp, _dp, _dp]),
     "fc3d_problem_solve": (c_int, [c_void_p, _dp, _dp, c_void_p, POINTER(Fc3dResult)]),
+    "fc3d_solver_count": (c_int, []),
+    "fc3d_solver_at": (c_int, [c_int, POINTER(c_char_p), POINTER(c_char_p)]),
 }
 
 
@@ -163,6 +165,17 @@ def check(code):
 def version():
     """The library's version string (``fc3d_version()``), e.g. ``"0.2.0"``."""
     return lib.fc3d_version().decode("ascii")
+
+
+def solvers():
+    """The solvers of the native entry, as the library lists them (``fc3d_solver_at``): a list of
+    ``(id, constant, name)``, e.g. ``(500, "SICONOS_FRICTION_3D_NSGS", "FC3D_NSGS")``."""
+    listed = []
+    for index in range(lib.fc3d_solver_count()):
+        constant, name = c_char_p(), c_char_p()
+        solver = check(lib.fc3d_solver_at(index, ctypes.byref(constant), ctypes.byref(name)))
+        listed.append((solver, constant.value.decode("ascii"), name.value.decode("ascii")))
+    return listed
 
 
 def double_ptr(array):

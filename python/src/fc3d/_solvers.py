@@ -8,35 +8,18 @@ string of digits) is taken as a Siconos id and passed to the library as is.
 
 import numbers
 
+from . import _native
 from ._errors import ERR_INVALID_OPTION, ERR_UNSUPPORTED_SOLVER, Fc3dError
 
-#: The solvers of the native entry: short name -> Siconos id (``SICONOS_FRICTION_3D_<name>``).
-SOLVERS = {
-    "NSGS": 500,
-    "PROX": 502,
-    "TFP": 503,
-    "NSN_AC": 504,
-    "DSFP": 505,
-    "VI_FPP": 506,
-    "VI_EG": 507,
-    "FPP": 511,
-    "EG": 512,
-    "NSN_FB": 513,
-    "ACLMFP": 516,
-    "SOCLCP": 517,
-    "NSN_NM": 520,
-    "PFP": 522,
-    "ADMM": 523,
-}
 
-# Other spellings (normalized): Siconos' descriptive names.
-_SOLVER_ALIASES = {
-    "DESAXCEFIXEDPOINT": 505,
-    "VI_FIXEDPOINTPROJECTION": 506,
-    "VI_EXTRAGRADIENT": 507,
-    "FIXEDPOINTPROJECTION": 511,
-    "EXTRAGRADIENT": 512,
-}
+def _solver_tables():
+    """SOLVERS and its aliases, from the library's own list of the solvers it accepts."""
+    table, aliases = {}, {}
+    for sid, constant, name in _native.solvers():
+        table[_normalize(constant)] = sid
+        aliases.setdefault(_normalize(name), sid)
+    return table, aliases
+
 
 #: NSGS's local (one-contact) solvers: name -> Siconos id. ``"HYBRID"`` (565) is the default.
 LOCAL_SOLVERS = {
@@ -133,6 +116,13 @@ def local_solver_id(local_solver):
     """The Siconos id of NSGS's local solver ``local_solver``: a name of :data:`LOCAL_SOLVERS`,
     an alias (``"HYBRID"``, ``"SBP"``, ``"SAL"``, ``"EBP"``, ...), or an integer id."""
     return _lookup(local_solver, LOCAL_SOLVERS, _LOCAL_ALIASES, "local solver", ERR_INVALID_OPTION)
+
+
+#: Every solver of the native entry: short name -> Siconos id, as the library lists them at
+#: import (``fc3d_solver_count`` / ``fc3d_solver_at``): the name of the solver's constant in the
+#: C headers without its prefix (``SICONOS_FRICTION_3D_NSN_AC`` -> ``"NSN_AC"``, ``FC3D_AUTO`` ->
+#: ``"AUTO"``). Siconos' name strings (``"FC3D_DeSaxceFixedPoint"``) are accepted too.
+SOLVERS, _SOLVER_ALIASES = _solver_tables()
 
 
 def solver_name(solver_id_):

@@ -8,7 +8,7 @@
 //! budget is one deadline for the whole solve. With a tolerance of 0 the solve is an anytime
 //! one: it runs until the limits and returns the best iterate it measured.
 //!
-//! The rules and the stall factors are data ([`RULES`], [`STALL`]); README.md "AUTO" gives the
+//! The rules and the stall factors are data ([`RULES`], [`STALL`]); docs/auto.md gives the
 //! `fc3d bench` runs on the shared problems that justify them.
 
 mod features;

@@ -49,7 +49,7 @@ pub(crate) const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedS
 }
 
 /// The allowance of a stage that runs until the tolerance or the limits, whatever its progress:
-/// on large hyperstatic piles every method's error falls slowly but steadily (README "Scale"),
+/// on large hyperstatic piles every method's error falls slowly but steadily (docs/scale.md),
 /// and a stall test would end the solve with most of the budget unspent.
 pub const TO_THE_LIMITS: Option<usize> = Some(usize::MAX);
 
@@ -120,7 +120,7 @@ pub struct Rule {
 }
 
 /// AUTO's rule table: the first row whose condition holds gives the plan. The last row holds
-/// always. README.md "AUTO" has the bench runs behind each row.
+/// always. docs/auto.md has the bench runs behind each row.
 pub const RULES: &[Rule] = &[
     Rule {
         when: Condition {
@@ -291,7 +291,7 @@ pub const STALL: [StallRule; 6] = [
     },
     // A PROX stage goes on from chunk to chunk (its state is kept); a stricter window (10 steps
     // at 0.87) ended it on six of the settling pile's hyperstatic steps where it converges
-    // slowly (README "Time stepping").
+    // slowly (docs/time-stepping.md).
     StallRule {
         kind: Prox,
         chunk: 50,
@@ -340,7 +340,7 @@ pub fn choose(
 /// one-contact solution by enumeration) on strongly coupled problems, where its sweeps are
 /// 1.3-1.8x as many as 551's in the same time with the same progress per sweep (`fc3d bench` on
 /// BoxesStack1, the Capsules, OneObject and RockPile at 1 ms, 10 ms and 100 ms, and on the
-/// generated 10^4-contact pile at 1 s: README "AUTO"); the Newton with Goldstein-Price line
+/// generated 10^4-contact pile at 1 s: docs/auto.md); the Newton with Goldstein-Price line
 /// search (551) otherwise (the fastest NSGS on the small weakly coupled problems) and for a plan
 /// given in [`AutoOptions`].
 pub fn sweep_local_solver(rule: usize) -> LocalSolverKind {

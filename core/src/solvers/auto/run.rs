@@ -51,7 +51,7 @@ pub(crate) fn auto_with<'a>(
     let run = limits.start();
     // An anytime solve (a budget and a tolerance below round-off) stops at round-off: the
     // stages after it gain nothing and their steps overran the budget on the small shared
-    // problems (README "AUTO against Siconos at equal budget").
+    // problems (docs/auto.md, "AUTO against Siconos at equal budget").
     let tolerance = if run.deadline().is_some() {
         run.tolerance.max(ROUND_OFF)
     } else {
@@ -156,7 +156,7 @@ pub(crate) fn auto_with<'a>(
         // Under a budget above SHORT_BUDGET, a stage of a plan with several gets at most half of
         // the time left, so that a method that is slow on this problem (PROX on BoxesStack and
         // RockPile) leaves time to the next one while a fast one (PROX on the Capsules) still
-        // converges; the plan then starts over (README "AUTO against Siconos at equal budget").
+        // converges; the plan then starts over (docs/auto.md, AUTO against Siconos at equal budget).
         // The last stage the log can hold gets all the time left: halving would end the solve
         // before the deadline with the budget unspent.
         // So does a stage run to the limits (large piles).

@@ -29,7 +29,7 @@ use crate::error::Fc3dError;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
-/// History of the `NSGS-AA` presets (measured on generated piles, README "Scale").
+/// History of the `NSGS-AA` presets (measured on generated piles, docs/scale.md).
 pub const DEFAULT_ANDERSON_MEMORY: usize = 5;
 
 impl Family for NsgsOptions {

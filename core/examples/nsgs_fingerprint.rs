@@ -1,0 +1,46 @@
+use fc3d_core::io::dat::read_dat_file;
+use fc3d_core::*;
+fn main() {
+    let dir = std::path::Path::new("../shared/data/siconos");
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
+        .collect();
+    files.sort();
+    for f in files {
+        let Ok(p) = read_dat_file(&f) else { continue };
+        if p.size() > 6000 {
+            continue;
+        }
+        for kind in [
+            LocalSolverKind::NewtonHybrid,
+            LocalSolverKind::NewtonAlartCurnierGp,
+            LocalSolverKind::NewtonAlartCurnier,
+        ] {
+            for jm in [false, true] {
+                let mut local = LocalSolverOptions::new(kind);
+                if jm {
+                    local.formulation = NewtonFormulation::JeanMoreau;
+                }
+                let opts = NsgsOptions {
+                    local,
+                    ..Default::default()
+                };
+                let config = SolverConfig::new(opts)
+                    .with_tolerance(1e-10)
+                    .with_max_iter(300);
+                let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+                let rep = solve(&p, &config, &mut r, &mut u).unwrap();
+                let h: u64 = r.iter().fold(0u64, |a, v| a.rotate_left(5) ^ v.to_bits());
+                println!(
+                    "{} {kind:?} {jm} {} {:?} {:e} {h:x}",
+                    f.file_name().unwrap().to_string_lossy(),
+                    rep.iterations,
+                    rep.status,
+                    rep.error
+                );
+            }
+        }
+    }
+}
