@@ -56,5 +56,5 @@ fn siconos_scores_fc3d_global_results_as_fc3d_does() {
         .lines()
         .filter(|l| l.contains("Siconos' error"))
         .count();
-    assert_eq!(scored, files.len() * 12, "{stdout}");
+    assert_eq!(scored, files.len() * 13, "{stdout}");
 }

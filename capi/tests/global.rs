@@ -123,7 +123,9 @@ const GLOBAL_FILES: &[&str] = &[
 ];
 
 /// The ids gfc3d_driver runs.
-const IDS: [c_int; 12] = [600, 602, 603, 604, 605, 606, 607, 610, 611, 612, 613, 614];
+const IDS: [c_int; 13] = [
+    600, 602, 603, 604, 605, 606, 607, 610, 611, 612, 613, 614, 615,
+];
 
 fn data(name: &str) -> PathBuf {
     Path::new(DATA_DIR).join(name)
@@ -591,7 +593,6 @@ fn ids_fc3d_does_not_run_are_refused_with_the_reason() {
     let mut p = Owned::new();
     for (id, says) in [
         (601, "exits"),
-        (615, "not implemented yet"),
         (608, "GAMS"),
         (609, "GAMS"),
         (5000, "g_rolling_fc3d_driver"),

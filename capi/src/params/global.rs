@@ -9,9 +9,10 @@
 //! iparam[2] / dparam[2] the inner tolerance and its internal solver 1203 (ConvexQP ADMM:
 //! iparam[0], iparam[9] rho strategy, iparam[10] acceleration, dparam[3..6]); 613 (ADMM) the
 //! slots of 523 and iparam[15] (De Saxcé update: 0 yes, 1 no, the convex relaxation),
-//! iparam[8] the error frequency. A rescaling (iparam[3]) other than 613's scalar one is refused
-//! (Siconos balances 607's and 613's problems; fc3d's solvers do not). 601 and the GAMS ids are
-//! refused with Siconos' own reason; 615 until the core has it.
+//! iparam[8] the error frequency; 615 (IPM) iparam[11] Nesterov-Todd, iparam[15] UPDATE_S,
+//! dparam[7..11]. A rescaling (iparam[3]) other than 613's scalar one is refused (Siconos balances
+//! 607's and 613's problems; fc3d's solvers do not). 601 and the GAMS ids are refused with
+//! Siconos' own reason.
 
 use std::os::raw::{c_double, c_int};
 
@@ -25,7 +26,7 @@ use crate::types::SolverOptions;
 use crate::{CError, CResult, FC3D_ERR_UNSUPPORTED_SOLVER};
 use fc3d_core::global::{
     GlobalAclmOptions, GlobalAdmmOptions, GlobalConfig, GlobalMethod, GlobalNewtonOptions,
-    GlobalReport, GlobalRollingConfig, JacobiOptions,
+    GlobalReport, GlobalRollingConfig, IpmOptions, JacobiOptions,
 };
 use fc3d_core::{AdmmAcceleration, AdmmRhoStrategy, NsnFormulation, Rescaling};
 
@@ -63,12 +64,7 @@ unsafe fn global_method(o: &SolverOptions, id: c_int) -> CResult<GlobalMethod> {
         611 => GlobalMethod::Vi(vi::read(507, &global_params(o)?)?),
         612 => GlobalMethod::Aclm(aclm(o)?),
         613 => GlobalMethod::Admm(global_admm(o)?),
-        615 => {
-            return Err(refused(
-                id,
-                "not implemented yet in fc3d (the other ids 600-614 but 601, 608 and 609 run)",
-            ))
-        }
+        615 => GlobalMethod::Ipm(ipm(o)?),
         608 | 609 => return Err(unsupported_solver(id)),
         5000 => {
             return Err(refused(
@@ -181,6 +177,30 @@ unsafe fn aclm(o: &SolverOptions) -> CResult<GlobalAclmOptions> {
     }
     a.inner_tolerance = inner_tolerance(&p, internal)?;
     Ok(a)
+}
+
+/// 615: Siconos' IPM slots: iparam[11] Nesterov-Todd scaling (1 yes, 0 no), iparam[15] the
+/// De Saxcé update (0 yes, 1 no: the convex relaxation, Siconos' default), dparam[7..11] the
+/// centering and step constants; iparam[12] (sparse storage) is what fc3d always does.
+unsafe fn ipm(o: &SolverOptions) -> CResult<IpmOptions> {
+    let p = global_params(o)?;
+    let flag = |k: usize, what: &str| match p.iparam[k] {
+        0 => Ok(false),
+        1 => Ok(true),
+        other => Err(invalid(format!(
+            "GFC3D IPM: {what} (iparam[{k}]) = {other} is not 0 or 1"
+        ))),
+    };
+    p.require(13, 0, "GFC3D IPM: problem info printing")?;
+    Ok(IpmOptions {
+        nesterov_todd: flag(11, "Nesterov-Todd scaling")?,
+        update_s: !flag(15, "no De Saxcé update")?,
+        centering_threshold: p.dparam[7],
+        centering_exponent_factor: p.dparam[8],
+        final_centering_exponent: p.dparam[9],
+        step_safety: p.dparam[10],
+        step_safety_slope: p.dparam[11],
+    })
 }
 
 /// 613: the ADMM iteration's slots (as 523's), the De Saxcé update and the error frequency.
