@@ -707,11 +707,13 @@ struct GlobalRollingFrictionContactProblem *globalRollingFrictionContact_new_fro
 // FC(H^T M^-1 H, H^T M^-1 q + b, mu) (M factored once, block by block when it is block
 // diagonal, never inverted densely nor modified) and run their local solver with the options
 // read as that solver's (600 as 500, ...), tightening its tolerance until the global error
-// meets `dparam[0]`; 601 (Siconos exits), 608 / 609 (GAMS) and the direct solvers not
-// implemented yet are refused with `FC3D_ERR_UNSUPPORTED_SOLVER` and the reason (never an
-// exit). Returns 0 when the global error of the returned `(r, u, v)` is at most `dparam[0]`, 1
+// meets `dparam[0]`; 605 (projected Jacobi), 607 (Newton on (v, u, r)), 610 / 611 (VI on
+// (v, r)), 612 (ACLMFP), 613 (ADMM) and 615 (IPM) solve it directly (docs/global.md: their
+// slots); 601 (Siconos exits) and 608 / 609 (GAMS) are refused with
+// `FC3D_ERR_UNSUPPORTED_SOLVER` and the reason (never an exit). Returns 0 when the global error of the returned `(r, u, v)` is at most `dparam[0]`, 1
 // when the solver stopped above it, 2 when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran
-// out, a negative code when the input is rejected (nothing written). On return >= 0:
+// out, 3 (`FC3D_RELAXED_NOT_COULOMB`) when a solver of the convex relaxation (613 or 615 with
+// UPDATE_S = NO) solved it but its result is not a Coulomb solution, a negative code when the input is rejected (nothing written). On return >= 0:
 // `reaction`, `velocity` = `H^T v + b` and `globalVelocity` = `M^-1 (q + H r)` hold the result,
 // `iparam[1]` the iterations (of the local solves, all rounds) and `dparam[1]` the global error
 // (`gfc3d_compute_error` with `norm_q = ||q||`) of the returned triple on the host's M and H. A

@@ -1,7 +1,7 @@
 //! Siconos 4.4's global problems (`GlobalFrictionContactProblem.h`,
 //! `GlobalRollingFrictionContactProblem.h`): the structs' life cycle, files and display
 //! (through `host_problem`, shared with the local structs), their copy, and their core view.
-//! The drivers and solver entries are in `driver`, the error, the global velocity and the
+//! The drivers are in `driver`, the solver entries in `entries`, the error, the global velocity and the
 //! reformulations in `measures`, the FCLIB functions in `fclib`.
 //!
 //! M and H may come in any storage (dense, sparse-block of any block sizes, sparse): the core
@@ -16,7 +16,11 @@
 #![allow(non_snake_case)]
 
 mod driver;
+
+mod entries;
+
 mod fclib;
+
 mod measures;
 
 use std::borrow::Cow;
