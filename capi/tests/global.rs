@@ -190,6 +190,9 @@ impl Owned {
     }
 }
 
+/// A hostile input: what it is, how it spoils a valid problem, the code it must get.
+type Spoiled = (&'static str, Box<dyn Fn(&mut Owned)>, c_int);
+
 #[test]
 fn a_small_problem_solves_and_hostile_inputs_are_refused_writing_nothing() {
     let o = Options::new(600, 1e-10, 1000);
@@ -200,7 +203,7 @@ fn a_small_problem_solves_and_hostile_inputs_are_refused_writing_nothing() {
     // Contact 0 pushed in with q_T inside the cone: sticks with u = 0.
     assert!(out.u[..3].iter().all(|x| x.abs() < 1e-9), "{:?}", out.u);
 
-    let cases: Vec<(&str, Box<dyn Fn(&mut Owned)>, c_int)> = vec![
+    let cases: Vec<Spoiled> = vec![
         (
             "NaN in q",
             Box::new(|p| p.q[1] = f64::NAN),

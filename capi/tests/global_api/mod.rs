@@ -200,8 +200,8 @@ pub unsafe fn matrix_bytes(m: *const NumericsMatrix) -> Vec<u8> {
             let cols = std::slice::from_raw_parts(s.index2_data, s.filled2);
             for bi in 0..nbr {
                 let h = bs0[bi] - if bi == 0 { 0 } else { bs0[bi - 1] };
-                for k in row_ptr[bi]..row_ptr[bi + 1] {
-                    let bj = cols[k];
+                let blocks = row_ptr[bi]..row_ptr[bi + 1];
+                for (k, &bj) in blocks.clone().zip(&cols[blocks]) {
                     let w = bs1[bj] - if bj == 0 { 0 } else { bs1[bj - 1] };
                     out.extend(bytes(*s.block.add(k), (h * w) as usize));
                 }
