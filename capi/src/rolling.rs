@@ -22,7 +22,7 @@ use super::params::rolling_config_from_c;
 use super::problem::parts_from_c;
 use super::types::{RollingFrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
-use fc3d_core::error::Fc3dError;
+use fc3d_core::error::{try_copy, try_vec, Fc3dError};
 use fc3d_core::io::dat::{read_rolling_dat, RollingDatProblem};
 use fc3d_core::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
 use fc3d_core::measure::relative_rolling_error;
@@ -316,8 +316,8 @@ pub unsafe extern "C" fn rollingFrictionContactProblem_compute_statistics(
                 return Err(CError::null("problem"));
             }
             let (d, nc, mu) = match any_rolling_from_c(&*problem)? {
-                AnyRolling::Spatial(p) => (5, p.n_contacts(), p.mu().to_vec()),
-                AnyRolling::Planar(p) => (3, p.n_contacts(), p.mu().to_vec()),
+                AnyRolling::Spatial(p) => (5, p.n_contacts(), try_copy(p.mu(), "mu")?),
+                AnyRolling::Planar(p) => (3, p.n_contacts(), try_copy(p.mu(), "mu")?),
             };
             let r = c_slice(reaction as *const c_double, d * nc, "reaction")?;
             let u = c_slice(velocity as *const c_double, d * nc, "velocity")?;
@@ -610,7 +610,7 @@ unsafe fn compute_error<const D: usize>(
     let r = c_slice(z as *const c_double, n, "z")?;
     c_slice(w as *const c_double, n, "w")?;
     fc3d_core::error::check_finite("z", r)?;
-    let mut u = vec![0.0; n];
+    let mut u = try_vec(n, 0.0, "w")?;
     p.velocity(r, &mut u);
     let e = relative_rolling_error::<D>(r, &u, p.mu(), p.mu_r(), norm);
     std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);

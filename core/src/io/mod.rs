@@ -1,6 +1,5 @@
 //! Problem files.
 
-mod alloc;
 pub mod dat;
 mod files;
 mod info;

@@ -326,7 +326,7 @@ fn body(r: &mut Reader<'_>, h: &Header) -> Result<(Body, MatrixStorage), Fc3dErr
 pub fn csr_of_dense(rows: usize, cols: usize, values: &[f64]) -> Result<CsrMatrix, Fc3dError> {
     let nonzeros = values.iter().filter(|v| **v != 0.0).count();
     let mut triplets = Vec::new();
-    crate::io::alloc::reserve(&mut triplets, nonzeros, "the entries of a dense matrix")?;
+    crate::alloc::reserve(&mut triplets, nonzeros, "the entries of a dense matrix")?;
     for (k, &v) in values.iter().enumerate() {
         if v != 0.0 {
             triplets.push((k % rows.max(1), k / rows.max(1), v));
@@ -539,7 +539,7 @@ pub fn block_cut(
     check_cumulative(row_sizes, m.nrows(), "row")?;
     check_cumulative(col_sizes, m.ncols(), "column")?;
     let mut row_ptr = Vec::new();
-    crate::io::alloc::reserve(&mut row_ptr, row_sizes.len() + 1, "the block rows")?;
+    crate::alloc::reserve(&mut row_ptr, row_sizes.len() + 1, "the block rows")?;
     row_ptr.push(0);
     let mut col_idx = Vec::new();
     let mut seen = try_vec(col_sizes.len(), usize::MAX, "the block columns")?;

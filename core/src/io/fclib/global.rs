@@ -11,8 +11,8 @@ use hdf5_metno as hdf5;
 
 use super::reader::Reader;
 use super::write::{floats, ints, replace_file, string_checks};
+use crate::alloc::{bytes_of, ensure_headroom};
 use crate::error::Fc3dError;
-use crate::io::alloc::{bytes_of, ensure_headroom};
 use crate::io::info::FclibInfo;
 use crate::matrix::CsrMatrix;
 use crate::problem::{FrictionProblem, GlobalProblem, GlobalRollingProblem};

@@ -8,8 +8,8 @@ use hdf5_metno as hdf5;
 
 use super::info_group::{strings, write_info};
 use super::{STORAGE_ATTRIBUTE, STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
+use crate::alloc::reserve;
 use crate::error::Fc3dError;
-use crate::io::alloc::reserve;
 use crate::io::info::FclibInfo;
 use crate::matrix::Delassus;
 use crate::problem::{FrictionProblem, DIMENSION};
