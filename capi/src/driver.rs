@@ -416,6 +416,22 @@ pub(crate) unsafe fn solver_entry(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) -> c_int {
+    entry_with_info(name, accepted, info, options, || {
+        driver_impl(problem, reaction, velocity, options, false)
+    })
+}
+
+/// The frame of the solver entries of every problem kind: `run` (a driver's work) for options
+/// whose `solverId` is one of `accepted` (another id is refused with `FC3D_ERR_INVALID_OPTION`),
+/// inside `ffi_guard`; the result code, also a negative one, written to `*info` (NULL refused)
+/// and returned.
+pub(crate) unsafe fn entry_with_info(
+    name: &str,
+    accepted: &[c_int],
+    info: *mut c_int,
+    options: *const SolverOptions,
+    run: impl FnOnce() -> CResult<c_int>,
+) -> c_int {
     let code = ffi_guard(
         name,
         |c| c,
@@ -437,7 +453,7 @@ pub(crate) unsafe fn solver_entry(
                     ),
                 ));
             }
-            driver_impl(problem, reaction, velocity, options, false)
+            run()
         },
     );
     if !info.is_null() {

@@ -8,7 +8,10 @@
 
 mod global;
 
-pub use global::{global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork};
+pub use global::{
+    global_error, global_error_with, global_error_with_norm_q, global_rolling_error, ContactLaw,
+    ErrorWork,
+};
 
 use crate::math::cone::{
     modified_velocity, modified_velocity_d, project_on_cone, project_on_cone_d,
