@@ -28,6 +28,8 @@ mod boxes;
 mod granular;
 pub use boxes::box_piles;
 pub use granular::{sphere_piles, PileSpec};
+pub mod towers;
+pub use towers::{box_towers, TowerMotion, TowerSpec};
 
 /// The bodies a generated scene is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
