@@ -269,6 +269,25 @@ mod tests {
         assert_eq!(rhs2, x.to_vec());
     }
 
+    /// The regularisation of each contact is relative to its own diagonal block of J.
+    #[test]
+    fn regularization_follows_each_contacts_scale() {
+        let d0 = [4.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0, 2.0];
+        let d1 = [0.5, 0.0, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0, 0.125];
+        let w = BlockSparseMatrix::new(2, 2, vec![0, 1, 2], vec![0, 1], vec![d0, d1]).unwrap();
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let zero = [[0.0; 3]; 3];
+        m.fill(&w, &[zero, zero], &[id, id], 0.0);
+        m.regularize(0.5);
+        // J = diag(4, 3, 2, 0.5, 0.25, 0.125) + 0.5 diag(4, 4, 4, 0.5, 0.5, 0.5).
+        let mut x = vec![6.0, 5.0, 4.0, 0.75, 0.5, 0.375];
+        assert!(m.solve(&mut x));
+        for v in x {
+            assert!((v - 1.0).abs() < 1e-15, "{v}");
+        }
+    }
+
     #[test]
     fn singular_matrix_is_reported() {
         let d0 = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0];
