@@ -165,7 +165,7 @@ impl NewtonLinearSolver {
         merit_at_full_step: &mut dyn FnMut(&[f64], &[f64]) -> f64,
     ) -> Direction {
         let negate_f = |d: &mut [f64]| d.iter_mut().zip(f).for_each(|(di, fi)| *di = -fi);
-        let try_plain = self.regularized_in_a_row % PLAIN_RETRY_PERIOD == 0;
+        let try_plain = self.regularized_in_a_row.is_multiple_of(PLAIN_RETRY_PERIOD);
         let matrix = &mut self.matrix;
         matrix.fill(jacobian.w, jacobian.a, jacobian.b, jacobian.shift);
         negate_f(&mut step.d);
