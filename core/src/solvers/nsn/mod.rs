@@ -3,10 +3,12 @@
 //! with `J = A + B W` assembled on W's fixed block pattern and solved with faer's sparse LU
 //! (symbolic factorization reused), globalised by a line search on `||F||^2 / 2`.
 //!
-//! A failed factorization or a non-finite step is retried with a growing diagonal shift, then
-//! replaced by the fixed-point direction `-F` (for the natural map `r - F(r)` is the projected
-//! step); a step is only taken if its merit is finite, so r stays finite. A run that does not
-//! converge returns the best iterate it measured.
+//! The direction is the plain Newton one where J is regular; where it is numerically singular
+//! (hyperstatic contacts: a box on 4 points), or cannot be factored, a regularised Newton step
+//! (see `direction`); when no regularised matrix can be factored either, the fixed-point
+//! direction `-F` (for the natural map `r - F(r)` is the projected step). A step is only taken
+//! if its merit is finite, so r stays finite. A run that does not converge returns the best
+//! iterate it measured.
 
 mod direction;
 mod jacobian;
