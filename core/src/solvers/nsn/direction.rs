@@ -251,6 +251,18 @@ mod tests {
         x.iter().map(|v| v * v).sum::<f64>().sqrt()
     }
 
+    /// W of one box on the ground on its 4 corners: 12 x 12, rank 6.
+    fn one_box_on_the_ground() -> BlockSparseMatrix<'static> {
+        let p = box_towers(&TowerSpec {
+            towers: 1,
+            height: 1,
+            motion: TowerMotion::Rest,
+            seed: 2,
+        })
+        .unwrap();
+        p.w().to_block_sparse().unwrap()
+    }
+
     /// `F = J x` for a given x: a consistent right-hand side.
     fn consistent_residual(jacobian: &Jacobian<'_>, x: &[f64]) -> Vec<f64> {
         let n = x.len();
@@ -265,14 +277,7 @@ mod tests {
     /// and is no longer than the minimal-norm solution allows (|d| <= |x| for F = -J x).
     #[test]
     fn singular_consistent_system_gets_a_bounded_regularized_direction() {
-        let p = box_towers(&TowerSpec {
-            towers: 1,
-            height: 1,
-            motion: TowerMotion::Rest,
-            seed: 2,
-        })
-        .unwrap();
-        let w = p.w().to_block_sparse().unwrap();
+        let w = one_box_on_the_ground();
         let (a, b) = (vec![[[0.0; 3]; 3]; 4], vec![IDENTITY; 4]);
         let jacobian = Jacobian {
             w: &w,
@@ -312,18 +317,11 @@ mod tests {
         );
     }
 
-    /// A regular J (the same box with every contact separating: A = I, B = 0, plus a coupling
-    /// through W): the direction is the plain LU one, J d = -F to rounding.
+    /// A regular J on the same box (A = I, B = I / 2: J = I + W / 2, positive definite): the
+    /// direction is the plain LU one, J d = -F to rounding.
     #[test]
     fn regular_system_takes_the_plain_newton_direction() {
-        let p = box_towers(&TowerSpec {
-            towers: 1,
-            height: 1,
-            motion: TowerMotion::Rest,
-            seed: 2,
-        })
-        .unwrap();
-        let w = p.w().to_block_sparse().unwrap();
+        let w = one_box_on_the_ground();
         let half = [[0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
         let (a, b) = (vec![IDENTITY; 4], vec![half; 4]);
         let jacobian = Jacobian {
