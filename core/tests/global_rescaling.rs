@@ -65,7 +65,11 @@ fn newton_converges_under_every_rescaling() {
             };
             let report = check(&p, &config);
             eprintln!("607 {name} {rescaling:?}: {report:?}");
-            assert_eq!(report.status, SolveStatus::Converged, "{name} {rescaling:?}");
+            assert_eq!(
+                report.status,
+                SolveStatus::Converged,
+                "{name} {rescaling:?}"
+            );
         }
     }
 }
@@ -91,7 +95,11 @@ fn admm_converges_under_every_rescaling() {
             };
             let report = check(&p, &config);
             eprintln!("613 {name} {rescaling:?}: {report:?}");
-            assert_eq!(report.status, SolveStatus::Converged, "{name} {rescaling:?}");
+            assert_eq!(
+                report.status,
+                SolveStatus::Converged,
+                "{name} {rescaling:?}"
+            );
         }
     }
 }
