@@ -409,12 +409,11 @@ void computeAlartCurnierSTDOld(double *R,
                                double *A,
                                double *B);
 
-// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`, and `R_N - rho_N u_N = 0`
-// counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]`
-// are not written. Two differences remain: for `R_N < 0` (outside the cone's half-space)
-// Siconos uses the negative radius `mu R_N` where fc3d, like Siconos' generated Jean-Moreau
-// function, uses 0; and Siconos takes `|R_T - rho_T u_T| < 1e-20` as sticking whatever the
-// radius.
+// Siconos' Jean-Moreau variant (Christensen and Pang's): the disk radius is `mu R_N`, negative
+// where `R_N < 0`, `|R_T - rho_T u_T| < 1e-20` counts as sticking whatever the radius, and
+// `R_N - rho_N u_N = 0` counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`,
+// `A[2,0]`, `B[0,1]`, `B[0,2]` are not written. (Siconos' generated Jean-Moreau function clamps
+// the radius at 0: `fc3d_AlartCurnierJeanMoreauFunctionGenerated`.)
 void computeAlartCurnierJeanMoreau(double *R,
                                    double *velocity,
                                    double mu,

@@ -15,7 +15,7 @@ use std::os::raw::c_double;
 
 use super::{ffi_guard, CError, CResult};
 use fc3d_core::math::linalg::{Mat3, Vec3};
-use fc3d_core::solvers::nsn::alart_curnier_parts;
+use fc3d_core::solvers::nsn::{alart_curnier_parts, TangentRadius};
 
 /// Which Siconos variant is packed.
 #[derive(Clone, Copy, PartialEq)]
@@ -25,7 +25,7 @@ enum Variant {
     /// `computeAlartCurnierSTDOld`: as Standard, but `R_N - rho_N u_N = 0` counts as active
     /// (`F_N = rho_N u_N`, `dF_N/du_N = rho_N`).
     StandardOld,
-    /// `computeAlartCurnierJeanMoreau`: radius `mu (R_N)_+`, `R_N - rho_N u_N = 0` active; Siconos leaves `A[0,1]`, `A[0,2]`,
+    /// `computeAlartCurnierJeanMoreau`: radius `mu R_N`, `R_N - rho_N u_N = 0` active; Siconos leaves `A[0,1]`, `A[0,2]`,
     /// `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]` untouched.
     JeanMoreau,
     /// `fc3d_AlartCurnierFunctionGenerated`: `rho_T1` and `rho_T2` apart, all entries written.
@@ -58,10 +58,13 @@ unsafe fn evaluate(
     if F.is_null() && !(generated && !A.is_null() && !B.is_null()) {
         return Err(CError::null("F"));
     }
-    let jean_moreau = matches!(
-        variant,
-        Variant::JeanMoreau | Variant::Generated { jean_moreau: true }
-    );
+    let radius = match variant {
+        Variant::Standard | Variant::StandardOld | Variant::Generated { jean_moreau: false } => {
+            TangentRadius::AlartCurnier
+        }
+        Variant::JeanMoreau => TangentRadius::JeanMoreau,
+        Variant::Generated { jean_moreau: true } => TangentRadius::JeanMoreauClamped,
+    };
     // Two tangential rhos: with u' = (u_N, rho_T1 u_T1, rho_T2 u_T2) and rho_T = 1 the residual
     // is the same function, and dF/du = dF/du' diag(1, rho_T1, rho_T2).
     let rho_t = if generated {
@@ -71,7 +74,7 @@ unsafe fn evaluate(
     } else {
         rho[1]
     };
-    let (mut f, dr, mut du) = alart_curnier_parts(&r, &u, mu, rho[0], rho_t, jean_moreau);
+    let (mut f, dr, mut du) = alart_curnier_parts(&r, &u, mu, rho[0], rho_t, radius);
     if generated {
         for row in du.iter_mut() {
             row[1] *= rho[1];
@@ -175,12 +178,11 @@ pub unsafe extern "C" fn computeAlartCurnierSTDOld(
     );
 }
 
-/// Siconos' Jean-Moreau variant: the disk radius is `mu (R_N)_+`, and `R_N - rho_N u_N = 0`
-/// counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`, `A[2,0]`, `B[0,1]`, `B[0,2]`
-/// are not written. Two differences remain: for `R_N < 0` (outside the cone's half-space)
-/// Siconos uses the negative radius `mu R_N` where fc3d, like Siconos' generated Jean-Moreau
-/// function, uses 0; and Siconos takes `|R_T - rho_T u_T| < 1e-20` as sticking whatever the
-/// radius.
+/// Siconos' Jean-Moreau variant (Christensen and Pang's): the disk radius is `mu R_N`, negative
+/// where `R_N < 0`, `|R_T - rho_T u_T| < 1e-20` counts as sticking whatever the radius, and
+/// `R_N - rho_N u_N = 0` counts as active. As in Siconos, `A[0,1]`, `A[0,2]`, `A[1,0]`,
+/// `A[2,0]`, `B[0,1]`, `B[0,2]` are not written. (Siconos' generated Jean-Moreau function clamps
+/// the radius at 0: `fc3d_AlartCurnierJeanMoreauFunctionGenerated`.)
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
 pub unsafe extern "C" fn computeAlartCurnierJeanMoreau(

@@ -9,6 +9,20 @@ use crate::math::linalg::{norm2, solve3, Mat3, Vec3};
 const ZERO: Mat3 = [[0.0; 3]; 3];
 const IDENTITY: Mat3 = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
+/// The radius of the disk the tangential reaction is projected on, in the Alart-Curnier family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentRadius {
+    /// Alart-Curnier's `mu (r_N - rho_N u_N)_+`.
+    AlartCurnier,
+    /// Jean-Moreau's `mu r_N`, as Siconos' `computeAlartCurnierJeanMoreau` (Christensen and
+    /// Pang's form, the one NSN and 607 use): not clamped at 0, so F stays linear in r_N where an
+    /// iterate has r_N < 0; clamping it stalls the global Newton (607) on
+    /// Spheres-i099-356-679: 498 iterations to 1e-5 against 30.
+    JeanMoreau,
+    /// Jean-Moreau's radius clamped, `mu (r_N)_+`, as Siconos' generated Jean-Moreau function.
+    JeanMoreauClamped,
+}
+
 /// The data of one contact the residual depends on besides `(r_c, u_c)`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ContactData {
@@ -25,21 +39,23 @@ pub(crate) fn residual(
     d: &ContactData,
 ) -> (Vec3, Mat3, Mat3) {
     match formulation {
-        NsnFormulation::AlartCurnier => alart_curnier(r, u, d, false),
-        NsnFormulation::JeanMoreau => alart_curnier(r, u, d, true),
+        NsnFormulation::AlartCurnier => alart_curnier(r, u, d, TangentRadius::AlartCurnier),
+        NsnFormulation::JeanMoreau => alart_curnier(r, u, d, TangentRadius::JeanMoreau),
         NsnFormulation::NaturalMap => natural_map(r, u, d),
         NsnFormulation::FischerBurmeister => fischer_burmeister(r, u, d.mu),
     }
 }
 
 /// Alart-Curnier (60)-(61) or, with `jean_moreau`, (58)-(59):
-/// `F_N = r_N - (r_N - rho_N u_N)_+`, `F_T = r_T - P_D(radius)(r_T - rho_T u_T)` with radius
-/// `mu (r_N - rho_N u_N)_+` (AC) or `mu r_N` (JM, Christensen and Pang's form as Siconos'
-/// `computeAlartCurnierJeanMoreau` writes it: not clamped at 0, so F stays linear in r_N where
-/// an iterate has r_N < 0; clamping it stalls the global Newton, 607, on Spheres-i099-356-679:
-/// 498 iterations to 1e-5 against 30). (The paper's (61) prints rho_N in the
-/// tangential part; rho_T is meant.)
-fn alart_curnier(r: &Vec3, u: &Vec3, d: &ContactData, jean_moreau: bool) -> (Vec3, Mat3, Mat3) {
+/// `F_N = r_N - (r_N - rho_N u_N)_+`, `F_T = r_T - P_D(radius)(r_T - rho_T u_T)` with the
+/// radius of [`TangentRadius`]. (The paper's (61) prints rho_N in the tangential part; rho_T is
+/// meant.)
+pub(crate) fn alart_curnier(
+    r: &Vec3,
+    u: &Vec3,
+    d: &ContactData,
+    kind: TangentRadius,
+) -> (Vec3, Mat3, Mat3) {
     let (mu, rn, rt) = (d.mu, d.rho_n, d.rho_t);
     let mut f = [0.0; 3];
     let mut a = ZERO;
@@ -52,16 +68,17 @@ fn alart_curnier(r: &Vec3, u: &Vec3, d: &ContactData, jean_moreau: bool) -> (Vec
         f[0] = r[0];
         a[0][0] = 1.0;
     }
-    let (radius, radius_active) = if jean_moreau {
-        (mu * r[0], true)
-    } else {
-        (mu * s_n.max(0.0), s_n > 0.0)
+    let jean_moreau = kind != TangentRadius::AlartCurnier;
+    let (radius, radius_active) = match kind {
+        TangentRadius::AlartCurnier => (mu * s_n.max(0.0), s_n > 0.0),
+        TangentRadius::JeanMoreau => (mu * r[0], true),
+        TangentRadius::JeanMoreauClamped => (mu * r[0].max(0.0), r[0] > 0.0),
     };
     let v = [r[1] - rt * u[1], r[2] - rt * u[2]];
     let nv = norm2(v[0], v[1]);
-    // Jean-Moreau's radius may be negative (r_N < 0 between iterates): a zero v_T then has no
+    // The unclamped radius may be negative (r_N < 0 between iterates): a zero v_T then has no
     // direction, and Siconos takes the stick branch below 1e-20.
-    if nv <= radius || (jean_moreau && nv < 1e-20) {
+    if nv <= radius || (kind == TangentRadius::JeanMoreau && nv < 1e-20) {
         // Stick: r_T - v_T = rho_T u_T.
         f[1] = rt * u[1];
         f[2] = rt * u[2];

@@ -16,25 +16,22 @@ pub(crate) mod linesearch;
 mod settings;
 mod sparse;
 
+pub use jacobian::TangentRadius;
 pub use settings::{NsnFormulation, NsnLineSearch, NsnOptions, NONMONOTONE_MEMORY};
 
-/// One contact's Alart-Curnier residual `F(r, u)` (or, with `jean_moreau`, the Jean-Moreau one)
-/// at independent `r` and `u`, with `dF/dr` and `dF/du` (row-major): the per-contact pieces NSN
-/// assembles, for hosts that assemble their own Newton (Siconos' `computeAlartCurnierSTD`).
+/// One contact's Alart-Curnier residual `F(r, u)` (Jean-Moreau's with the other radii of
+/// [`TangentRadius`]) at independent `r` and `u`, with `dF/dr` and `dF/du` (row-major): the
+/// per-contact pieces NSN assembles, for hosts that assemble their own Newton (Siconos'
+/// `computeAlartCurnierSTD` and its variants).
 pub fn alart_curnier_parts(
     r: &Vec3,
     u: &Vec3,
     mu: f64,
     rho_n: f64,
     rho_t: f64,
-    jean_moreau: bool,
+    radius: TangentRadius,
 ) -> (Vec3, Mat3, Mat3) {
-    let formulation = if jean_moreau {
-        NsnFormulation::JeanMoreau
-    } else {
-        NsnFormulation::AlartCurnier
-    };
-    residual(formulation, r, u, &ContactData { mu, rho_n, rho_t })
+    alart_curnier(r, u, &ContactData { mu, rho_n, rho_t }, radius)
 }
 
 use std::time::{Duration, Instant};
@@ -47,7 +44,7 @@ use crate::matrix::BlockSparseMatrix;
 use crate::measure::{absolute_natural_map_residual, relative_scale};
 use crate::problem::FrictionProblem;
 use direction::{Direction, Jacobian, NewtonLinearSolver, Step};
-use jacobian::{residual, ContactData};
+use jacobian::{alart_curnier, residual, ContactData};
 
 /// How a [`NewtonSolver::run`] ended.
 pub(crate) struct RunOutcome {
