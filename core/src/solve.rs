@@ -224,6 +224,7 @@ fn finish(
             .filter(|_| config.rescaling == Rescaling::None),
         stages: outcome.stages,
         fill: outcome.fill,
+        products: outcome.products,
     }
 }
 
@@ -453,6 +454,7 @@ fn report_measured(
         final_rho: None,
         stages: outcome.stages,
         fill: outcome.fill,
+        products: outcome.products,
     }
 }
 
