@@ -85,7 +85,7 @@ fn body_space_extremes(
     let mut start = vec![0.0; ndof];
     Lanczos::default_start(&mut start);
     let inner = |x: &[f64], y: &[f64]| m_inner(&m, x, y);
-    let mut lanczos = Lanczos::new(ndof, max_steps);
+    let mut lanczos = Lanczos::new(ndof, max_steps).expect("the Lanczos vectors");
     lanczos.start(&start, inner);
     let t = Instant::now();
     let mut history: Vec<(usize, f64)> = Vec::new();
@@ -130,7 +130,7 @@ fn w_largest(scene: &GeneratedScene, steps: usize) -> (f64, usize) {
     let n = p.size();
     let mut start = vec![0.0; n];
     Lanczos::default_start(&mut start);
-    let mut lanczos = Lanczos::new(n, steps);
+    let mut lanczos = Lanczos::new(n, steps).expect("the Lanczos vectors");
     lanczos.start(&start, euclidean);
     for _ in 0..steps {
         let more = lanczos.step(

@@ -10,6 +10,8 @@
 //! that needs about `sqrt(condition number)` steps to settle. The operator may be self-adjoint in
 //! an inner product other than the Euclidean one (`M`-products for `M^-1 A`), given as a closure.
 
+use crate::error::{try_vec, Fc3dError};
+
 /// The Lanczos recurrence on an operator of size `n`, one step at a time. The vectors are
 /// allocated once, at construction; a step allocates only when its coefficient lists grow past
 /// the capacity asked for.
@@ -26,15 +28,20 @@ pub struct Lanczos {
 
 impl Lanczos {
     /// A recurrence of size `n` with room for `steps` steps, not started.
-    pub fn new(n: usize, steps: usize) -> Self {
-        Lanczos {
-            alpha: Vec::with_capacity(steps),
-            beta: Vec::with_capacity(steps),
-            v_prev: vec![0.0; n],
-            v: vec![0.0; n],
-            w: vec![0.0; n],
+    pub fn new(n: usize, steps: usize) -> Result<Self, Fc3dError> {
+        const WHAT: &str = "the Lanczos vectors";
+        let mut alpha = try_vec(steps, 0.0, WHAT)?;
+        let mut beta = try_vec(steps, 0.0, WHAT)?;
+        alpha.clear();
+        beta.clear();
+        Ok(Lanczos {
+            alpha,
+            beta,
+            v_prev: try_vec(n, 0.0, WHAT)?,
+            v: try_vec(n, 0.0, WHAT)?,
+            w: try_vec(n, 0.0, WHAT)?,
             exhausted: false,
-        }
+        })
     }
 
     /// Starts (again) from `start` (normalized in `inner`; not zero). Returns false when
@@ -201,7 +208,7 @@ mod tests {
         let d: Vec<f64> = (1..=n).map(|i| i as f64).collect();
         let mut start = vec![0.0; n];
         Lanczos::default_start(&mut start);
-        let mut lanczos = Lanczos::new(n, 200);
+        let mut lanczos = Lanczos::new(n, 200).unwrap();
         assert!(lanczos.start(&start, euclidean));
         let apply = |x: &[f64], y: &mut [f64]| {
             for ((y, x), d) in y.iter_mut().zip(x).zip(&d) {
@@ -233,7 +240,7 @@ mod tests {
         let k = [2.0, 3.0, 5.0, 1.0];
         let inner =
             |a: &[f64], b: &[f64]| a.iter().zip(b).zip(&m).map(|((a, b), m)| a * m * b).sum();
-        let mut lanczos = Lanczos::new(4, 4);
+        let mut lanczos = Lanczos::new(4, 4).unwrap();
         assert!(lanczos.start(&[1.0, 1.0, 1.0, 1.0], inner));
         while lanczos.step(
             |x, y| {

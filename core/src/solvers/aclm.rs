@@ -7,7 +7,7 @@
 //! [`crate::solvers::accelerated`] ([`AclmInnerSolver`]).
 
 use crate::contract::{Family, InnerTolerance, Limits, Observer, OuterLoop, SolverOutcome};
-use crate::error::Fc3dError;
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::cone::project_on_cone;
 use crate::math::linalg::{norm, norm2};
 use crate::measure::{cheap_error, natural_map_error_by_rows};
@@ -143,18 +143,20 @@ fn aclmfp(
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
     let tol = run.tolerance;
-    let mut shift = vec![0.0; rows.n_contacts()];
+    let mut shift = try_vec(rows.n_contacts(), 0.0, "the ACLM shifts")?;
     let first_order = options.inner.first_order();
     // The accelerated solvers take the shift in their linear term q + s.
     let mut shifted_q = if first_order.is_some() {
-        q.to_vec()
+        try_copy(q, "the ACLM shifted q")?
     } else {
         Vec::new()
     };
-    let mut work = first_order.map(|m| FirstOrderWork::new(problem.size(), m));
+    let mut work = first_order
+        .map(|m| FirstOrderWork::new(problem.size(), m))
+        .transpose()?;
     let norm_q = norm(q);
     let mut products = 1;
-    let mut outer = OuterLoop::new(run, r);
+    let mut outer = OuterLoop::new(run, r)?;
     let mut error = natural_map_error_by_rows(problem, &rows, r, u);
     for iteration in 1..=run.max_iter {
         // u = W r + q is current here (coulomb_error computed it).

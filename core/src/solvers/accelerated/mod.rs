@@ -36,6 +36,7 @@ pub use settings::{ApgdSettings, SpgSettings};
 use std::time::Instant;
 
 use crate::contract::deadline_passed;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::norm;
 use crate::math::spectrum::{euclidean, Lanczos};
 use crate::matrix::BlockRows;
@@ -71,7 +72,7 @@ impl FirstOrderMethod {
         }
     }
 
-    pub(crate) fn validate(&self) -> Result<(), crate::error::Fc3dError> {
+    pub(crate) fn validate(&self) -> Result<(), Fc3dError> {
         match self {
             FirstOrderMethod::Apgd(s) => s.validate(),
             FirstOrderMethod::Spg(s) => s.validate(),
@@ -109,27 +110,30 @@ pub(crate) struct FirstOrderWork {
 
 impl FirstOrderWork {
     /// Work space for sub-problems of size `n`.
-    pub fn new(n: usize, method: FirstOrderMethod) -> Self {
+    pub fn new(n: usize, method: FirstOrderMethod) -> Result<Self, Fc3dError> {
         let memory = match method {
             FirstOrderMethod::Spg(s) => s.memory,
             FirstOrderMethod::Apgd(_) => 0,
         };
         let steps = method.spectral_steps();
-        FirstOrderWork {
+        const WHAT: &str = "the accelerated solver's work arrays";
+        let mut history = try_vec(memory, 0.0, WHAT)?;
+        history.clear();
+        Ok(FirstOrderWork {
             method,
-            g: vec![0.0; n],
-            y: vec![0.0; n],
-            g_y: vec![0.0; n],
-            trial: vec![0.0; n],
-            g_trial: vec![0.0; n],
-            best: vec![0.0; n],
-            scratch: vec![0.0; n],
-            history: Vec::with_capacity(memory),
-            lanczos: Some(Lanczos::new(n, steps)),
+            g: try_vec(n, 0.0, WHAT)?,
+            y: try_vec(n, 0.0, WHAT)?,
+            g_y: try_vec(n, 0.0, WHAT)?,
+            trial: try_vec(n, 0.0, WHAT)?,
+            g_trial: try_vec(n, 0.0, WHAT)?,
+            best: try_vec(n, 0.0, WHAT)?,
+            scratch: try_vec(n, 0.0, WHAT)?,
+            history,
+            lanczos: Some(Lanczos::new(n, steps)?),
             curvature: None,
             lambda_max: 1.0,
             products: 0,
-        }
+        })
     }
 
     /// Solves the sub-problem from `r` (projected on the set first) to the relative residual

@@ -67,7 +67,7 @@ fn solve_with<S: ConvexSet>(
         set,
         norm_q: norm(p.q()),
     };
-    let mut work = FirstOrderWork::new(6, method);
+    let mut work = FirstOrderWork::new(6, method).unwrap();
     let mut r = vec![0.0; 6];
     let it = work.solve(&sub, tol, 10_000, None, &mut r);
     (r, it, work.products)
@@ -125,7 +125,7 @@ fn limits_hold() {
         norm_q: norm(p.q()),
     };
     for method in methods() {
-        let mut work = FirstOrderWork::new(6, method);
+        let mut work = FirstOrderWork::new(6, method).unwrap();
         let mut r = vec![0.0; 6];
         assert_eq!(work.solve(&sub, 0.0, 3, None, &mut r), 3);
         // A deadline in the past: no iteration, r projected and finite.
