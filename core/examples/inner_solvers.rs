@@ -3,7 +3,10 @@
 //!
 //! `cargo run --release -p fc3d-core --example inner_solvers -- [--shape spheres|boxes]
 //! [--piles P] [--seed S] [--tols 1e-4,1e-6] [--budget SECONDS] [--solvers TFP,TFP-APGD,...] [--csv FILE]
-//! CONTACTS...`
+//! [--inner-ratio R] [--inner-max N] CONTACTS...`
+//!
+//! `--inner-ratio R` sets the adaptive inner tolerance of every solver to `outer error / R`
+//! (default: each preset's, Siconos' 10), `--inner-max N` the iterations of each inner solve.
 //!
 //! One run per (size, solver, tolerance), from r = 0, cut by the budget (default 60 s): wall
 //! time, outer iterations, work in products with W (`SolveReport::products`), the error the
@@ -14,7 +17,7 @@ use std::io::Write;
 use std::time::{Duration, Instant};
 
 use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
-use fc3d_core::{natural_map_error, solve, Method, SolverConfig};
+use fc3d_core::{natural_map_error, solve, InnerTolerance, Method, SolverConfig};
 
 fn load_average() -> String {
     std::fs::read_to_string("/proc/loadavg")
@@ -40,6 +43,8 @@ fn main() {
     .map(String::from)
     .to_vec();
     let mut csv_path = None;
+    let mut inner_ratio: Option<f64> = None;
+    let mut inner_max: Option<usize> = None;
     let mut sizes = Vec::new();
     let mut it = std::env::args().skip(1);
     while let Some(arg) = it.next() {
@@ -57,6 +62,8 @@ fn main() {
             }
             "--solvers" => solvers = value().split(',').map(String::from).collect(),
             "--csv" => csv_path = Some(value()),
+            "--inner-ratio" => inner_ratio = Some(value().parse().expect("ratio")),
+            "--inner-max" => inner_max = Some(value().parse().expect("iterations")),
             size => sizes.push(size.parse::<usize>().expect("a contact count")),
         }
     }
@@ -65,7 +72,7 @@ fn main() {
         PileShape::Boxes => "boxes",
     };
     let header = "shape,contacts,piles,solver,tolerance,status,seconds,outer_iterations,products,\
-                  reported_error,recomputed_error,load_before,load_after";
+                  reported_error,recomputed_error,load_before,load_after,inner_ratio,inner_max";
     println!("{header}");
     let mut csv = csv_path.map(|f| std::fs::File::create(f).expect("csv"));
     if let Some(f) = csv.as_mut() {
@@ -83,7 +90,20 @@ fn main() {
         let p = scene.generate().expect("scene");
         let n = p.size();
         for name in &solvers {
-            let method = Method::preset(name).unwrap_or_else(|| panic!("unknown solver {name}"));
+            let mut method =
+                Method::preset(name).unwrap_or_else(|| panic!("unknown solver {name}"));
+            let (tolerance, max_iter) = match &mut method {
+                Method::Tresca(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
+                Method::Pfp(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
+                Method::Aclm(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
+                _ => panic!("{name}: not a fixed point with inner solves"),
+            };
+            if let Some(ratio) = inner_ratio {
+                *tolerance = InnerTolerance::Adaptive { ratio };
+            }
+            if let Some(n) = inner_max {
+                *max_iter = n;
+            }
             for &tol in &tols {
                 let config = SolverConfig::new(method)
                     .with_tolerance(tol)
@@ -102,6 +122,10 @@ fn main() {
                     report.products.map_or("-".to_string(), |k| k.to_string()),
                     report.error,
                     load_average()
+                ) + &format!(
+                    ",{},{}",
+                    inner_ratio.map_or("-".to_string(), |r| r.to_string()),
+                    inner_max.map_or("-".to_string(), |n| n.to_string())
                 );
                 println!("{line}");
                 if let Some(f) = csv.as_mut() {
