@@ -8,8 +8,9 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, Symbolic
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
+use crate::alloc::reserve;
 use crate::contract::Fill;
-use crate::error::Fc3dError;
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::linalg::Mat3;
 use crate::math::lu_cost::{checked_lu_cost, LuCost};
 use crate::math::lu_fill::lu_factor_nnz;
@@ -45,16 +46,17 @@ impl NewtonMatrix {
         let (row_ptr, col_idx) = (w.row_ptr(), w.col_idx());
         let n_blocks = col_idx.len();
         // Transpose the block structure: blocks of each block column, in increasing block row.
-        let mut col_count = vec![0usize; nc + 1];
+        let what = "NSN: the pattern of the Newton matrix";
+        let mut col_count = try_vec(nc + 1, 0usize, what)?;
         for &b in col_idx {
             col_count[b + 1] += 1;
         }
         for b in 0..nc {
             col_count[b + 1] += col_count[b];
         }
-        let mut next = col_count.clone();
-        let mut by_column = vec![(0usize, 0usize); n_blocks]; // (block row, block index)
-        let mut diagonal_block = vec![usize::MAX; nc];
+        let mut next = try_copy(&col_count, what)?;
+        let mut by_column = try_vec(n_blocks, (0usize, 0usize), what)?; // (block row, block index)
+        let mut diagonal_block = try_vec(nc, usize::MAX, what)?;
         for c in 0..nc {
             for (k, &b) in col_idx
                 .iter()
@@ -72,9 +74,17 @@ impl NewtonMatrix {
         if let Some(c) = diagonal_block.iter().position(|&k| k == usize::MAX) {
             return Err(Fc3dError::MissingDiagonalBlock { contact: c });
         }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::with_capacity(9 * n_blocks);
-        let mut slots = vec![0usize; 9 * n_blocks];
+        let entries = n_blocks
+            .checked_mul(9)
+            .ok_or_else(|| Fc3dError::OutOfMemory {
+                what: what.to_string(),
+                bytes: usize::MAX,
+            })?;
+        let mut col_ptr = try_vec(0, 0usize, what)?;
+        reserve(&mut col_ptr, n + 1, what)?;
+        let mut row_idx = try_vec(0, 0usize, what)?;
+        reserve(&mut row_idx, entries, what)?;
+        let mut slots = try_vec(entries, 0usize, what)?;
         col_ptr.push(0);
         for b in 0..nc {
             let blocks = &by_column[col_count[b]..col_count[b + 1]];
@@ -104,7 +114,7 @@ impl NewtonMatrix {
             pattern,
             slots,
             diagonal_block,
-            values: vec![0.0; nnz],
+            values: try_vec(nnz, 0.0, "NSN: the values of the Newton matrix")?,
             symbolic,
             numeric: NumericLu::new(),
             workspace,
