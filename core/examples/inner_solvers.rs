@@ -92,17 +92,20 @@ fn main() {
         for name in &solvers {
             let mut method =
                 Method::preset(name).unwrap_or_else(|| panic!("unknown solver {name}"));
-            let (tolerance, max_iter) = match &mut method {
-                Method::Tresca(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
-                Method::Pfp(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
-                Method::Aclm(o) => (&mut o.inner_tolerance, &mut o.inner_max_iter),
-                _ => panic!("{name}: not a fixed point with inner solves"),
+            let inner = match &mut method {
+                Method::Tresca(o) => Some((&mut o.inner_tolerance, &mut o.inner_max_iter)),
+                Method::Pfp(o) => Some((&mut o.inner_tolerance, &mut o.inner_max_iter)),
+                Method::Aclm(o) => Some((&mut o.inner_tolerance, &mut o.inner_max_iter)),
+                _ => None,
             };
-            if let Some(ratio) = inner_ratio {
-                *tolerance = InnerTolerance::Adaptive { ratio };
-            }
-            if let Some(n) = inner_max {
-                *max_iter = n;
+            // Other presets (NSGS, ...) run as they are, for comparison.
+            if let Some((tolerance, max_iter)) = inner {
+                if let Some(ratio) = inner_ratio {
+                    *tolerance = InnerTolerance::Adaptive { ratio };
+                }
+                if let Some(n) = inner_max {
+                    *max_iter = n;
+                }
             }
             for &tol in &tols {
                 let config = SolverConfig::new(method)
