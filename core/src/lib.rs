@@ -54,7 +54,8 @@ pub use solve::{
     check_w_before_solving_in_place, solve, solve_planar, solve_planar_with_observer,
     solve_rolling, solve_rolling_with_observer, solve_with_observer,
 };
-pub use solvers::aclm::AclmOptions;
+pub use solvers::accelerated::{ApgdSettings, SpgSettings};
+pub use solvers::aclm::{AclmInnerSolver, AclmOptions};
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use solvers::auto::{AutoChoice, AutoOptions, PlannedStage, ProblemFeatures};
 pub use solvers::nsgs::{

@@ -226,6 +226,7 @@ fn finish(
             .filter(|_| config.rescaling == Rescaling::None),
         stages: outcome.stages,
         fill: outcome.fill,
+        products: outcome.products,
     }
 }
 
@@ -458,6 +459,7 @@ fn report_measured(
         final_rho: None,
         stages: outcome.stages,
         fill: outcome.fill,
+        products: outcome.products,
     }
 }
 

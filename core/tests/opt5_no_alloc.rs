@@ -7,8 +7,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use fc3d_core::{
-    solve, AclmOptions, Delassus, PfpOptions, SoclcpOptions, SolverConfig, TrescaInnerSolver,
-    TrescaOptions,
+    solve, AclmInnerSolver, AclmOptions, Delassus, PfpOptions, SoclcpOptions, SolverConfig,
+    TrescaInnerSolver, TrescaOptions,
 };
 
 struct CountingAllocator;
@@ -59,6 +59,8 @@ fn configs(max_iter: usize) -> Vec<SolverConfig> {
         TrescaInnerSolver::GaussSeidel,
         TrescaInnerSolver::FixedPointViUpk,
         TrescaInnerSolver::ProjectedGradient,
+        TrescaInnerSolver::apgd(),
+        TrescaInnerSolver::spg(),
     ]
     .into_iter()
     .flat_map(|inner| {
@@ -76,10 +78,17 @@ fn configs(max_iter: usize) -> Vec<SolverConfig> {
         ]
     })
     .collect();
-    v.push(SolverConfig::new(AclmOptions {
-        inner_max_iter: 5,
-        ..Default::default()
-    }));
+    for inner in [
+        AclmInnerSolver::GaussSeidel,
+        AclmInnerSolver::Apgd(Default::default()),
+        AclmInnerSolver::Spg(Default::default()),
+    ] {
+        v.push(SolverConfig::new(AclmOptions {
+            inner,
+            inner_max_iter: 5,
+            ..Default::default()
+        }));
+    }
     v.push(SolverConfig::new(SoclcpOptions::default()));
     v.into_iter()
         .map(|c| c.with_max_iter(max_iter).with_tolerance(0.0))

@@ -61,6 +61,8 @@ pub(crate) struct SolverOutcome {
     pub stages: Option<StageLog>,
     /// The fill of the factorization a factorizing family made.
     pub fill: Option<Fill>,
+    /// The products with W the run did, for the families that count them.
+    pub products: Option<usize>,
 }
 
 impl SolverOutcome {
@@ -76,6 +78,7 @@ impl SolverOutcome {
             final_rho: None,
             stages: None,
             fill: None,
+            products: None,
         }
     }
 
@@ -95,6 +98,14 @@ impl SolverOutcome {
     /// The same outcome with the fill of the factorization the run made.
     pub fn with_fill(self, fill: Option<Fill>) -> Self {
         SolverOutcome { fill, ..self }
+    }
+
+    /// The same outcome with the products with W the run did.
+    pub fn with_products(self, products: usize) -> Self {
+        SolverOutcome {
+            products: Some(products),
+            ..self
+        }
     }
 
     /// The same outcome with the final error the family measured on the returned `(r, u)`.

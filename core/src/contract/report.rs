@@ -72,6 +72,11 @@ pub struct SolveReport {
     /// Newton matrix, also inside PROX and AUTO), ADMM and rolling ADMM (`W + rho I`). `None` for
     /// the others (they factorize nothing; 2D Lemke and enumeration work on a dense LCP matrix).
     pub fill: Option<Fill>,
+    /// The work of the run in products with W (a Gauss-Seidel sweep, which reads W once,
+    /// counts as one; the measures of the error the run made included, the final one of the
+    /// solve not), for the families that count it: TFP, PFP and ACLMFP with every inner solver.
+    /// `None` for the others.
+    pub products: Option<usize>,
 }
 
 /// The fill of a sparse LU factorization `P A Q = L U`: how many entries the factors hold

@@ -1,7 +1,7 @@
 //! Fixed-size kernels every layer above uses: 3-vectors and 3x3 matrices written by hand, the
 //! projections on the Coulomb cone, its dual, disks and cylinders, the rolling-friction cone
-//! (`rolling`), the Jordan algebra of the second-order cone (`jordan`), and the constants of the
-//! self-adaptive step rule.
+//! (`rolling`), the Jordan algebra of the second-order cone (`jordan`), the constants of the
+//! self-adaptive step rule, and the extreme eigenvalues of a symmetric operator (`spectrum`).
 
 pub mod cone;
 pub mod jordan;
@@ -10,4 +10,5 @@ pub mod lu_cost;
 pub mod lu_fill;
 pub mod rolling;
 pub mod sparse_lu;
+pub mod spectrum;
 pub mod step;

@@ -36,17 +36,19 @@ pub const GAP: f64 = 0.1 * HALF_WIDTH;
 /// Mean mass of a box (kg).
 pub const MASS: f64 = 1.0;
 
-/// Contacts of a full pyramid of base `n`: 4 per box on the ground, 16 per box above.
+/// Contacts of a full layer of `m x m` boxes: 4 per box on the ground, 16 per box above.
+pub(super) fn layer_contacts(m: usize, on_ground: bool) -> usize {
+    if on_ground {
+        4 * m * m
+    } else {
+        16 * m * m
+    }
+}
+
+#[cfg(test)]
 fn pyramid_contacts(n: usize) -> usize {
     (0..n)
-        .map(|layer| {
-            let m = n - layer;
-            if layer == 0 {
-                4 * m * m
-            } else {
-                16 * m * m
-            }
-        })
+        .map(|layer| layer_contacts(n - layer, layer == 0))
         .sum()
 }
 
@@ -58,7 +60,7 @@ pub fn box_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError>
 pub(super) fn box_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     let pitch = 2.0 * HALF_WIDTH + GAP;
     // Three box widths of empty ground between piles.
-    piles_side_by_side(spec, pyramid_contacts, pitch, 6.0 * HALF_WIDTH, build_pile)
+    piles_side_by_side(spec, layer_contacts, pitch, 6.0 * HALF_WIDTH, build_pile)
 }
 
 /// A box as placed: centre and horizontal half-widths.

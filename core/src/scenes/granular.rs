@@ -87,16 +87,32 @@ impl Random {
     }
 }
 
-/// Contacts of a full pyramid of base `n`: per sphere, the ground (layer 0) or the 4 spheres
-/// below, and its left and back neighbours in its layer.
-fn pyramid_contacts(n: usize) -> usize {
-    (0..n)
-        .map(|layer| {
-            let m = n - layer;
-            let vertical = if layer == 0 { m * m } else { 4 * m * m };
-            vertical + 2 * m * (m - 1)
-        })
-        .sum()
+/// Contacts of a full layer of `m x m` spheres: per sphere, the ground (`on_ground`) or the 4
+/// spheres below, and its left and back neighbours in its layer.
+pub(super) fn layer_contacts(m: usize, on_ground: bool) -> usize {
+    let vertical = if on_ground { m * m } else { 4 * m * m };
+    vertical + 2 * m * (m - 1)
+}
+
+/// The base of the smallest pyramid holding `contacts` (layer `L` of a pyramid of base `n` has
+/// `(n - L) x (n - L)` cells of `layer_contacts` contacts), and the layers [`walk_pyramid`]
+/// builds on that base before the contacts are spent: the height of the pile.
+pub(super) fn pile_shape(
+    contacts: usize,
+    layer_contacts: fn(usize, bool) -> usize,
+) -> (usize, usize) {
+    let pyramid = |n: usize| -> usize { (0..n).map(|l| layer_contacts(n - l, l == 0)).sum() };
+    let mut base = 1;
+    while pyramid(base) < contacts {
+        base += 1;
+    }
+    let mut built = 0;
+    let mut layers = 0;
+    while built < contacts && layers < base {
+        built += layer_contacts(base - layers, layers == 0);
+        layers += 1;
+    }
+    (base, layers)
 }
 
 /// One pile as [`piles_side_by_side`] lays it out: the base of its pyramid, its share of the
@@ -108,13 +124,13 @@ pub(super) struct Pile {
     pub(super) mu: f64,
 }
 
-/// Lays out the piles of `spec` along x, for a shape whose full pyramid of base `n` has
-/// `pyramid_contacts(n)` contacts and whose cells are `pitch` apart: per pile the smallest base
+/// Lays out the piles of `spec` along x, for a shape whose full layers of `m x m` cells have
+/// `layer_contacts(m, on_ground)` contacts and whose cells are `pitch` apart: per pile the smallest base
 /// holding its share of the contacts, one friction coefficient in [0.3, 0.5], and `gap` of empty
 /// ground before the next pile (so that piles never touch). `build` adds one pile to the world.
 pub(super) fn piles_side_by_side(
     spec: &PileSpec,
-    pyramid_contacts: fn(usize) -> usize,
+    layer_contacts: fn(usize, bool) -> usize,
     pitch: f64,
     gap: f64,
     mut build: impl FnMut(&mut World, &mut Random, &Pile),
@@ -125,10 +141,7 @@ pub(super) fn piles_side_by_side(
     let mut x_origin = 0.0;
     for pile in 0..spec.piles {
         let contacts = spec.pile_contacts(pile);
-        let mut base = 1;
-        while pyramid_contacts(base) < contacts {
-            base += 1;
-        }
+        let (base, _) = pile_shape(contacts, layer_contacts);
         let mu = 0.4 + 0.1 * random.symmetric();
         build(
             &mut world,
@@ -244,13 +257,7 @@ pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dErr
 
 pub(super) fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     // Three radii of empty ground between piles.
-    piles_side_by_side(
-        spec,
-        pyramid_contacts,
-        2.0 * RADIUS,
-        6.0 * RADIUS,
-        build_pile,
-    )
+    piles_side_by_side(spec, layer_contacts, 2.0 * RADIUS, 6.0 * RADIUS, build_pile)
 }
 
 /// Adds one pyramid of spheres with its left front corner at `x = x_origin, y = 0`.

@@ -83,6 +83,18 @@ impl GeneratedScene {
         }
     }
 
+    /// The height of each pile in layers of bodies (a pile is built bottom-up until its share
+    /// of the contacts is spent, so its top layers may be missing from the full pyramid).
+    pub fn pile_layers(&self) -> Vec<usize> {
+        let layer_contacts = match self.shape {
+            PileShape::Spheres => granular::layer_contacts,
+            PileShape::Boxes => boxes::layer_contacts,
+        };
+        (0..self.pile.piles)
+            .map(|p| granular::pile_shape(self.pile.pile_contacts(p), layer_contacts).1)
+            .collect()
+    }
+
     /// Generates the scene (sparse-block W).
     pub fn generate(&self) -> Result<FrictionProblem<'static>, Fc3dError> {
         match self.shape {
@@ -176,5 +188,20 @@ mod tests {
                 .unwrap()
             )
         );
+    }
+
+    #[test]
+    fn pile_layers_count_the_layers_built() {
+        // A full sphere pyramid of base 2: 4 on the ground + 4 lateral, then 1 sphere on 4.
+        let full = GeneratedScene::parse("contacts=12").unwrap();
+        assert_eq!(full.pile_layers(), vec![2]);
+        // One contact more needs base 3, whose first layer alone holds 9 + 12 = 21.
+        let one_layer = GeneratedScene::parse("contacts=13").unwrap();
+        assert_eq!(one_layer.pile_layers(), vec![1]);
+        // Boxes of base 3: 36 on the ground, then 64 and 16 above.
+        let boxes = GeneratedScene::parse("contacts=116,shape=boxes,piles=2").unwrap();
+        assert_eq!(boxes.pile_layers(), vec![2, 2]);
+        let boxes = GeneratedScene::parse("contacts=116,shape=boxes").unwrap();
+        assert_eq!(boxes.pile_layers(), vec![3]);
     }
 }

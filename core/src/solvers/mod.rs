@@ -1,9 +1,11 @@
 //! The solver families, one module each, in the order of the seed paper's tables: nonsmooth
 //! Gauss-Seidel, the VI / fixed-point projection family, nonsmooth Newton, the proximal point
 //! method, the optimization-based fixed points (Tresca, Panagiotopoulos, ACLM, and the SOCLCP
-//! relaxation they build on) and ADMM. Each family's settings implement
+//! relaxation they build on, with the accelerated first-order solvers of their convex
+//! sub-problems in `accelerated`) and ADMM. Each family's settings implement
 //! [`crate::contract::Family`]; `config` dispatches to them.
 
+pub mod accelerated;
 pub mod aclm;
 pub mod admm;
 pub mod auto;

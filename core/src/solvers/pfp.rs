@@ -53,7 +53,7 @@ impl Family for PfpOptions {
     }
 
     fn label(&self) -> String {
-        format!("PFP/{}", self.tangent.siconos_id())
+        format!("PFP/{}", self.tangent.short_name())
     }
 
     fn siconos_id(&self) -> i32 {
@@ -65,6 +65,7 @@ impl Family for PfpOptions {
     }
 
     fn validate(&self) -> Result<(), Fc3dError> {
+        self.tangent.validate()?;
         self.inner_tolerance.validate()
     }
 
@@ -125,17 +126,19 @@ fn pfp(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
+    options.tangent.validate()?;
     options.inner_tolerance.validate()?;
-    let mut work = TrescaWorkspace::new(problem)?;
+    let mut work = TrescaWorkspace::new(problem, options.tangent)?;
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
     work.deadline = run.deadline();
     let tol = run.tolerance;
     let mut outer = OuterLoop::new(run, r)?;
+    work.products += 1;
     let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);
     for iteration in 1..=run.max_iter {
         let inner_tol = options.inner_tolerance.value(error, tol);
-        normal_pgs(
+        work.products += normal_pgs(
             &work.rows,
             q,
             inner_tol,
@@ -154,11 +157,12 @@ fn pfp(
             options.inner_max_iter,
             r,
         );
+        work.products += 1;
         let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, observer);
         error = e;
         if let Some(outcome) = stop {
-            return Ok(outcome);
+            return Ok(outcome.with_products(work.products));
         }
     }
-    Ok(outer.exhausted())
+    Ok(outer.exhausted().with_products(work.products))
 }

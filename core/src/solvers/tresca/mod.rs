@@ -14,7 +14,11 @@
 //! * [`TrescaInnerSolver::FixedPointViUpk`]: the projection fixed point on the cylinders with
 //!   the self-adaptive rho of Algorithm 1 (nu = 2/3, L = 0.9, Lmin = 0.3);
 //! * [`TrescaInnerSolver::ProjectedGradient`]: Algorithm 9 (Armijo backtracking on the quadratic
-//!   `1/2 r.W r + r.q`).
+//!   `1/2 r.W r + r.q`);
+//! * [`TrescaInnerSolver::Apgd`] and [`TrescaInnerSolver::Spg`]: the accelerated first-order
+//!   methods of [`crate::solvers::accelerated`] (Nesterov with adaptive restart, spectral
+//!   projected gradient), one product with W an iteration (fc3d's own, presets `TFP-APGD` and
+//!   `TFP-SPG`).
 
 mod local;
 mod settings;
@@ -30,12 +34,29 @@ use crate::problem::FrictionProblem;
 use subproblem::{TrescaMode, TrescaWorkspace};
 
 impl Family for TrescaOptions {
+    fn presets() -> Vec<Self> {
+        [
+            TrescaInnerSolver::GaussSeidel,
+            TrescaInnerSolver::apgd(),
+            TrescaInnerSolver::spg(),
+        ]
+        .map(|inner| TrescaOptions {
+            inner,
+            ..Default::default()
+        })
+        .to_vec()
+    }
+
     fn name(&self) -> &'static str {
-        "TFP"
+        match self.inner {
+            TrescaInnerSolver::Apgd(_) => "TFP-APGD",
+            TrescaInnerSolver::Spg(_) => "TFP-SPG",
+            _ => "TFP",
+        }
     }
 
     fn label(&self) -> String {
-        format!("TFP/{}", self.inner.siconos_id())
+        format!("TFP/{}", self.inner.short_name())
     }
 
     fn siconos_id(&self) -> i32 {
@@ -47,6 +68,7 @@ impl Family for TrescaOptions {
     }
 
     fn validate(&self) -> Result<(), Fc3dError> {
+        self.inner.validate()?;
         self.inner_tolerance.validate()
     }
 
@@ -71,13 +93,15 @@ fn tfp(
     u: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
+    options.inner.validate()?;
     options.inner_tolerance.validate()?;
-    let mut work = TrescaWorkspace::new(problem)?;
+    let mut work = TrescaWorkspace::new(problem, options.inner)?;
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
     work.deadline = run.deadline();
     let tol = run.tolerance;
     let mut outer = OuterLoop::new(run, r)?;
+    work.products += 1;
     let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);
     for iteration in 1..=run.max_iter {
         for (c, radius) in work.radius.iter_mut().enumerate() {
@@ -92,11 +116,12 @@ fn tfp(
             options.inner_max_iter,
             r,
         );
+        work.products += 1;
         let (e, stop) = outer.end_iteration(iteration, problem, &work.rows, r, u, observer);
         error = e;
         if let Some(outcome) = stop {
-            return Ok(outcome);
+            return Ok(outcome.with_products(work.products));
         }
     }
-    Ok(outer.exhausted())
+    Ok(outer.exhausted().with_products(work.products))
 }

@@ -2,9 +2,11 @@
 //! it shares with PFP, with Siconos' defaults.
 
 use crate::contract::InnerTolerance;
+use crate::solvers::accelerated::{ApgdSettings, FirstOrderMethod, SpgSettings};
 
-/// Solver of the Tresca sub-problems (Siconos internal solver id in brackets).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Solver of the Tresca sub-problems (Siconos internal solver id in brackets; the accelerated
+/// solvers are fc3d's own and have none).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TrescaInnerSolver {
     /// Gauss-Seidel over contacts with an exact one-contact Tresca solve [500, NSGS on the
     /// Tresca cylinder].
@@ -13,15 +15,55 @@ pub enum TrescaInnerSolver {
     FixedPointViUpk,
     /// Projected gradient with Armijo line search, Algorithm 9 [567 CONVEXQP_PG_CYLINDER].
     ProjectedGradient,
+    /// Nesterov's accelerated projected gradient with adaptive restart (fc3d's; see
+    /// [`ApgdSettings`]): one product with W an iteration.
+    Apgd(ApgdSettings),
+    /// Spectral projected gradient with a non-monotone line search (fc3d's; see
+    /// [`SpgSettings`]): one product with W an iteration.
+    Spg(SpgSettings),
 }
 
 impl TrescaInnerSolver {
-    pub fn siconos_id(self) -> i32 {
+    /// APGD with its default settings.
+    pub fn apgd() -> Self {
+        TrescaInnerSolver::Apgd(ApgdSettings::default())
+    }
+
+    /// SPG with its default settings.
+    pub fn spg() -> Self {
+        TrescaInnerSolver::Spg(SpgSettings::default())
+    }
+
+    /// Siconos' id of the internal solver; `None` for fc3d's own.
+    pub fn siconos_id(self) -> Option<i32> {
         match self {
-            TrescaInnerSolver::GaussSeidel => 500,
-            TrescaInnerSolver::FixedPointViUpk => 566,
-            TrescaInnerSolver::ProjectedGradient => 567,
+            TrescaInnerSolver::GaussSeidel => Some(500),
+            TrescaInnerSolver::FixedPointViUpk => Some(566),
+            TrescaInnerSolver::ProjectedGradient => Some(567),
+            TrescaInnerSolver::Apgd(_) | TrescaInnerSolver::Spg(_) => None,
         }
+    }
+
+    /// The id, or fc3d's name, in labels: `500`, `566`, `567`, `APGD`, `SPG`.
+    pub fn short_name(self) -> String {
+        match self {
+            TrescaInnerSolver::Apgd(_) => "APGD".to_string(),
+            TrescaInnerSolver::Spg(_) => "SPG".to_string(),
+            other => other.siconos_id().unwrap_or_default().to_string(),
+        }
+    }
+
+    /// The accelerated first-order method this solver is, if it is one.
+    pub(crate) fn first_order(self) -> Option<FirstOrderMethod> {
+        match self {
+            TrescaInnerSolver::Apgd(s) => Some(FirstOrderMethod::Apgd(s)),
+            TrescaInnerSolver::Spg(s) => Some(FirstOrderMethod::Spg(s)),
+            _ => None,
+        }
+    }
+
+    pub(crate) fn validate(self) -> Result<(), crate::error::Fc3dError> {
+        self.first_order().map_or(Ok(()), |m| m.validate())
     }
 
     pub fn from_siconos_id(id: i32) -> Option<Self> {

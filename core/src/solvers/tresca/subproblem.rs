@@ -1,6 +1,7 @@
 //! The Tresca sub-problem `-(W r + q) ∈ N_C(r)` on the cylinders `C_c = R+ x D(0, mu_c s_c)`
 //! (TFP), or on the disks with the normal reactions frozen (PFP's tangent problem), solved by
-//! Gauss-Seidel with exact one-contact solves, FP-VI-UPK or the projected gradient.
+//! Gauss-Seidel with exact one-contact solves, FP-VI-UPK, the projected gradient, or the
+//! accelerated first-order methods (APGD, SPG).
 
 use std::time::Instant;
 
@@ -13,6 +14,7 @@ use crate::math::linalg::norm;
 use crate::math::step::{L as L_MAX, L_MIN, NU};
 use crate::matrix::BlockRows;
 use crate::problem::FrictionProblem;
+use crate::solvers::accelerated::{ConvexSet, ConvexSubproblem, FirstOrderWork};
 
 /// Which components a Tresca sub-problem moves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -37,6 +39,47 @@ pub(crate) struct TrescaWorkspace<'a> {
     rho0: f64,
     /// The run's deadline: an inner solve stops at it whatever its iteration limit.
     pub deadline: Option<Instant>,
+    /// The accelerated solver's work space (APGD, SPG), when one is the inner solver.
+    first_order: Option<FirstOrderWork>,
+    /// The normal reactions a tangent-only solve keeps.
+    frozen_normal: Vec<f64>,
+    /// Products with W (a Gauss-Seidel sweep counts as one: it reads W once) of the inner solves.
+    pub products: usize,
+}
+
+/// The cylinders `R+ x D(radius_c)`, or the disks at the frozen normal reactions.
+struct TrescaSet<'w> {
+    radius: &'w [f64],
+    frozen_normal: Option<&'w [f64]>,
+}
+
+impl<'w> TrescaSet<'w> {
+    fn of(radius: &'w [f64], mode: TrescaMode, frozen_normal: &'w [f64]) -> Self {
+        TrescaSet {
+            radius,
+            frozen_normal: (mode == TrescaMode::TangentOnly).then_some(frozen_normal),
+        }
+    }
+}
+
+impl ConvexSet for TrescaSet<'_> {
+    fn project(&self, x: &mut [f64]) {
+        for (c, &rad) in self.radius.iter().enumerate() {
+            let s = 3 * c;
+            match self.frozen_normal {
+                None => {
+                    let p = project_on_cylinder(&[x[s], x[s + 1], x[s + 2]], rad);
+                    x[s..s + 3].copy_from_slice(&p);
+                }
+                Some(normal) => {
+                    let t = project_on_disk([x[s + 1], x[s + 2]], rad);
+                    x[s] = normal[c];
+                    x[s + 1] = t[0];
+                    x[s + 2] = t[1];
+                }
+            }
+        }
+    }
 }
 
 /// Armijo parameter and backtracking cap of Algorithm 9.
@@ -44,7 +87,11 @@ const ARMIJO_SIGMA: f64 = 1e-4;
 const MAX_LINE_SEARCH: usize = 60;
 
 impl<'a> TrescaWorkspace<'a> {
-    pub fn new(problem: &FrictionProblem<'a>) -> Result<Self, Fc3dError> {
+    /// Work space for sub-problems solved by `solver`.
+    pub fn new(
+        problem: &FrictionProblem<'a>,
+        solver: TrescaInnerSolver,
+    ) -> Result<Self, Fc3dError> {
         let rows = problem.w().block_rows()?;
         let n = problem.size();
         let max_diag = (0..rows.n_contacts())
@@ -62,6 +109,12 @@ impl<'a> TrescaWorkspace<'a> {
             rho: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
             rho0: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
             deadline: None,
+            first_order: solver
+                .first_order()
+                .map(|m| FirstOrderWork::new(n, m))
+                .transpose()?,
+            frozen_normal: try_vec(n / 3, 0.0, "the Tresca work arrays")?,
+            products: 0,
         })
     }
 
@@ -77,13 +130,61 @@ impl<'a> TrescaWorkspace<'a> {
         r: &mut [f64],
     ) -> usize {
         match solver {
-            TrescaInnerSolver::GaussSeidel => self.gauss_seidel(mode, q, tol, max_iter, r),
+            TrescaInnerSolver::GaussSeidel => {
+                // A sweep reads W once: one product each.
+                let sweeps = self.gauss_seidel(mode, q, tol, max_iter, r);
+                self.products += sweeps;
+                sweeps
+            }
             TrescaInnerSolver::FixedPointViUpk | TrescaInnerSolver::ProjectedGradient => {
                 self.projection(solver, mode, q, tol, max_iter, r)
+            }
+            TrescaInnerSolver::Apgd(_) | TrescaInnerSolver::Spg(_) => {
+                self.accelerated(mode, q, tol, max_iter, r)
             }
         }
     }
 
+    /// The set of the sub-problem; for a tangent-only solve, the normal reactions of `r` are
+    /// recorded as the ones to keep.
+    fn freeze(&mut self, mode: TrescaMode, r: &[f64]) {
+        if mode == TrescaMode::TangentOnly {
+            for (n, c) in self.frozen_normal.iter_mut().zip(r.chunks_exact(3)) {
+                *n = c[0];
+            }
+        }
+    }
+
+    /// APGD or SPG on `min 1/2 r.W r + q.r` over the cylinders (or the disks).
+    fn accelerated(
+        &mut self,
+        mode: TrescaMode,
+        q: &[f64],
+        tol: f64,
+        max_iter: usize,
+        r: &mut [f64],
+    ) -> usize {
+        self.freeze(mode, r);
+        let set = TrescaSet::of(&self.radius, mode, &self.frozen_normal);
+        let work = self
+            .first_order
+            .as_mut()
+            .expect("the work space of an accelerated inner solver");
+        let sub = ConvexSubproblem {
+            rows: &self.rows,
+            linear: q,
+            set: &set,
+            norm_q: norm(q),
+        };
+        let before = work.products;
+        let iterations = work.solve(&sub, tol, max_iter, self.deadline, r);
+        self.products += work.products - before;
+        iterations
+    }
+
+    /// Not inlined: the sweep keeps its own registers (inlined in [`Self::solve`] with the other
+    /// solvers, it reloaded spilled slice bounds at every contact).
+    #[inline(never)]
     fn gauss_seidel(
         &mut self,
         mode: TrescaMode,
@@ -141,9 +242,10 @@ impl<'a> TrescaWorkspace<'a> {
         let norm_q = norm(q);
         // The radii may have shrunk since r was computed: start from a feasible point, where
         // the projection step measures stationarity (and Armijo's slope is a descent slope).
-        self.trial.copy_from_slice(r);
-        project(&self.radius, mode, &mut self.trial, r);
-        r.copy_from_slice(&self.trial);
+        self.freeze(mode, r);
+        let set = TrescaSet::of(&self.radius, mode, &self.frozen_normal);
+        set.project(r);
+        self.products += 1;
         self.rows.velocity(q, r, &mut self.u);
         if solver == TrescaInnerSolver::ProjectedGradient {
             // Algorithm 9 starts every solve from rho0.
@@ -160,7 +262,8 @@ impl<'a> TrescaWorkspace<'a> {
                 for ((t, ri), ui) in self.trial.iter_mut().zip(r.iter()).zip(&self.u) {
                     *t = ri - rho * ui;
                 }
-                project(&self.radius, mode, &mut self.trial, r);
+                set.project(&mut self.trial);
+                self.products += 1;
                 self.rows.velocity(q, &self.trial, &mut self.u_trial);
                 let mut dr_sq = 0.0;
                 let mut du_sq = 0.0;
@@ -241,24 +344,5 @@ impl<'a> TrescaWorkspace<'a> {
             }
         }
         max_iter
-    }
-}
-
-/// Projects `x` on the cylinders (or, tangent only, on the disks with the normal part of `r`).
-fn project(radius: &[f64], mode: TrescaMode, x: &mut [f64], r: &[f64]) {
-    for (c, &rad) in radius.iter().enumerate() {
-        let s = 3 * c;
-        match mode {
-            TrescaMode::Full => {
-                let p = project_on_cylinder(&[x[s], x[s + 1], x[s + 2]], rad);
-                x[s..s + 3].copy_from_slice(&p);
-            }
-            TrescaMode::TangentOnly => {
-                let t = project_on_disk([x[s + 1], x[s + 2]], rad);
-                x[s] = r[s];
-                x[s + 1] = t[0];
-                x[s + 2] = t[1];
-            }
-        }
     }
 }
