@@ -91,7 +91,8 @@ impl Comm {
             e => return Err(mpi_failure("MPI_Comm_dup", e)),
         }
         let (mut rank, mut size) = (0, 0);
-        let comm = Comm {
+        // Released on drop if what follows fails.
+        let mut comm = Comm {
             raw,
             rank: 0,
             size: 1,
@@ -100,11 +101,9 @@ impl Comm {
             "MPI_Comm_rank",
             ffi::fc3d_mpi_shim_rank_size(raw, &mut rank, &mut size),
         )?;
-        Ok(Comm {
-            rank: rank as usize,
-            size: size as usize,
-            ..comm
-        })
+        comm.rank = rank as usize;
+        comm.size = size as usize;
+        Ok(comm)
     }
 
     pub fn rank(&self) -> usize {

@@ -19,6 +19,7 @@ pub mod ffi;
 mod halo;
 pub mod input;
 pub mod layout;
+pub mod problems;
 pub mod solver;
 
 use std::ffi::c_int;
