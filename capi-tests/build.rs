@@ -11,6 +11,7 @@ fn main() {
         "c/fc2d_checks.c",
         "c/rolling_checks.c",
         "c/workspace_checks.c",
+        "c/global_checks.c",
     ];
     let mut build = cc::Build::new();
     build

@@ -4,10 +4,13 @@
 # scripts/siconos-src.sh (Debian's source package through apt-get source, checksum pinned), never
 # committed.
 #
-#   scripts/siconos-suite.sh [--lib DIR] [--include DIR]... [--jobs N] [--timeout SECONDS]
-#                            [--only REGEX] [--out DIR] [--report-only]
+#   scripts/siconos-suite.sh [--lib DIR] [--fclib-lib DIR] [--include DIR]... [--jobs N]
+#                            [--timeout SECONDS] [--only REGEX] [--out DIR] [--report-only]
 #
-#  --lib DIR      directory holding libfc3d.so (default: target/release, built if missing)
+#  --lib DIR      directory holding libfc3d.so (default: target/release, built with the fclib
+#                 feature)
+#  --fclib-lib DIR  libfc3d.so built with the fclib feature, for the FCLIB programs (default: the
+#                 --lib one when it reads FCLIB files, else target/fclib/release, built)
 #  --include DIR  fc3d's include directories (default: capi/include/siconos-compat and capi/include)
 #  --jobs N       cases run in parallel (default: the number of cores)
 #  --timeout S    wall-clock limit per case and library (default 120 s)
@@ -22,7 +25,10 @@
 #
 # Every case of a collection runs in its own process (scripts/siconos-suite/case_runner.c builds
 # the collection with Siconos' build_test_collection and runs one index through Siconos'
-# frictionContact_test_function). A case passes when that function returns 0 within the time limit.
+# frictionContact_test_function, or its rolling or global counterpart). A case passes when that
+# function returns 0 within the time limit. The global FCLIB programs (gfc3d_*_FCLIB) run against
+# fc3d only (Debian's Siconos is built without FCLIB): a case is judged by the will_fail mark of
+# Siconos' own driver (gfc3d_test_collection.c.in), a marked case may fail.
 # The run fails when a case that Siconos passes does not pass with fc3d, unless the case is listed
 # in scripts/siconos-suite/known-differences.txt with the reason or in open-cases.txt (the work
 # list, which only shrinks: a listed case that passes fails the run until its line is removed).
@@ -31,6 +37,7 @@ cd "$(dirname "$0")/.."
 ROOT=$(pwd)
 
 LIB=""
+FCLIB_LIB=""
 INCLUDES=()
 JOBS=$(nproc)
 TIMEOUT=120
@@ -42,6 +49,7 @@ WRITE_OPEN=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --lib) LIB=$2; shift 2 ;;
+    --fclib-lib) FCLIB_LIB=$2; shift 2 ;;
     --include) INCLUDES+=("$2"); shift 2 ;;
     --jobs) JOBS=$2; shift 2 ;;
     --timeout) TIMEOUT=$2; shift 2 ;;
@@ -56,8 +64,18 @@ while [ $# -gt 0 ]; do
 done
 [ ${#INCLUDES[@]} -gt 0 ] || INCLUDES=("$ROOT/capi/include/siconos-compat" "$ROOT/capi/include")
 if [ -z "$LIB" ]; then
-  cargo build --release -p fc3d >/dev/null
+  cargo build --release -p fc3d --features fclib >/dev/null
   LIB=$ROOT/target/release
+fi
+if [ -z "$FCLIB_LIB" ]; then
+  # A library reads FCLIB files when it links libhdf5 (grep reads all of nm's output: with -q
+  # it would stop early and pipefail would see nm killed by SIGPIPE).
+  if nm -D --undefined-only "$LIB/libfc3d.so" | grep ' H5Fopen' >/dev/null; then
+    FCLIB_LIB=$LIB
+  else
+    cargo build --release -p fc3d --features fclib --target-dir "$ROOT/target/fclib" >/dev/null
+    FCLIB_LIB=$ROOT/target/fclib/release
+  fi
 fi
 [ -f /usr/include/siconos/numerics/FrictionContactProblem.h ] || {
   echo "siconos-suite: needs libsiconos-numerics-dev (the reference library)" >&2; exit 2; }
@@ -89,16 +107,23 @@ rm -rf "$OUT"
 mkdir -p "$OUT/bin" "$OUT/logs" "$OUT/run" "$OUT/lib"
 BIN=$OUT/bin
 # The programs load libfc3d by its SONAME; a cargo build directory has only libfc3d.so.
-if [ ! -e "$LIB/libfc3d.so.0" ]; then
-  ln -s "$(cd "$LIB" && pwd)/libfc3d.so" "$OUT/lib/libfc3d.so"
-  ln -s "$(cd "$LIB" && pwd)/libfc3d.so" "$OUT/lib/libfc3d.so.0"
-  LIB=$OUT/lib
-fi
+soname_dir() { # soname_dir <dir> <name>: a directory where <dir>'s libfc3d.so is also libfc3d.so.0
+  local dir=$1
+  if [ -e "$dir/libfc3d.so.0" ]; then echo "$dir"; return; fi
+  mkdir -p "$OUT/$2"
+  ln -s "$(cd "$dir" && pwd)/libfc3d.so" "$OUT/$2/libfc3d.so"
+  ln -s "$(cd "$dir" && pwd)/libfc3d.so" "$OUT/$2/libfc3d.so.0"
+  echo "$OUT/$2"
+}
+LIB=$(soname_dir "$LIB" lib)
+FCLIB_LIB=$(soname_dir "$FCLIB_LIB" lib-fclib)
 
 # --- the collections of numerics_tests.cmake, and the single-program friction tests ---
 # A collection line reads "DRIVER fc_test_collection.c.in FORMULATION fc3d COLLECTION <NAME>",
 # followed by "EXTRA_SOURCES <data_collection> <solvers>)"; the rolling collection's reads
-# "DRIVER rfc3d_test_collection.c.in FORMULATION rolling_fc3d COLLECTION <NAME>".
+# "DRIVER rfc3d_test_collection.c.in FORMULATION rolling_fc3d COLLECTION <NAME>", the global ones'
+# "DRIVER gfc3d_test_collection.c.in FORMULATION gfc3d COLLECTION <NAME>" (the FCLIB ones too:
+# they run against fc3d only).
 COLLECTIONS=$OUT/collections.txt
 awk '
   /new_tests_collection\(/ { in_call = 1; text = "" }
@@ -106,7 +131,8 @@ awk '
   in_call && /\)/ {
     in_call = 0
     if ((text ~ /[^r]fc_test_collection\.c\.in/ && text ~ /FORMULATION (fc3d|fc2d)/ ||
-         text ~ /rfc3d_test_collection\.c\.in/ && text ~ /FORMULATION rolling_fc3d/) && text !~ /FCLIB/) {
+         text ~ /rfc3d_test_collection\.c\.in/ && text ~ /FORMULATION rolling_fc3d/) && text !~ /FCLIB/ ||
+        text ~ /gfc3d_test_collection\.c\.in/ && text ~ /FORMULATION gfc3d/) {
       gsub(/[()]/, " ", text)
       n = split(text, w, /[ \t]+/)
       form = ""; name = ""; srcs = ""
@@ -118,6 +144,12 @@ awk '
       print form "_" name, name, srcs
     }
   }' "$NUM/numerics_tests.cmake" > "$COLLECTIONS"
+# The will_fail marks Siconos' global driver sets after building its collections: its own lines
+# (between build_test_collection and run_test_collection), printing left out, compiled into the
+# global case runner.
+MARKS=$OUT/gfc3d_marks.h
+awk '/build_test_collection\(/ { on = 1; next } /run_test_collection\(/ { on = 0 } on && !/printf/' \
+  "$TESTDIR/gfc3d_test_collection.c.in" > "$MARKS"
 PROGRAMS=(fc3d_newFromFortranData fc3d_LmgcDriver_test1 fc3d_LmgcDriver_test2 fc3d_LmgcDriver_test3
           fc3d_LmgcDriver_test4 fc3d_LmgcDriver_test5 fc3d_AlartCurnierFunctions_test)
 
@@ -161,23 +193,34 @@ while read -r label name sources; do
   [ -z "$ONLY" ] || [[ $label =~ $ONLY ]] || continue
   srcs=()
   for s in $sources; do srcs+=("$TESTDIR/$s"); done
-  # The rolling collections run their cases through rollingFrictionContact_test_function.
+  # The rolling collections run their cases through rollingFrictionContact_test_function, the
+  # global ones through globalFrictionContact_test_function with their driver's marks.
   if [[ $label == rolling_* ]]; then
     srcs+=(-DCASE_RUNNER_ROLLING=1 "$NUM/src/FrictionContact/test-utils/rollingFrictionContact_test_function.c")
   fi
-  for which in siconos fc3d; do
+  if [[ $label == gfc3d_* ]]; then
+    srcs+=(-DCASE_RUNNER_GLOBAL=1 "-DCASE_RUNNER_MARKS=\"$MARKS\""
+           "$NUM/src/FrictionContact/test-utils/globalFrictionContact_test_function.c")
+  fi
+  # Debian's Siconos has no FCLIB: the FCLIB programs are built against fc3d only.
+  libraries=(siconos fc3d)
+  fc3d_lib=$LIB
+  if [[ $label == *FCLIB* ]]; then libraries=(fc3d); fc3d_lib=$FCLIB_LIB; fi
+  for which in "${libraries[@]}"; do
     if [ $which = siconos ]; then flags=("${SIC_FLAGS[@]}"); link=(-lsiconos_numerics)
-    else flags=("${FC3D_FLAGS[@]}"); link=(-L"$LIB" -Wl,-rpath,"$LIB" -lfc3d); fi
+    else flags=("${FC3D_FLAGS[@]}"); link=(-L"$fc3d_lib" -Wl,-rpath,"$fc3d_lib" -lfc3d); fi
     builder=build; [ $which = siconos ] && builder=build_siconos
     status=$($builder "$label-$which" "$BIN/$label-$which" -D"$name"=1 "${flags[@]}" \
       "$ROOT/scripts/siconos-suite/case_runner.c" "${srcs[@]}" "${UTILS[@]}" "${link[@]}")
     printf '%s\t%s\t%s\n' "$label" "$which" "$status" >> "$BUILD_REPORT"
   done
-  # The case list comes from Siconos' build (the reference); fc3d's build must list the same.
-  if [ -x "$BIN/$label-siconos" ]; then
-    (cd "$TESTDIR" && "$BIN/$label-siconos" --list) > "$OUT/logs/list-$label.txt"
-    while IFS=$'\t' read -r index id sname file; do
-      printf '%s\t%s\t%s\t%s\t%s\n' "$label" "$index" "$id" "$sname" "$file" >> "$TASKS"
+  # The case list comes from Siconos' build (the reference; fc3d's build must list the same),
+  # from fc3d's for the FCLIB programs.
+  lister=$BIN/$label-${libraries[0]}
+  if [ -x "$lister" ]; then
+    (cd "$TESTDIR" && "$lister" --list) > "$OUT/logs/list-$label.txt"
+    while IFS=$'\t' read -r index id sname file mark; do
+      printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$label" "$index" "$id" "$sname" "$file" "$mark" >> "$TASKS"
     done < "$OUT/logs/list-$label.txt"
   fi
 done < "$COLLECTIONS"
@@ -189,7 +232,7 @@ for prog in "${PROGRAMS[@]}"; do
   printf '%s\t%s\t%s\n' "$prog" siconos "$status" >> "$BUILD_REPORT"
   status=$(build "$prog-fc3d" "$BIN/$prog-fc3d" "${FC3D_FLAGS[@]}" "$src" -L"$LIB" -Wl,-rpath,"$LIB" -lfc3d)
   printf '%s\t%s\t%s\n' "$prog" fc3d "$status" >> "$BUILD_REPORT"
-  printf '%s\t-\t-\t-\t-\n' "$prog" >> "$TASKS"
+  printf '%s\t-\t-\t-\t-\t0\n' "$prog" >> "$TASKS"
 done
 
 # --- run: every case in its own process and its own directory (the tests write checkinput.dat) ---
@@ -222,15 +265,16 @@ export -f run_one
 export OUT BIN TESTDIR TIMEOUT
 
 RESULTS=$OUT/results.tsv
-printf 'collection\tcase\tsolver_id\tsolver\tdata\tsiconos\tsiconos_s\tfc3d\tfc3d_s\n' > "$RESULTS"
+printf 'collection\tcase\tsolver_id\tsolver\tdata\tsiconos\tsiconos_s\tfc3d\tfc3d_s\twill_fail\n' > "$RESULTS"
 total=$(wc -l < "$TASKS")
 echo "== $total cases (collections and programs), $JOBS at a time, ${TIMEOUT}s limit per case and library"
 # shellcheck disable=SC2016
 tr '\t' '\037' < "$TASKS" | xargs -d '\n' -P "$JOBS" -I{} bash -c '
-  IFS=$'"'"'\037'"'"' read -r label index id sname file <<< "$1"
-  read -r s st <<< "$(run_one "$label" "$index" siconos)"
+  IFS=$'"'"'\037'"'"' read -r label index id sname file mark <<< "$1"
+  if [[ $label == *FCLIB* ]]; then s=none; st=0; else
+    read -r s st <<< "$(run_one "$label" "$index" siconos)"; fi
   read -r f ft <<< "$(run_one "$label" "$index" fc3d)"
-  printf "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n" "$label" "$index" "$id" "$sname" "$file" "$s" "$st" "$f" "$ft"
+  printf "%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n" "$label" "$index" "$id" "$sname" "$file" "$s" "$st" "$f" "$ft" "$mark"
 ' _ {} >> "$RESULTS"
 
 # --- report ---

@@ -104,6 +104,7 @@ for p in NESpheres_10_1 Rover1039 Confeti-ex13-Fc3D-SBM; do ./side_by_side "$DAT
 
 echo "== C checks under valgrind (installed libfc3d.so)"
 cc "${CFLAGS[@]}" -I"$SICONOS_INC" $(pkg-config --cflags fc3d) ownership_main.c capi_checks.c nsgs_options.c matrix_hostile.c solver_entries.c workspace_checks.c \
+  global_checks.c \
   $(pkg-config --libs fc3d) -lm -o capi_checks
 valgrind --quiet --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite \
   ./capi_checks "$DATA" "$WORK"

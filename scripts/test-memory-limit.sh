@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# The allocation tests under an address-space limit (issue 13, item 3): every test of the test
-# binaries below runs in its own process under `ulimit -v` (1 GiB unless FC3D_MEMORY_LIMIT_KIB
-# says otherwise), the ignored `under_memory_limit_*` tests included (endless valid values from
-# streams and pipes, which must end in Fc3dError::OutOfMemory / FC3D_ERR_OUT_OF_MEMORY). A test
-# process killed by a signal (SIGABRT from a failed infallible allocation, SIGKILL, SIGSEGV) or
-# failing makes the script fail, naming it.
+# The allocation tests under an address-space limit (issue 13, item 3; issue 29, item 6): every
+# test of the test binaries below runs in its own process under `ulimit -v` (1 GiB unless
+# FC3D_MEMORY_LIMIT_KIB says otherwise), the ignored `under_memory_limit_*` tests included
+# (endless valid values from streams and pipes, which must end in Fc3dError::OutOfMemory /
+# FC3D_ERR_OUT_OF_MEMORY). The tests of capi/tests/huge_problem.rs hold a host's arrays for 10^8
+# contacts (8 GiB of address space, never touched) and lower the limit themselves to what they
+# hold plus a headroom for fc3d: they run under 12 GiB (FC3D_HOST_MEMORY_LIMIT_KIB), with one
+# malloc arena (glibc's per-thread arenas reserve 64 MiB of address space each, which would
+# serve allocations past the limit they set). A test process killed by a signal (SIGABRT from a
+# failed infallible allocation, SIGKILL, SIGSEGV) or failing makes the script fail, naming it.
 #
 #   bash scripts/test-memory-limit.sh            # from the repository root
 #
@@ -13,20 +17,26 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 LIMIT_KIB=${FC3D_MEMORY_LIMIT_KIB:-1048576}
+HOST_LIMIT_KIB=${FC3D_HOST_MEMORY_LIMIT_KIB:-12582912}
 # The FCLIB reader's case needs libhdf5 (as `cargo test --features fc3d-core/fclib` does).
 CORE_FEATURES=""
 if pkg-config --exists hdf5 2>/dev/null; then
     CORE_FEATURES="--features fclib"
 fi
-# Test binaries: package, test target, cargo options.
+# Test binaries: limit (KiB), malloc tunables, package, test target, cargo options.
 TARGETS=(
-    "fc3d-core reader_limits $CORE_FEATURES"
-    "fc3d file_limits"
+    "$LIMIT_KIB - fc3d-core reader_limits $CORE_FEATURES"
+    "$LIMIT_KIB - fc3d file_limits"
+    "$HOST_LIMIT_KIB glibc.malloc.arena_max=1 fc3d huge_problem"
 )
 
 binaries=()
+limits=()
+tunables=()
 for target in "${TARGETS[@]}"; do
-    read -r package test options <<<"$target"
+    read -r limit tunable package test options <<<"$target"
+    limits+=("$limit")
+    tunables+=("$tunable")
     echo "== building $package --test $test $options"
     # shellcheck disable=SC2086
     exe=$(cargo test -p "$package" --test "$test" $options --no-run --message-format=json 2>/dev/null |
@@ -51,14 +61,18 @@ done
 
 failed=0
 ran=0
-for exe in "${binaries[@]}"; do
+for k in "${!binaries[@]}"; do
+    exe=${binaries[$k]}
+    limit=${limits[$k]}
+    tunable=${tunables[$k]}
+    [ "$tunable" != "-" ] || tunable=""
     tests=$("$exe" --list --include-ignored 2>/dev/null | sed -n 's/: test$//p')
     for name in $tests; do
         log=$(mktemp)
         set +e
         (
-            ulimit -v "$LIMIT_KIB"
-            exec "$exe" --exact "$name" --include-ignored --test-threads=1 --nocapture
+            ulimit -v "$limit"
+            GLIBC_TUNABLES=$tunable exec "$exe" --exact "$name" --include-ignored --test-threads=1 --nocapture
         ) >"$log" 2>&1
         rc=$?
         set -e
@@ -83,5 +97,5 @@ for exe in "${binaries[@]}"; do
     done
 done
 
-echo "== $ran tests under ulimit -v $LIMIT_KIB KiB: $failed failed"
+echo "== $ran tests under ulimit -v ($LIMIT_KIB KiB, $HOST_LIMIT_KIB KiB for huge_problem): $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,5 +1,6 @@
 /* Prints size and field offsets of every struct hosts fill. Compiled once against fc3d's
- * compat headers and once against Siconos 4.4's real headers; the two outputs must be equal. */
+ * compat headers and once against Siconos 4.4's real headers; the two outputs must be equal
+ * (local, rolling and global problem structs included). */
 #include <stddef.h>
 #include <stdio.h>
 
@@ -8,6 +9,9 @@
 #include "NumericsSparseMatrix.h"
 #include "SparseBlockMatrix.h"
 #include "FrictionContactProblem.h"
+#include "RollingFrictionContactProblem.h"
+#include "GlobalFrictionContactProblem.h"
+#include "GlobalRollingFrictionContactProblem.h"
 #include "SolverOptions.h"
 #include "Friction_cst.h"
 
@@ -18,6 +22,20 @@ int main(void) {
   S(FrictionContactProblem);
   F(FrictionContactProblem, dimension); F(FrictionContactProblem, numberOfContacts);
   F(FrictionContactProblem, M); F(FrictionContactProblem, q); F(FrictionContactProblem, mu);
+  S(RollingFrictionContactProblem);
+  F(RollingFrictionContactProblem, dimension); F(RollingFrictionContactProblem, numberOfContacts);
+  F(RollingFrictionContactProblem, M); F(RollingFrictionContactProblem, q);
+  F(RollingFrictionContactProblem, mu); F(RollingFrictionContactProblem, mu_r);
+  S(GlobalFrictionContactProblem);
+  F(GlobalFrictionContactProblem, dimension); F(GlobalFrictionContactProblem, numberOfContacts);
+  F(GlobalFrictionContactProblem, M); F(GlobalFrictionContactProblem, H); F(GlobalFrictionContactProblem, q);
+  F(GlobalFrictionContactProblem, norm_q); F(GlobalFrictionContactProblem, b);
+  F(GlobalFrictionContactProblem, norm_b); F(GlobalFrictionContactProblem, mu); F(GlobalFrictionContactProblem, env);
+  S(GlobalRollingFrictionContactProblem);
+  F(GlobalRollingFrictionContactProblem, dimension); F(GlobalRollingFrictionContactProblem, numberOfContacts);
+  F(GlobalRollingFrictionContactProblem, M); F(GlobalRollingFrictionContactProblem, H);
+  F(GlobalRollingFrictionContactProblem, q); F(GlobalRollingFrictionContactProblem, b);
+  F(GlobalRollingFrictionContactProblem, mu); F(GlobalRollingFrictionContactProblem, mu_r);
   S(NumericsMatrix);
   F(NumericsMatrix, storageType); F(NumericsMatrix, size0); F(NumericsMatrix, size1);
   F(NumericsMatrix, matrix0); F(NumericsMatrix, matrix1); F(NumericsMatrix, matrix2);
@@ -73,6 +91,15 @@ int main(void) {
                SICONOS_FRICTION_3D_ONECONTACT_ProjectionOnCylinderWithLocalIteration,
                SICONOS_FRICTION_3D_ONECONTACT_NSN_GP_HYBRID, SICONOS_FRICTION_3D_VI_FPP_Cylinder,
                SICONOS_FRICTION_3D_CONVEXQP_PG_CYLINDER,
+               SICONOS_GLOBAL_FRICTION_3D_NSGS_WR, SICONOS_GLOBAL_FRICTION_3D_NSGSV_WR,
+               SICONOS_GLOBAL_FRICTION_3D_PROX_WR, SICONOS_GLOBAL_FRICTION_3D_DSFP_WR,
+               SICONOS_GLOBAL_FRICTION_3D_TFP_WR, SICONOS_GLOBAL_FRICTION_3D_NSGS,
+               SICONOS_GLOBAL_FRICTION_3D_NSN_AC_WR, SICONOS_GLOBAL_FRICTION_3D_NSN_AC,
+               SICONOS_GLOBAL_FRICTION_3D_GAMS_PATH, SICONOS_GLOBAL_FRICTION_3D_GAMS_PATHVI,
+               SICONOS_GLOBAL_FRICTION_3D_VI_FPP, SICONOS_GLOBAL_FRICTION_3D_VI_EG,
+               SICONOS_GLOBAL_FRICTION_3D_ACLMFP, SICONOS_GLOBAL_FRICTION_3D_ADMM,
+               SICONOS_GLOBAL_FRICTION_3D_ADMM_WR, SICONOS_GLOBAL_FRICTION_3D_IPM,
+               SICONOS_GLOBAL_ROLLING_FRICTION_3D_NSGS_WR,
                SICONOS_FRICTION_3D_IPARAM_INTERNAL_ERROR_STRATEGY, SICONOS_FRICTION_3D_IPARAM_RESCALING,
                SICONOS_FRICTION_3D_IPARAM_ERROR_EVALUATION_FREQUENCY, SICONOS_FRICTION_3D_NSGS_RELAXATION,
                SICONOS_FRICTION_3D_NSGS_SHUFFLE, SICONOS_FRICTION_3D_NSGS_SHUFFLE_SEED,

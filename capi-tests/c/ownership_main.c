@@ -15,6 +15,7 @@ int capi_check_newton_and_prox(void);
 int capi_check_hostile_matrices(void);
 int capi_check_problem_copy(const char* data_dir);
 int capi_check_workspace(void);
+int capi_check_global(const char* data_dir, const char* scratch_dir);
 
 int main(int argc, char** argv) {
   const char* data = argc > 1 ? argv[1] : "../shared/data/siconos";
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   failed += capi_check_hostile_matrices() != 0;
   failed += capi_check_problem_copy(data) != 0;
   failed += capi_check_workspace() != 0;
-  printf("%d passed, %d failed\n", 13 - failed, failed);
+  failed += capi_check_global(data, scratch) != 0;
+  printf("%d passed, %d failed\n", 14 - failed, failed);
   return failed != 0;
 }

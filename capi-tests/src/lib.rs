@@ -138,9 +138,52 @@ extern "C" {
     pub fn capi_check_hostile_matrices() -> c_int;
     pub fn capi_check_solver_entries(data_dir: *const c_char) -> c_int;
     pub fn capi_check_problem_copy(data_dir: *const c_char) -> c_int;
+    pub fn capi_check_global(data_dir: *const c_char, scratch_dir: *const c_char) -> c_int;
 }
 
 /// Reference to the shared Siconos data set beside the repository.
 pub fn data_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data/siconos")
+}
+
+/// `libfc3d.so` of the profile the calling test runs in, (re)built: `cargo test` builds fc3d as
+/// an rlib only. For C programs that open it with dlopen beside the installed Siconos.
+pub fn shared_library() -> std::path::PathBuf {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let exe = std::env::current_exe().unwrap();
+    let profile_dir = exe.parent().unwrap().parent().unwrap().to_path_buf();
+    let mut build = std::process::Command::new(env!("CARGO"));
+    build
+        .args(["build", "-p", "fc3d", "--lib"])
+        .current_dir(&root);
+    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
+    let profile = profile_dir.file_name().unwrap().to_str().unwrap();
+    if profile != "debug" {
+        build.args(["--profile", profile]);
+    }
+    assert!(build.status().unwrap().success(), "cargo build -p fc3d");
+    profile_dir.join("libfc3d.so")
+}
+
+/// Compiles the C program `capi-tests/c/<source>` against fc3d's compat headers (the struct
+/// layouts, identical to Siconos') into `program`, linked with -ldl -lm only.
+pub fn compile_dlopen_program(source: &str, program: &std::path::Path) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let out = std::process::Command::new("cc")
+        .args(["-O1", "-Wall", "-Wextra", "-Werror"])
+        .arg(format!(
+            "-I{}",
+            root.join("capi/include/siconos-compat").display()
+        ))
+        .arg(format!("-I{}", root.join("capi/include").display()))
+        .arg(root.join("capi-tests/c").join(source))
+        .args(["-ldl", "-lm", "-o"])
+        .arg(program)
+        .output()
+        .expect("run cc");
+    assert!(
+        out.status.success(),
+        "cc: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }

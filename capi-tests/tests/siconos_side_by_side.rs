@@ -9,12 +9,8 @@
 //! every output slot left alone, on the same random and boundary inputs. Skipped when Siconos is
 //! not installed (the test suite installs it).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 #[test]
 fn small_functions_agree_with_siconos() {
@@ -22,41 +18,11 @@ fn small_functions_agree_with_siconos() {
         eprintln!("Siconos not installed: skipped");
         return;
     }
-    // `cargo test` builds fc3d as an rlib: build the shared library of this profile.
-    let exe = std::env::current_exe().unwrap();
-    let profile_dir = exe.parent().unwrap().parent().unwrap();
-    let mut build = Command::new(env!("CARGO"));
-    build
-        .args(["build", "-p", "fc3d", "--lib"])
-        .current_dir(root());
-    // target/<profile>: "debug" is the dev profile, any other directory names its profile.
-    let profile = profile_dir.file_name().unwrap().to_str().unwrap();
-    if profile != "debug" {
-        build.args(["--profile", profile]);
-    }
-    assert!(build.status().unwrap().success(), "cargo build -p fc3d");
-    let lib = profile_dir.join("libfc3d.so");
-
+    let lib = fc3d_capi_tests::shared_library();
     let dir = std::env::temp_dir().join(format!("fc3d-side-by-side-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let program = dir.join("siconos_side_by_side");
-    let out = Command::new("cc")
-        .args(["-O1", "-Wall", "-Wextra", "-Werror"])
-        .arg(format!(
-            "-I{}",
-            root().join("capi/include/siconos-compat").display()
-        ))
-        .arg(format!("-I{}", root().join("capi/include").display()))
-        .arg(root().join("capi-tests/c/siconos_side_by_side.c"))
-        .args(["-ldl", "-lm", "-o"])
-        .arg(&program)
-        .output()
-        .expect("run cc");
-    assert!(
-        out.status.success(),
-        "cc: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    fc3d_capi_tests::compile_dlopen_program("siconos_side_by_side.c", &program);
     let run = Command::new(&program)
         .arg(&lib)
         .arg("libsiconos_numerics.so")

@@ -316,6 +316,46 @@ typedef struct SolverOptions {
   void *solverData;
 } SolverOptions;
 
+// Siconos 4.4's global problem: `M v = q + H r`, `u = H^T v + b`, Coulomb's law between u and
+// r per contact (`dimension` 3; 2 for a problem Siconos 4.5 writes). `norm_q`, `norm_b` and
+// `env` are Siconos' solver scratch: fc3d neither reads nor writes them.
+typedef struct GlobalFrictionContactProblem {
+  int dimension;
+  int numberOfContacts;
+  struct NumericsMatrix *M;
+  struct NumericsMatrix *H;
+  double *q;
+  double norm_q;
+  double *b;
+  double norm_b;
+  double *mu;
+  void *env;
+} GlobalFrictionContactProblem;
+
+// Siconos 4.4's global rolling problem: a global problem of contacts of dimension 5 with a
+// rolling coefficient `mu_r` per contact.
+typedef struct GlobalRollingFrictionContactProblem {
+  int dimension;
+  int numberOfContacts;
+  struct NumericsMatrix *M;
+  struct NumericsMatrix *H;
+  double *q;
+  double *b;
+  double *mu;
+  double *mu_r;
+} GlobalRollingFrictionContactProblem;
+
+// Siconos' rolling-friction problem: FC(W, q, mu) with a rolling coefficient `mu_r` per
+// contact, `dimension` 5 (`rolling_fc3d`) or 3 (`rolling_fc2d`).
+typedef struct RollingFrictionContactProblem {
+  int dimension;
+  int numberOfContacts;
+  struct NumericsMatrix *M;
+  double *q;
+  double *mu;
+  double *mu_r;
+} RollingFrictionContactProblem;
+
 // Siconos' coordinate block matrix (blocks at 1-based `row[k]`, `column[k]` as built by
 // `SBCM_new_3x3`).
 typedef struct SparseBlockCoordinateMatrix {
@@ -340,17 +380,6 @@ typedef struct Fc3dResult {
   // Wall-clock time of the solve, seconds.
   double seconds;
 } Fc3dResult;
-
-// Siconos' rolling-friction problem: FC(W, q, mu) with a rolling coefficient `mu_r` per
-// contact, `dimension` 5 (`rolling_fc3d`) or 3 (`rolling_fc2d`).
-typedef struct RollingFrictionContactProblem {
-  int dimension;
-  int numberOfContacts;
-  struct NumericsMatrix *M;
-  double *q;
-  double *mu;
-  double *mu_r;
-} RollingFrictionContactProblem;
 
 #ifdef __cplusplus
 extern "C" {
@@ -486,9 +515,12 @@ void fc3d_clear_last_error(void);
 // starts from `reaction`; CPG, Lemke and enumeration start from zero, as Siconos' do. W may be
 // dense, sparse-block (2x2 blocks) or sparse. Returns 0 when the natural-map error of the
 // returned `(reaction, velocity)` is at most `dparam[0]`, 1 when the solver stopped above it
-// (Lemke: a secondary ray or the pivot limit; enumeration: no feasible case), 2 when the time
-// budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative `FC3D_ERR_*` code when the input
-// is rejected (nothing written). On return >= 0, `iparam[1]` holds the iterations (sweeps, CPG
+// (Lemke: a secondary ray or the pivot limit; enumeration: no feasible case, or `iparam[0]`
+// cases tried), 2 when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative
+// `FC3D_ERR_*` code when the input is rejected (nothing written). Enumeration tries the cases
+// in Siconos' order, at most `iparam[0]` of them (0, Siconos' default: every case); with 0 and
+// no time budget a problem of more than 10 contacts (2^33 cases and more) is refused with
+// `FC3D_ERR_INVALID_OPTION`. On return >= 0, `iparam[1]` holds the iterations (sweeps, CPG
 // iterations, pivots, cases tried) and `dparam[1]` the error measured on the returned pair.
 int fc2d_driver(struct FrictionContactProblem *problem,
                 double *reaction,
@@ -596,6 +628,444 @@ int frictionContact_fclib_write(struct FrictionContactProblem *problem,
                                 char *mathInfo,
                                 const char *path,
                                 int ndof);
+
+// An empty global problem (dimension 0, no data). Release with
+// `globalFrictionContact_free`.
+struct GlobalFrictionContactProblem *globalFrictionContactProblem_new(void);
+
+// Prints a summary of the problem (sizes, storages of M and H, mu, q, b) to stdout.
+void globalFrictionContact_display(struct GlobalFrictionContactProblem *problem);
+
+// Writes `problem` to an open stream in Siconos' global .dat format (dimension, contacts, M,
+// H, q, b, mu), M and H in the storages they have, values in their shortest exactly
+// round-tripping form. Returns 0 on success, a negative code otherwise (nothing written).
+int globalFrictionContact_printInFile(struct GlobalFrictionContactProblem *problem, FILE *file);
+
+// Writes `problem` to the file `filename` (created or truncated), as
+// `globalFrictionContact_printInFile`. Returns 0 on success.
+int globalFrictionContact_printInFileName(struct GlobalFrictionContactProblem *problem,
+                                          const char *filename);
+
+// Reads a global problem in Siconos' .dat format from an open stream, up to its last friction
+// coefficient (a stream that can seek is left at the next token, or put back where it was on
+// failure). M and H keep the storage of the file (a sparse-block one with its block sizes).
+// Dimensions 3 and 2 are read. NULL on failure (see `fc3d_last_error_message`; Siconos returns
+// NULL on a read failure too, and reads what fc3d refuses: a non-square M, an H of the wrong
+// size, negative or non-finite values).
+struct GlobalFrictionContactProblem *globalFrictionContact_newFromFile(FILE *file);
+
+// Reads a global problem from a .dat file, or from an FCLIB file (HDF5 signature, or named
+// `.hdf5` / `.h5`) as `globalFrictionContact_fclib_read` does. NULL on failure.
+struct GlobalFrictionContactProblem *globalFrictionContact_new_from_filename(const char *filename);
+
+// Releases `M` and `H` (storage and struct), `q`, `b`, `mu` and the problem struct; `env` is
+// left alone (Siconos asserts it is NULL). NULL is a no-op.
+void globalFrictionContact_free(struct GlobalFrictionContactProblem *problem);
+
+// A deep copy: M and H in the storages they have (a sparse-block one with its block sizes;
+// a sparse one as a triplet), q, b and mu copied, `norm_q`, `norm_b` copied, `env` NULL. The
+// source is checked first as the drivers check it; NULL and the reason in
+// `fc3d_last_error_message` when it is refused. Release with `globalFrictionContact_free`.
+struct GlobalFrictionContactProblem *globalFrictionContact_copy(struct GlobalFrictionContactProblem *problem);
+
+// An empty global rolling problem (dimension 0, no data). Release with
+// `globalRollingFrictionContactProblem_free`.
+struct GlobalRollingFrictionContactProblem *globalRollingFrictionContactProblem_new(void);
+
+// A global rolling problem that takes `M`, `q`, `mu` and `mu_r` as they are (no copy: they
+// then belong to the problem); `H` and `b` are NULL (Siconos leaves them uninitialised): set
+// them before solving.
+struct GlobalRollingFrictionContactProblem *globalRollingFrictionContactProblem_new_with_data(int dim,
+                                                                                              int nc,
+                                                                                              struct NumericsMatrix *M,
+                                                                                              double *q,
+                                                                                              double *mu,
+                                                                                              double *mu_r);
+
+// Releases `M` and `H` (storage and struct), `q`, `b`, `mu`, `mu_r` and the struct. NULL is a
+// no-op.
+void globalRollingFrictionContactProblem_free(struct GlobalRollingFrictionContactProblem *problem);
+
+// Prints a summary of the problem to stdout.
+void globalRollingFrictionContact_display(struct GlobalRollingFrictionContactProblem *problem);
+
+// Writes `problem` to an open stream in the global rolling .dat format (the global format,
+// then mu_r). Returns 0 on success.
+int globalRollingFrictionContact_printInFile(struct GlobalRollingFrictionContactProblem *problem,
+                                             FILE *file);
+
+// Writes `problem` to the file `filename` (created or truncated). Returns 0 on success.
+int globalRollingFrictionContact_printInFilename(struct GlobalRollingFrictionContactProblem *problem,
+                                                 char *filename);
+
+// Reads a global rolling problem (dimension 5) from an open stream. NULL on failure.
+struct GlobalRollingFrictionContactProblem *globalRollingFrictionContact_newFromFile(FILE *file);
+
+// Reads a global rolling problem from a .dat file. NULL on failure.
+struct GlobalRollingFrictionContactProblem *globalRollingFrictionContact_new_from_filename(const char *filename);
+
+// Solves the global problem (`problem->dimension` = 3) with the solver `options->solverId`
+// from the initial reaction in `reaction`: the `_WR` ids 600 (NSGS), 602 (PROX), 603 (DSFP),
+// 604 (TFP), 606 (NSN-AC) and 614 (ADMM) reduce it to the local problem
+// FC(H^T M^-1 H, H^T M^-1 q + b, mu) (M factored once, block by block when it is block
+// diagonal, never inverted densely nor modified) and run their local solver with the options
+// read as that solver's (600 as 500, ...), tightening its tolerance until the global error
+// meets `dparam[0]`; 605 (projected Jacobi), 607 (Newton on (v, u, r)), 610 / 611 (VI on
+// (v, r)), 612 (ACLMFP), 613 (ADMM) and 615 (IPM) solve it directly (docs/global.md: their
+// slots); 601 (Siconos exits) and 608 / 609 (GAMS) are refused with
+// `FC3D_ERR_UNSUPPORTED_SOLVER` and the reason (never an exit). Returns 0 when the global error of the returned `(r, u, v)` is at most `dparam[0]`, 1
+// when the solver stopped above it, 2 when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran
+// out, 3 (`FC3D_RELAXED_NOT_COULOMB`) when a solver of the convex relaxation (613 or 615 with
+// UPDATE_S = NO) solved it but its result is not a Coulomb solution, a negative code when the input is rejected (nothing written). On return >= 0:
+// `reaction`, `velocity` = `H^T v + b` and `globalVelocity` = `M^-1 (q + H r)` hold the result,
+// `iparam[1]` the iterations (of the local solves, all rounds) and `dparam[1]` the global error
+// (`gfc3d_compute_error` with `norm_q = ||q||`) of the returned triple on the host's M and H. A
+// problem without contacts gets `v = M^-1 q`. `options->callback` is not called.
+int gfc3d_driver(struct GlobalFrictionContactProblem *problem,
+                 double *reaction,
+                 double *velocity,
+                 double *globalVelocity,
+                 struct SolverOptions *options);
+
+// Solves the global rolling problem (`problem->dimension` = 5) with the solver 5000: the
+// reduction to the local rolling problem (as `gfc3d_driver`'s `_WR` ids) solved by the rolling
+// NSGS with the options read as those of 3000 and its internal solver. Any other id is refused
+// with `FC3D_ERR_UNSUPPORTED_SOLVER`. Returns and writes as `gfc3d_driver`; `dparam[1]` is the
+// global error with the rolling law.
+int g_rolling_fc3d_driver(struct GlobalRollingFrictionContactProblem *problem,
+                          double *reaction,
+                          double *velocity,
+                          double *globalVelocity,
+                          struct SolverOptions *options);
+
+// LMGC90's global entry: M (`n x n`, `nzM` entries) and H (`n x 3 nc`, `nzH` entries) in
+// 1-based coordinates (row, column, value), q (n), b (3 nc) and mu (nc); the solver
+// `solver_id` with Siconos' defaults, over which every non-zero `iparam[i]` (`i < isize`) and
+// `dparam[i]` (`i < dsize`) is put (at most 20 of each), as Siconos does. Solves as
+// `gfc3d_driver` into `reaction`, `velocity` and `globalVelocity` (the initial reaction is
+// `reaction`); then `iparam[1]` holds the iterations (when `isize > 1`), `dparam[0]` the
+// tolerance used (as Siconos) and `dparam[1]` the global error of the result (when
+// `dsize > 1`). `verbose`, `outputFile` and `freq_output` are accepted and ignored (no file
+// output). The host's arrays are read, never modified but for the outputs. Returns as
+// `gfc3d_driver`.
+int gfc3d_LmgcDriver(double *reaction,
+                     double *velocity,
+                     double *globalVelocity,
+                     double *q,
+                     double *b,
+                     double *mu,
+                     double *Mdata,
+                     unsigned int nzM,
+                     unsigned int *rowM,
+                     unsigned int *colM,
+                     double *Hdata,
+                     unsigned int nzH,
+                     unsigned int *rowH,
+                     unsigned int *colH,
+                     unsigned int n,
+                     unsigned int nc,
+                     int solver_id,
+                     int isize,
+                     int *iparam,
+                     int dsize,
+                     double *dparam,
+                     int verbose,
+                     int outputFile,
+                     int freq_output);
+
+// Siconos' NSGS on the reduced problem (`SICONOS_GLOBAL_FRICTION_3D_NSGS_WR`, 600).
+// As `gfc3d_driver` for options of id 600 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_nsgs_wr(struct GlobalFrictionContactProblem *problem,
+                   double *reaction,
+                   double *velocity,
+                   double *globalVelocity,
+                   int *info,
+                   struct SolverOptions *options);
+
+// Siconos' ADMM on the reduced problem (`SICONOS_GLOBAL_FRICTION_3D_ADMM_WR`, 614).
+// As `gfc3d_driver` for options of id 614 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_admm_wr(struct GlobalFrictionContactProblem *problem,
+                   double *reaction,
+                   double *velocity,
+                   double *globalVelocity,
+                   int *info,
+                   struct SolverOptions *options);
+
+// Siconos' Alart-Curnier Newton on the reduced problem (`..._NSN_AC_WR`, 606).
+// As `gfc3d_driver` for options of id 606 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_nonsmooth_Newton_AlartCurnier_wr(struct GlobalFrictionContactProblem *problem,
+                                            double *reaction,
+                                            double *velocity,
+                                            double *globalVelocity,
+                                            int *info,
+                                            struct SolverOptions *options);
+
+// Siconos' proximal point on the reduced problem (`..._PROX_WR`, 602).
+// As `gfc3d_driver` for options of id 602 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_proximal_wr(struct GlobalFrictionContactProblem *problem,
+                       double *reaction,
+                       double *velocity,
+                       double *globalVelocity,
+                       int *info,
+                       struct SolverOptions *options);
+
+// Siconos' De Saxcé fixed point on the reduced problem (`..._DSFP_WR`, 603).
+// As `gfc3d_driver` for options of id 603 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_DeSaxceFixedPoint_wr(struct GlobalFrictionContactProblem *problem,
+                                double *reaction,
+                                double *velocity,
+                                double *globalVelocity,
+                                int *info,
+                                struct SolverOptions *options);
+
+// Siconos' Tresca fixed point on the reduced problem (`..._TFP_WR`, 604).
+// As `gfc3d_driver` for options of id 604 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_TrescaFixedPoint_wr(struct GlobalFrictionContactProblem *problem,
+                               double *reaction,
+                               double *velocity,
+                               double *globalVelocity,
+                               int *info,
+                               struct SolverOptions *options);
+
+// Siconos' NSGS on velocities of the reduced problem (`..._NSGSV_WR`, 601): the driver
+// refuses 601 with the reason.
+// As `gfc3d_driver` for options of id 601 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_nsgs_velocity_wr(struct GlobalFrictionContactProblem *problem,
+                            double *reaction,
+                            double *velocity,
+                            double *globalVelocity,
+                            int *info,
+                            struct SolverOptions *options);
+
+// Siconos' projected Jacobi on the global problem (`SICONOS_GLOBAL_FRICTION_3D_NSGS`, 605).
+// As `gfc3d_driver` for options of id 605 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_nsgs(struct GlobalFrictionContactProblem *problem,
+                double *reaction,
+                double *velocity,
+                double *globalVelocity,
+                int *info,
+                struct SolverOptions *options);
+
+// Siconos' ACLM fixed point (`SICONOS_GLOBAL_FRICTION_3D_ACLMFP`, 612).
+// As `gfc3d_driver` for options of id 612 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_ACLMFixedPoint(struct GlobalFrictionContactProblem *problem,
+                          double *reaction,
+                          double *velocity,
+                          double *globalVelocity,
+                          int *info,
+                          struct SolverOptions *options);
+
+// Siconos' Alart-Curnier Newton on the global problem (`..._NSN_AC`, 607).
+// As `gfc3d_driver` for options of id 607 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_nonsmooth_Newton_AlartCurnier(struct GlobalFrictionContactProblem *problem,
+                                         double *reaction,
+                                         double *velocity,
+                                         double *globalVelocity,
+                                         int *info,
+                                         struct SolverOptions *options);
+
+// Siconos' extra-gradient VI on (v, r) (`..._VI_EG`, 611).
+// As `gfc3d_driver` for options of id 611 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_VI_ExtraGradient(struct GlobalFrictionContactProblem *problem,
+                            double *reaction,
+                            double *velocity,
+                            double *globalVelocity,
+                            int *info,
+                            struct SolverOptions *options);
+
+// Siconos' fixed-point projection VI on (v, r) (`..._VI_FPP`, 610).
+// As `gfc3d_driver` for options of id 610 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_VI_FixedPointProjection(struct GlobalFrictionContactProblem *problem,
+                                   double *reaction,
+                                   double *velocity,
+                                   double *globalVelocity,
+                                   int *info,
+                                   struct SolverOptions *options);
+
+// Siconos' ADMM on the global problem (`SICONOS_GLOBAL_FRICTION_3D_ADMM`, 613).
+// As `gfc3d_driver` for options of id 613 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_ADMM(struct GlobalFrictionContactProblem *problem,
+                double *reaction,
+                double *velocity,
+                double *globalVelocity,
+                int *info,
+                struct SolverOptions *options);
+
+// Siconos' interior point method (`SICONOS_GLOBAL_FRICTION_3D_IPM`, 615).
+// As `gfc3d_driver` for options of id 615 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void gfc3d_IPM(struct GlobalFrictionContactProblem *problem,
+               double *reaction,
+               double *velocity,
+               double *globalVelocity,
+               int *info,
+               struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 608: it needs GAMS, a commercial solver fc3d does not ship.
+// Always refused with `FC3D_ERR_UNSUPPORTED_SOLVER` (written to `*info`), nothing else written.
+void gfc3d_AVI_gams_path(struct GlobalFrictionContactProblem *problem,
+                         double *reaction,
+                         double *velocity,
+                         int *info,
+                         struct SolverOptions *options);
+
+// Siconos' GAMS entry for id 609: refused as `gfc3d_AVI_gams_path`.
+void gfc3d_AVI_gams_pathvi(struct GlobalFrictionContactProblem *problem,
+                           double *reaction,
+                           double *velocity,
+                           int *info,
+                           struct SolverOptions *options);
+
+// Siconos' trivial-case test of the global drivers, which always returns -1 (its body is
+// commented out in Siconos 4.4): nothing is read or written.
+int gfc3d_checkTrivialCaseGlobal(int n,
+                                 double *q,
+                                 double *velocity,
+                                 double *reaction,
+                                 double *globalVelocity,
+                                 struct SolverOptions *options);
+
+// As `gfc3d_checkTrivialCaseGlobal`, for the global rolling driver: always -1.
+int grfc3d_checkTrivialCaseGlobal(int n,
+                                  double *q,
+                                  double *velocity,
+                                  double *reaction,
+                                  double *globalVelocity,
+                                  struct SolverOptions *options);
+
+// Siconos' initialisation of its sparse global Alart-Curnier Newton, whose body is empty in
+// Siconos 4.4: does nothing.
+void gfc3d_sparseGlobalAlartCurnierInit(struct SolverOptions *options);
+
+// Siconos' rolling NSGS on the reduced global rolling problem (5000): as
+// `g_rolling_fc3d_driver` for options of id 5000 (another id is refused with
+// `FC3D_ERR_INVALID_OPTION`); the result code is written to `*info`.
+void grfc3d_nsgs_wr(struct GlobalRollingFrictionContactProblem *problem,
+                    double *reaction,
+                    double *velocity,
+                    double *globalVelocity,
+                    int *info,
+                    struct SolverOptions *options);
+
+// Siconos' rule for the tolerance of the internal solver of a global fixed-point method, by
+// `options->iparam[2]`: adaptive (0): `error / dparam[2]`; adaptive per contact (2):
+// `error / (dparam[2] nc)`; given value (1): unchanged. Written to
+// `internalsolver_options->dparam[0]`. An unknown strategy, NULL or too short arrays: nothing
+// written, the reason in `fc3d_last_error_message` (Siconos exits).
+void gfc3d_set_internalsolver_tolerance(struct GlobalFrictionContactProblem *problem,
+                                        struct SolverOptions *options,
+                                        struct SolverOptions *internalsolver_options,
+                                        double error);
+
+// Reads the global problem (`/fclib_global`) of the FCLIB file `path`: M and H as sparse
+// matrices with a triplet form, q (FCLIB's f), b (FCLIB's w), mu. Release with
+// `globalFrictionContact_free`. NULL on failure (see `fc3d_last_error_message`), in particular
+// when libfc3d was built without FCLIB support.
+struct GlobalFrictionContactProblem *globalFrictionContact_fclib_read(const char *path);
+
+// Writes `problem` (dimension 3) to the FCLIB file `path` (created or replaced) as a global
+// problem: `/fclib_global` with M and H as triplets of their stored entries, whatever their
+// storage, f = q, w = b, mu, and the info group holding `title`, `description`, `mathInfo`
+// (each may be NULL: not written). Reading it back with `globalFrictionContact_fclib_read`
+// gives the same problem. Returns 1 on success and 0 on failure, as Siconos (fclib); on
+// failure `path` is left as it was and `fc3d_last_error_code()` says why (`FC3D_ERR_IO` when
+// the file cannot be written or libfc3d was built without FCLIB support). As Siconos, a
+// problem without contacts is not written (0, `FC3D_ERR_INVALID_SIZE`).
+int globalFrictionContact_fclib_write(struct GlobalFrictionContactProblem *problem,
+                                      char *title,
+                                      char *description,
+                                      char *mathInfo,
+                                      const char *path);
+
+// Writes `problem` (dimension 5) to the FCLIB file `path` (created or replaced) as FCLIB's
+// `fclib_write_global_rolling` lays it out: `/fclib_global_rolling` with M and H as triplets,
+// f = q, w = b, mu, mu_r and the info group. Returns 1 on success and 0 on failure, as
+// `globalFrictionContact_fclib_write`.
+int globalRollingFrictionContact_fclib_write(struct GlobalRollingFrictionContactProblem *problem,
+                                             char *title,
+                                             char *description,
+                                             char *mathInfo,
+                                             const char *path);
+
+// Siconos' global error of `(reaction, globalVelocity)`: recomputes `velocity = H^T v + b`
+// (written to `velocity`, as Siconos does), then
+// `error = ||q + H r - M v|| / max(norm_q, ||M v||, ||H r||)
+//        + sqrt(sum_c ||r_c - P_K(r_c - ũ_c)||^2) / max(||u||, ||r||)`
+// (ũ De Saxcé's velocity; a division is skipped when its denominator is at most the machine
+// epsilon) on the problem's own M and H. Returns 0 if `error <= tolerance`, 1 otherwise, a
+// negative code on invalid input (nothing written). `options` and `norm_b` are not read (Siconos
+// uses `options->dWork` as scratch and never reads `norm_b`).
+int gfc3d_compute_error(struct GlobalFrictionContactProblem *problem,
+                        double *reaction,
+                        double *velocity,
+                        double *globalVelocity,
+                        double tolerance,
+                        struct SolverOptions *options,
+                        double norm_q,
+                        double norm_b,
+                        double *error);
+
+// `gfc3d_compute_error` for the convex relaxation of the problem: the law's residual is
+// `r_c - P_K(r_c - u_c)` (no De Saxcé term). `velocity` is recomputed and written as well
+// (Siconos 4.4's version reads it without recomputing it, a defect fixed upstream later).
+int gfc3d_compute_error_convex(struct GlobalFrictionContactProblem *problem,
+                               double *reaction,
+                               double *velocity,
+                               double *globalVelocity,
+                               double tolerance,
+                               struct SolverOptions *options,
+                               double norm_q,
+                               double norm_b,
+                               double *error);
+
+// The global velocity of a reaction: `globalVelocity = M^-1 (q + H reaction)`, M factored in
+// fc3d's memory (the host's M is left as it is; Siconos factors a dense M in place). Returns 0
+// on success, a negative code otherwise (a singular M, invalid input: nothing written).
+int globalFrictionContact_computeGlobalVelocity(struct GlobalFrictionContactProblem *problem,
+                                                double *reaction,
+                                                double *globalVelocity);
+
+// The global velocity of a reaction for a global rolling problem, as
+// `globalFrictionContact_computeGlobalVelocity`.
+int globalRollingFrictionContact_computeGlobalVelocity(struct GlobalRollingFrictionContactProblem *problem,
+                                                       double *reaction,
+                                                       double *globalVelocity);
+
+// The local problem of a global one: W = H^T M^-1 H (M factored block by block when it is
+// block diagonal, never inverted densely; for dimension 3 W is sparse-block with every block
+// that holds a non-zero entry and every diagonal block, for dimension 2 a sparse matrix),
+// `q = H^T M^-1 q + b`, mu copied. The host's M is left as it is (Siconos inverts a
+// sparse-block M in place). Release with `frictionContactProblem_free`. NULL on failure.
+struct FrictionContactProblem *globalFrictionContact_reformulation_FrictionContact(struct GlobalFrictionContactProblem *problem);
+
+// The local rolling problem of a global rolling one (W = H^T M^-1 H as a sparse matrix,
+// `q = H^T M^-1 q + b`, mu and mu_r copied), as
+// `globalFrictionContact_reformulation_FrictionContact`. Release with
+// `rollingFrictionContactProblem_free`. NULL on failure.
+struct RollingFrictionContactProblem *globalRollingFrictionContact_reformulation_RollingFrictionContact(struct GlobalRollingFrictionContactProblem *problem);
+
+// A global problem whose reduction is the local problem FC(W, q, mu) exactly: with `m = 3 nc`
+// unknowns per copy, `M = [[I, 2I - W], [0, I]]` (`2m x 2m`, unit upper block triangular, so
+// invertible whatever W), `H = [I; I]`, q = 0 and b = the local q, so that
+// `H^T M^-1 H = W` and `H^T M^-1 q + b = q`: a solution `(r, u)` of either form is one of the
+// other (`v = (W r - r, r)`). M and H are sparse (triplet); the local problem is checked first
+// as the solvers check it and left as it is. Siconos 4.4 returns `M = W, H = I, b = 0`, whose
+// reduction is `W^-1`, not W (and prints H). Release with `globalFrictionContact_free`. NULL on
+// failure.
+struct GlobalFrictionContactProblem *fc3d_reformulation_global_problem(struct FrictionContactProblem *problem);
 
 // LMGC90 interface: solves in place with `solver_id` (Siconos defaults otherwise), W given as
 // `nb` column-major 3x3 blocks `W[9k..9k+9]` at 1-based block coordinates `(row[k], column[k])`.

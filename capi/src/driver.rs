@@ -12,6 +12,7 @@ use super::params::{
 use super::problem::{planar_problem_from_c, problem_view_from_c};
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_OPTION};
+use fc3d_core::error::{try_copy, try_vec};
 use fc3d_core::measure::relative_natural_map_error;
 use fc3d_core::problem::FrictionProblem;
 use fc3d_core::{
@@ -228,11 +229,14 @@ pub(crate) unsafe fn solve_into_host<const D: usize>(
     c_slice(velocity as *const c_double, n, "velocity")?;
 
     // Work on copies: the host's arrays are written only on success.
-    let mut r = r_in.to_vec();
-    let mut u = vec![0.0; n];
+    let mut r = try_copy(r_in, "the reaction")?;
+    let mut u = try_vec(n, 0.0, "the velocity")?;
     let callback = (*options).callback;
-    let mut scratch_r = Vec::new();
-    let mut scratch_u = Vec::new();
+    // What the callback is handed, allocated before the solve when there is one.
+    let with_callback = !callback.is_null() && (*callback).collectStatsIteration.is_some();
+    let scratch_len = if with_callback { n } else { 0 };
+    let mut scratch_r = try_vec(scratch_len, 0.0, "the reaction handed to the callback")?;
+    let mut scratch_u = try_vec(scratch_len, 0.0, "the velocity handed to the callback")?;
     let seal = OptionsSeal::of(&*options);
     let mut tampered: Option<String> = None;
     let mut observer = |ev: &IterationEvent<'_>| {
@@ -240,10 +244,9 @@ pub(crate) unsafe fn solve_into_host<const D: usize>(
             return;
         }
         let cb = &*callback;
-        if let Some(f) = cb.collectStatsIteration {
-            scratch_r.clear();
-            scratch_r.extend_from_slice(ev.reaction);
-            scratch_u.resize(n, 0.0);
+        // (A host that sets the function during the solve is not called: nothing was allocated.)
+        if let (Some(f), true) = (cb.collectStatsIteration, scratch_r.len() == n) {
+            scratch_r.copy_from_slice(ev.reaction);
             p.velocity(ev.reaction, &mut scratch_u);
             f(
                 cb.env,
@@ -413,6 +416,22 @@ pub(crate) unsafe fn solver_entry(
     info: *mut c_int,
     options: *mut SolverOptions,
 ) -> c_int {
+    entry_with_info(name, accepted, info, options, || {
+        driver_impl(problem, reaction, velocity, options, false)
+    })
+}
+
+/// The frame of the solver entries of every problem kind: `run` (a driver's work) for options
+/// whose `solverId` is one of `accepted` (another id is refused with `FC3D_ERR_INVALID_OPTION`),
+/// inside `ffi_guard`; the result code, also a negative one, written to `*info` (NULL refused)
+/// and returned.
+pub(crate) unsafe fn entry_with_info(
+    name: &str,
+    accepted: &[c_int],
+    info: *mut c_int,
+    options: *const SolverOptions,
+    run: impl FnOnce() -> CResult<c_int>,
+) -> c_int {
     let code = ffi_guard(
         name,
         |c| c,
@@ -434,7 +453,7 @@ pub(crate) unsafe fn solver_entry(
                     ),
                 ));
             }
-            driver_impl(problem, reaction, velocity, options, false)
+            run()
         },
     );
     if !info.is_null() {
@@ -474,7 +493,7 @@ pub unsafe extern "C" fn fc3d_compute_error(
             let r = c_slice(z as *const c_double, n, "z")?;
             c_slice(w as *const c_double, n, "w")?;
             fc3d_core::error::check_finite("z", r)?;
-            let mut u = vec![0.0; n];
+            let mut u = try_vec(n, 0.0, "w")?;
             p.velocity(r, &mut u);
             let e = relative_natural_map_error(r, &u, p.mu(), norm.abs());
             // A non-finite value of W shows in the error (NaN * 0 is NaN): refused only then,

@@ -19,9 +19,12 @@ use fc3d_core::solvers::planar::cpg::{project_direction, project_step, Status};
 /// starts from `reaction`; CPG, Lemke and enumeration start from zero, as Siconos' do. W may be
 /// dense, sparse-block (2x2 blocks) or sparse. Returns 0 when the natural-map error of the
 /// returned `(reaction, velocity)` is at most `dparam[0]`, 1 when the solver stopped above it
-/// (Lemke: a secondary ray or the pivot limit; enumeration: no feasible case), 2 when the time
-/// budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative `FC3D_ERR_*` code when the input
-/// is rejected (nothing written). On return >= 0, `iparam[1]` holds the iterations (sweeps, CPG
+/// (Lemke: a secondary ray or the pivot limit; enumeration: no feasible case, or `iparam[0]`
+/// cases tried), 2 when the time budget `dparam[FC3D_DPARAM_TIME_BUDGET]` ran out, a negative
+/// `FC3D_ERR_*` code when the input is rejected (nothing written). Enumeration tries the cases
+/// in Siconos' order, at most `iparam[0]` of them (0, Siconos' default: every case); with 0 and
+/// no time budget a problem of more than 10 contacts (2^33 cases and more) is refused with
+/// `FC3D_ERR_INVALID_OPTION`. On return >= 0, `iparam[1]` holds the iterations (sweeps, CPG
 /// iterations, pivots, cases tried) and `dparam[1]` the error measured on the returned pair.
 #[cfg(feature = "siconos-abi")]
 #[no_mangle]
@@ -214,7 +217,7 @@ pub unsafe extern "C" fn fc2d_compute_error(
             let r = c_slice(z as *const c_double, n, "z")?;
             c_slice(w as *const c_double, n, "w")?;
             fc3d_core::error::check_finite("z", r)?;
-            let mut u = vec![0.0; n];
+            let mut u = fc3d_core::error::try_vec(n, 0.0, "w")?;
             p.velocity(r, &mut u);
             let absolute = absolute_natural_map_residual_d::<2>(r, &u, p.mu());
             let norm_of = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();

@@ -45,7 +45,7 @@ pub(crate) fn is_fclib_file(path: &str) -> bool {
 }
 
 /// Fails with `FC3D_ERR_IO` and a message naming the file when libfc3d has no FCLIB support.
-fn require_fclib(path: &str, done: &str) -> CResult<()> {
+pub(crate) fn require_fclib(path: &str, done: &str) -> CResult<()> {
     if FCLIB_AVAILABLE {
         Ok(())
     } else {
@@ -62,7 +62,7 @@ fn require_fclib(path: &str, done: &str) -> CResult<()> {
 
 /// The error of a failed read: a malformed FCLIB file is `FC3D_ERR_PARSE`, a problem fc3d does
 /// not solve (2D, extra constraints) `FC3D_ERR_INVALID_PROBLEM`, the rest as everywhere.
-fn read_error(e: Fc3dError) -> CError {
+pub(crate) fn read_error(e: Fc3dError) -> CError {
     match e {
         Fc3dError::InvalidStructure(m) => CError::new(FC3D_ERR_PARSE, m),
         Fc3dError::Unsupported(m) => CError::new(FC3D_ERR_INVALID_PROBLEM, m),
@@ -78,7 +78,7 @@ pub(crate) fn read_fclib_problem(path: &str) -> CResult<*mut FrictionContactProb
 }
 
 /// A path argument as UTF-8.
-unsafe fn c_path<'a>(path: *const c_char) -> CResult<&'a str> {
+pub(crate) unsafe fn c_path<'a>(path: *const c_char) -> CResult<&'a str> {
     if path.is_null() {
         return Err(CError::null("path"));
     }
@@ -88,7 +88,7 @@ unsafe fn c_path<'a>(path: *const c_char) -> CResult<&'a str> {
 }
 
 /// An optional info string (NULL: not written); invalid UTF-8 is replaced by U+FFFD.
-unsafe fn c_text(text: *const c_char) -> Option<String> {
+pub(crate) unsafe fn c_text(text: *const c_char) -> Option<String> {
     (!text.is_null()).then(|| CStr::from_ptr(text).to_string_lossy().into_owned())
 }
 

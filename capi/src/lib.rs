@@ -25,6 +25,8 @@ mod driver;
 mod errors;
 mod fc2d;
 mod fclib;
+mod global;
+mod host_problem;
 mod lmgc;
 mod matrix;
 mod measures;

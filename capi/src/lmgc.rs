@@ -10,6 +10,7 @@ use super::option_tree::delete_contents;
 use super::options::create_options;
 use super::params::config_from_c;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_SIZE};
+use fc3d_core::error::{try_copy, try_vec};
 use fc3d_core::matrix::{BlockSparseMatrix, Delassus};
 use fc3d_core::problem::FrictionProblem;
 use fc3d_core::solve;
@@ -38,7 +39,6 @@ unsafe fn lmgc_impl(
     let r_in = c_slice(reaction as *const c_double, n, "reaction")?;
     c_slice(velocity as *const c_double, n, "velocity")?;
 
-    let mut order: Vec<usize> = (0..nb).collect();
     for k in 0..nb {
         if rows[k] == 0 || rows[k] as usize > nc || cols[k] == 0 || cols[k] as usize > nc {
             return Err(CError::new(
@@ -50,23 +50,23 @@ unsafe fn lmgc_impl(
             ));
         }
     }
-    order.sort_by_key(|&k| (rows[k], cols[k]));
-    let mut row_ptr = vec![0usize; nc + 1];
+    // Blocks by (row, column), in input order at one place (every array allocated fallibly).
+    let mut order = try_vec(nb, 0usize, "the block order")?;
+    order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
+    order.sort_unstable_by_key(|&k| (rows[k], cols[k], k));
+    let mut row_ptr = try_vec(nc + 1, 0usize, "the block rows of W")?;
     for &k in &order {
         row_ptr[rows[k] as usize] += 1;
     }
     for i in 0..nc {
         row_ptr[i + 1] += row_ptr[i];
     }
-    let col_idx = order.iter().map(|&k| cols[k] as usize - 1).collect();
-    let blocks = order
-        .iter()
-        .map(|&k| {
-            let mut b = [0.0; 9];
-            b.copy_from_slice(&wv[9 * k..9 * k + 9]);
-            b
-        })
-        .collect();
+    let mut col_idx = try_vec(nb, 0usize, "the block columns of W")?;
+    let mut blocks = try_vec(nb, [0.0; 9], "the blocks of W")?;
+    for ((c, b), &k) in col_idx.iter_mut().zip(&mut blocks).zip(&order) {
+        *c = cols[k] as usize - 1;
+        b.copy_from_slice(&wv[9 * k..9 * k + 9]);
+    }
     let w = BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)?;
     let problem = FrictionProblem::new(Delassus::SparseBlock(w), qv, muv)?;
 
@@ -81,8 +81,8 @@ unsafe fn lmgc_impl(
         c_free(options);
         c?
     };
-    let mut r = r_in.to_vec();
-    let mut u = vec![0.0; n];
+    let mut r = try_copy(r_in, "the reaction")?;
+    let mut u = try_vec(n, 0.0, "the velocity")?;
     let report = solve(&problem, &config, &mut r, &mut u)?;
     std::ptr::copy_nonoverlapping(r.as_ptr(), reaction, n);
     std::ptr::copy_nonoverlapping(u.as_ptr(), velocity, n);

@@ -13,6 +13,7 @@ use super::matrix::c_slice;
 use super::problem::problem_from_c;
 use super::types::{FrictionContactProblem, SolverOptions};
 use super::{ffi_guard, CError, CResult};
+use fc3d_core::error::try_vec;
 use fc3d_core::math::cone::{project_on_cone, project_on_cylinder, project_on_dual_cone};
 use fc3d_core::math::linalg::{norm2, Vec3};
 
@@ -117,7 +118,7 @@ pub unsafe extern "C" fn fc3d_compute_error_velocity(
             let n = p.size();
             let wv = c_slice(w as *const c_double, n, "w")?;
             c_slice(z as *const c_double, n, "z")?;
-            let mut zv = vec![0.0; n];
+            let mut zv = try_vec(n, 0.0, "z")?;
             p.velocity(wv, &mut zv);
             let mut sum = 0.0;
             for (c, &mu) in p.mu().iter().enumerate() {
@@ -188,7 +189,7 @@ pub unsafe extern "C" fn fc3d_Tresca_compute_error(
                 ));
             }
             let radii = c_slice(o.dWork as *const c_double, p.n_contacts(), "options->dWork")?;
-            let mut wv = vec![0.0; n];
+            let mut wv = try_vec(n, 0.0, "w")?;
             p.velocity(zv, &mut wv);
             let mut sum = 0.0;
             for (c, &radius) in radii.iter().enumerate() {

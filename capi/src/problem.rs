@@ -12,6 +12,7 @@ use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
+use super::host_problem;
 use super::matrix::{
     c_slice, delassus_from_c_blocks, matrix_to_c, nm_clear_impl, nm_duplicate, nm_scale_in_place,
 };
@@ -252,15 +253,7 @@ pub extern "C" fn frictionContactProblem_new() -> *mut FrictionContactProblem {
     ffi_guard(
         "frictionContactProblem_new",
         |_| null_mut(),
-        || {
-            c_box(FrictionContactProblem {
-                dimension: 0,
-                numberOfContacts: 0,
-                M: null_mut(),
-                q: null_mut(),
-                mu: null_mut(),
-            })
-        },
+        host_problem::new::<FrictionContactProblem>,
     )
 }
 
@@ -297,17 +290,6 @@ pub unsafe extern "C" fn frictionContactProblem_free(problem: *mut FrictionConta
     ffi_guard(
         "frictionContactProblem_free",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Ok(());
-            }
-            let p = &mut *problem;
-            nm_clear_impl(p.M);
-            c_free(p.M);
-            c_free(p.q);
-            c_free(p.mu);
-            c_free(problem);
-            Ok(())
-        },
+        || host_problem::free(problem),
     )
 }

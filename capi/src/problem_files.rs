@@ -1,5 +1,6 @@
 //! `FrictionContactProblem` in files and streams: Siconos' .dat reader (a file, or an FCLIB
-//! .hdf5 file through `fclib`) and writers, and the summary printed by `frictionContact_display`.
+//! .hdf5 file through `fclib`) and writers, and the summary printed by `frictionContact_display`,
+//! through `host_problem` (the same functions serve the rolling and global structs).
 //!
 //! A problem read is allocated as `problem.rs` describes: release it with
 //! `frictionContactProblem_free`.
@@ -12,11 +13,12 @@ use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_free, CStore};
 use super::fclib::{is_fclib_file, read_fclib_problem};
-use super::matrix::{matrix_from_read, read_from_stream};
+use super::host_problem::{self, release_array, release_matrix, HostProblem};
+use super::matrix::matrix_from_read;
 use super::problem::{any_problem_from_c, AnyProblem};
-use super::stream::{c_filename, write_file, write_stream};
 use super::types::FrictionContactProblem;
 use super::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
+use fc3d_core::error::Fc3dError;
 use fc3d_core::io::dat::{read_dat_file_into, read_dat_into, ReadProblem};
 use fc3d_core::problem::FrictionProblem;
 
@@ -59,6 +61,66 @@ fn problem_from_read(p: ReadProblem<CStore>) -> CResult<*mut FrictionContactProb
     }
 }
 
+impl HostProblem for FrictionContactProblem {
+    type View<'a> = AnyProblem<'a>;
+    type Read = ReadProblem<CStore>;
+
+    fn empty() -> Self {
+        FrictionContactProblem {
+            dimension: 0,
+            numberOfContacts: 0,
+            M: null_mut(),
+            q: null_mut(),
+            mu: null_mut(),
+        }
+    }
+
+    unsafe fn release(&mut self) {
+        release_matrix(&mut self.M);
+        release_array(&mut self.q);
+        release_array(&mut self.mu);
+    }
+
+    unsafe fn view(&self) -> CResult<AnyProblem<'_>> {
+        any_problem_from_c(self)
+    }
+
+    fn write(view: &AnyProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        match view {
+            AnyProblem::Spatial(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+            AnyProblem::Planar(p) => fc3d_core::io::dat::write_dat(p, &mut out),
+        }
+    }
+
+    fn display(view: &AnyProblem<'_>) {
+        match view {
+            AnyProblem::Spatial(p) => display(p),
+            AnyProblem::Planar(p) => display(p),
+        }
+    }
+
+    fn read(
+        stream: &mut dyn std::io::Read,
+        len: Option<u64>,
+        label: &str,
+    ) -> Result<(ReadProblem<CStore>, u64), Fc3dError> {
+        read_dat_into::<CStore, _>(stream, len, label)
+    }
+
+    fn to_c(read: ReadProblem<CStore>) -> CResult<*mut Self> {
+        problem_from_read(read)
+    }
+
+    /// A `.dat` file, or an FCLIB file (one that starts with the HDF5 signature or is named
+    /// `.hdf5` / `.h5`) as `frictionContact_fclib_read` reads it.
+    fn read_file(path: &str) -> CResult<*mut Self> {
+        if is_fclib_file(path) {
+            return read_fclib_problem(path);
+        }
+        problem_from_read(read_dat_file_into::<CStore>(std::path::Path::new(path))?)
+    }
+}
+
 /// Reads a problem from a Siconos .dat file, or from an FCLIB .hdf5 file (one that starts with
 /// the HDF5 signature or is named `.hdf5` / `.h5`) as `frictionContact_fclib_read` does. A .dat
 /// file is read in chunks up to its last friction coefficient (see `frictionContact_newFromFile`;
@@ -72,14 +134,7 @@ pub unsafe extern "C" fn frictionContact_new_from_filename(
     ffi_guard(
         "frictionContact_new_from_filename",
         |_| null_mut(),
-        || {
-            let path = c_filename(filename)?;
-            if is_fclib_file(path) {
-                return read_fclib_problem(path);
-            }
-            let p = read_dat_file_into::<CStore>(std::path::Path::new(path))?;
-            problem_from_read(p)
-        },
+        || host_problem::new_from_filename(filename),
     )
 }
 
@@ -98,22 +153,8 @@ pub unsafe extern "C" fn frictionContact_newFromFile(
     ffi_guard(
         "frictionContact_newFromFile",
         |_| null_mut(),
-        || {
-            read_from_stream(
-                file,
-                |stream, len| read_dat_into::<CStore, _>(stream, len, "<FILE stream>"),
-                problem_from_read,
-            )
-        },
+        || host_problem::new_from_file(file),
     )
-}
-
-/// Writes `p` in the .dat format with `out`, as it is produced.
-fn write_dat_to(p: &AnyProblem<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
-    match p {
-        AnyProblem::Spatial(p) => fc3d_core::io::dat::write_dat(p, &mut out),
-        AnyProblem::Planar(p) => fc3d_core::io::dat::write_dat(p, &mut out),
-    }
 }
 
 /// Writes `problem` to an open stream in the .dat format (round-trip exact numbers).
@@ -127,14 +168,7 @@ pub unsafe extern "C" fn frictionContact_printInFile(
     ffi_guard(
         "frictionContact_printInFile",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_problem_from_c(&*problem)?;
-            write_stream(file, |out| write_dat_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_file(problem, file),
     )
 }
 
@@ -148,15 +182,7 @@ pub unsafe extern "C" fn frictionContact_printInFilename(
     ffi_guard(
         "frictionContact_printInFilename",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_problem_from_c(&*problem)?;
-            let path = c_filename(filename)?;
-            write_file(path, |out| write_dat_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_filename(problem, filename),
     )
 }
 
@@ -167,16 +193,7 @@ pub unsafe extern "C" fn frictionContact_display(problem: *mut FrictionContactPr
     ffi_guard(
         "frictionContact_display",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            match any_problem_from_c(&*problem)? {
-                AnyProblem::Spatial(p) => display(&p),
-                AnyProblem::Planar(p) => display(&p),
-            }
-            Ok(())
-        },
+        || host_problem::display(problem),
     )
 }
 

@@ -16,13 +16,14 @@ use std::ptr::null_mut;
 
 use super::alloc::{c_box, c_copy, c_free};
 use super::driver::solve_into_host;
+use super::host_problem::{self, release_array, release_matrix, HostProblem};
 use super::matrix::{c_slice, matrix_to_c, nm_clear_impl};
 use super::params::rolling_config_from_c;
 use super::problem::parts_from_c;
-use super::stream::{c_filename, write_file, write_stream, CStream};
 use super::types::{RollingFrictionContactProblem, SolverOptions};
 use super::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_PROBLEM, FC3D_ERR_INVALID_SIZE};
-use fc3d_core::io::dat::{read_rolling_dat, read_rolling_dat_file, RollingDatProblem};
+use fc3d_core::error::{try_copy, try_vec, Fc3dError};
+use fc3d_core::io::dat::{read_rolling_dat, RollingDatProblem};
 use fc3d_core::math::rolling::{project_on_rolling_cone, rolling_modified_velocity};
 use fc3d_core::measure::relative_rolling_error;
 use fc3d_core::problem::RollingProblem;
@@ -53,7 +54,7 @@ pub(crate) unsafe fn rolling_problem_from_c<'a, const D: usize>(
 }
 
 /// A rolling problem of the dimension it declares (5 or 3).
-enum AnyRolling<'a> {
+pub(crate) enum AnyRolling<'a> {
     Spatial(RollingProblem<'a, 5>),
     Planar(RollingProblem<'a, 3>),
 }
@@ -67,7 +68,7 @@ unsafe fn any_rolling_from_c(p: &RollingFrictionContactProblem) -> CResult<AnyRo
 }
 
 /// A C-allocated rolling problem holding a copy of `p`.
-fn rolling_to_c<const D: usize>(
+pub(crate) fn rolling_to_c<const D: usize>(
     p: &RollingProblem<'_, D>,
 ) -> CResult<*mut RollingFrictionContactProblem> {
     let nc = c_int::try_from(p.n_contacts())
@@ -101,6 +102,59 @@ fn dat_to_c(p: &RollingDatProblem) -> CResult<*mut RollingFrictionContactProblem
     }
 }
 
+impl HostProblem for RollingFrictionContactProblem {
+    type View<'a> = AnyRolling<'a>;
+    type Read = RollingDatProblem;
+
+    fn empty() -> Self {
+        RollingFrictionContactProblem {
+            dimension: 0,
+            numberOfContacts: 0,
+            M: null_mut(),
+            q: null_mut(),
+            mu: null_mut(),
+            mu_r: null_mut(),
+        }
+    }
+
+    unsafe fn release(&mut self) {
+        release_matrix(&mut self.M);
+        release_array(&mut self.q);
+        release_array(&mut self.mu);
+        release_array(&mut self.mu_r);
+    }
+
+    unsafe fn view(&self) -> CResult<AnyRolling<'_>> {
+        any_rolling_from_c(self)
+    }
+
+    fn write(view: &AnyRolling<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
+        match view {
+            AnyRolling::Spatial(p) => fc3d_core::io::dat::write_rolling_dat(p, &mut out),
+            AnyRolling::Planar(p) => fc3d_core::io::dat::write_rolling_dat(p, &mut out),
+        }
+    }
+
+    fn display(view: &AnyRolling<'_>) {
+        match view {
+            AnyRolling::Spatial(p) => display(p),
+            AnyRolling::Planar(p) => display(p),
+        }
+    }
+
+    fn read(
+        stream: &mut dyn std::io::Read,
+        len: Option<u64>,
+        label: &str,
+    ) -> Result<(RollingDatProblem, u64), Fc3dError> {
+        read_rolling_dat(stream, len, label)
+    }
+
+    fn to_c(read: RollingDatProblem) -> CResult<*mut Self> {
+        dat_to_c(&read)
+    }
+}
+
 /// An empty rolling problem (dimension 0, no data). Release with
 /// `rollingFrictionContactProblem_free`.
 #[cfg(feature = "siconos-abi")]
@@ -109,16 +163,7 @@ pub extern "C" fn rollingFrictionContactProblem_new() -> *mut RollingFrictionCon
     ffi_guard(
         "rollingFrictionContactProblem_new",
         |_| null_mut(),
-        || {
-            c_box(RollingFrictionContactProblem {
-                dimension: 0,
-                numberOfContacts: 0,
-                M: null_mut(),
-                q: null_mut(),
-                mu: null_mut(),
-                mu_r: null_mut(),
-            })
-        },
+        host_problem::new::<RollingFrictionContactProblem>,
     )
 }
 
@@ -160,19 +205,7 @@ pub unsafe extern "C" fn rollingFrictionContactProblem_free(
     ffi_guard(
         "rollingFrictionContactProblem_free",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Ok(());
-            }
-            let p = &mut *problem;
-            nm_clear_impl(p.M);
-            c_free(p.M);
-            c_free(p.q);
-            c_free(p.mu);
-            c_free(p.mu_r);
-            c_free(problem);
-            Ok(())
-        },
+        || host_problem::free(problem),
     )
 }
 
@@ -186,11 +219,7 @@ pub unsafe extern "C" fn rollingFrictionContact_new_from_filename(
     ffi_guard(
         "rollingFrictionContact_new_from_filename",
         |_| null_mut(),
-        || {
-            let path = c_filename(filename)?;
-            let p = read_rolling_dat_file(std::path::Path::new(path))?;
-            dat_to_c(&p)
-        },
+        || host_problem::new_from_filename(filename),
     )
 }
 
@@ -205,28 +234,8 @@ pub unsafe extern "C" fn rollingFrictionContact_newFromFile(
     ffi_guard(
         "rollingFrictionContact_newFromFile",
         |_| null_mut(),
-        || {
-            let mut stream = CStream::new(file)?;
-            let len = stream.len_hint();
-            match read_rolling_dat(&mut stream, len, "<FILE stream>") {
-                Ok((p, used)) => {
-                    stream.finish(Some(used));
-                    dat_to_c(&p)
-                }
-                Err(e) => {
-                    stream.finish(None);
-                    Err(e.into())
-                }
-            }
-        },
+        || host_problem::new_from_file(file),
     )
-}
-
-fn write_rolling_to(p: &AnyRolling<'_>, mut out: &mut dyn std::io::Write) -> std::io::Result<()> {
-    match p {
-        AnyRolling::Spatial(p) => fc3d_core::io::dat::write_rolling_dat(p, &mut out),
-        AnyRolling::Planar(p) => fc3d_core::io::dat::write_rolling_dat(p, &mut out),
-    }
 }
 
 /// Writes `problem` to an open stream in the rolling .dat format (round-trip exact numbers).
@@ -240,14 +249,7 @@ pub unsafe extern "C" fn rollingFrictionContact_printInFile(
     ffi_guard(
         "rollingFrictionContact_printInFile",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_rolling_from_c(&*problem)?;
-            write_stream(file, |out| write_rolling_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_file(problem, file),
     )
 }
 
@@ -261,15 +263,7 @@ pub unsafe extern "C" fn rollingFrictionContact_printInFilename(
     ffi_guard(
         "rollingFrictionContact_printInFilename",
         |c| c,
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            let p = any_rolling_from_c(&*problem)?;
-            let path = c_filename(filename)?;
-            write_file(path, |out| write_rolling_to(&p, out))?;
-            Ok(0)
-        },
+        || host_problem::print_in_filename(problem, filename),
     )
 }
 
@@ -282,16 +276,7 @@ pub unsafe extern "C" fn rollingFrictionContact_display(
     ffi_guard(
         "rollingFrictionContact_display",
         |_| (),
-        || {
-            if problem.is_null() {
-                return Err(CError::null("problem"));
-            }
-            match any_rolling_from_c(&*problem)? {
-                AnyRolling::Spatial(p) => display(&p),
-                AnyRolling::Planar(p) => display(&p),
-            }
-            Ok(())
-        },
+        || host_problem::display(problem),
     )
 }
 
@@ -331,8 +316,8 @@ pub unsafe extern "C" fn rollingFrictionContactProblem_compute_statistics(
                 return Err(CError::null("problem"));
             }
             let (d, nc, mu) = match any_rolling_from_c(&*problem)? {
-                AnyRolling::Spatial(p) => (5, p.n_contacts(), p.mu().to_vec()),
-                AnyRolling::Planar(p) => (3, p.n_contacts(), p.mu().to_vec()),
+                AnyRolling::Spatial(p) => (5, p.n_contacts(), try_copy(p.mu(), "mu")?),
+                AnyRolling::Planar(p) => (3, p.n_contacts(), try_copy(p.mu(), "mu")?),
             };
             let r = c_slice(reaction as *const c_double, d * nc, "reaction")?;
             let u = c_slice(velocity as *const c_double, d * nc, "velocity")?;
@@ -625,7 +610,7 @@ unsafe fn compute_error<const D: usize>(
     let r = c_slice(z as *const c_double, n, "z")?;
     c_slice(w as *const c_double, n, "w")?;
     fc3d_core::error::check_finite("z", r)?;
-    let mut u = vec![0.0; n];
+    let mut u = try_vec(n, 0.0, "w")?;
     p.velocity(r, &mut u);
     let e = relative_rolling_error::<D>(r, &u, p.mu(), p.mu_r(), norm);
     std::ptr::copy_nonoverlapping(u.as_ptr(), w, n);

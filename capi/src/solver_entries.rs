@@ -494,12 +494,12 @@ pub unsafe extern "C" fn fc3d_unitary_enumerative(
 // Siconos' Tresca sub-solvers take the cylinder radii from `options->dWork` and solve a Tresca
 // problem, not FC(W, q, mu): fc3d has no Tresca problem, so both entries refuse.
 
-const GAMS: &str = "needs GAMS, a commercial solver fc3d does not ship";
+pub(crate) const GAMS: &str = "needs GAMS, a commercial solver fc3d does not ship";
 const TRESCA: &str =
     "solves Siconos' Tresca sub-problem (radii in options->dWork), which fc3d does not provide";
 
 /// The refusal of an entry fc3d does not provide, written to `*info`.
-unsafe fn refuse_entry(name: &str, reason: &str, info: *mut c_int) {
+pub(crate) unsafe fn refuse_entry(name: &str, reason: &str, info: *mut c_int) {
     let code = ffi_guard(
         name,
         |c| c,
@@ -625,7 +625,7 @@ pub unsafe extern "C" fn fc3d_set_internalsolver_tolerance(
                 return Err(CError::null("internalsolver_options"));
             }
             let nc = (*problem).numberOfContacts;
-            if let Some(tol) = internal_solver_tolerance(&*options, nc, error)? {
+            if let Some(tol) = internal_solver_tolerance(&*options, nc, error, true)? {
                 super::params::set_tolerance(&mut *internalsolver_options, tol)?;
             }
             Ok(())

@@ -139,8 +139,8 @@ mod tests {
         // Every id 0..6000 that the native entry accepts is listed, and only those.
         let accepted: Vec<c_int> = (0..6000)
             .filter(|&id| {
-                let s = crate::native::fc3d_settings_new(id);
-                unsafe { crate::native::fc3d_settings_free(s) };
+                let s = crate::native::settings::fc3d_settings_new(id);
+                unsafe { crate::native::settings::fc3d_settings_free(s) };
                 !s.is_null()
             })
             .collect();

@@ -142,6 +142,39 @@ pub struct RollingFrictionContactProblem {
     pub mu_r: *mut c_double,
 }
 
+/// Siconos 4.4's global problem: `M v = q + H r`, `u = H^T v + b`, Coulomb's law between u and
+/// r per contact (`dimension` 3; 2 for a problem Siconos 4.5 writes). `norm_q`, `norm_b` and
+/// `env` are Siconos' solver scratch: fc3d neither reads nor writes them.
+#[repr(C)]
+#[derive(Debug)]
+pub struct GlobalFrictionContactProblem {
+    pub dimension: c_int,
+    pub numberOfContacts: c_int,
+    pub M: *mut NumericsMatrix,
+    pub H: *mut NumericsMatrix,
+    pub q: *mut c_double,
+    pub norm_q: c_double,
+    pub b: *mut c_double,
+    pub norm_b: c_double,
+    pub mu: *mut c_double,
+    pub env: *mut c_void,
+}
+
+/// Siconos 4.4's global rolling problem: a global problem of contacts of dimension 5 with a
+/// rolling coefficient `mu_r` per contact.
+#[repr(C)]
+#[derive(Debug)]
+pub struct GlobalRollingFrictionContactProblem {
+    pub dimension: c_int,
+    pub numberOfContacts: c_int,
+    pub M: *mut NumericsMatrix,
+    pub H: *mut NumericsMatrix,
+    pub q: *mut c_double,
+    pub b: *mut c_double,
+    pub mu: *mut c_double,
+    pub mu_r: *mut c_double,
+}
+
 /// Per-iteration callback: `collectStatsIteration(env, size, reaction, velocity, error, NULL)`.
 #[repr(C)]
 #[derive(Debug)]

@@ -1,5 +1,5 @@
-//! The functions of Siconos 4.4's installed friction headers against what fc3d's compat headers
-//! declare and `libfc3d.so` exports (issue 12): names and prototypes come from the C compiler
+//! The functions of Siconos 4.4's installed friction headers (local, rolling and global) against
+//! what fc3d's compat headers declare and `libfc3d.so` exports (issues 12 and 26): names and prototypes come from the C compiler
 //! (`gcc -aux-info`) at test time, the exclusions (with their reasons) from
 //! docs/siconos-functions.md. Skipped when the Siconos headers or gcc are missing (the test
 //! suite installs them).
@@ -22,6 +22,18 @@ const FRICTION_HEADERS: &[&str] = &[
     "rolling_fc_Solvers.h",
     "rolling_fc3d_compute_error.h",
     "rolling_fc2d_compute_error.h",
+    // The global family (issue 26, ../shared/docs/siconos-global.md section 1).
+    "GlobalFrictionContactProblem.h",
+    "GlobalFrictionContactProblem_as_ConvexQP.h",
+    "GlobalFrictionContactProblem_as_VI.h",
+    "GlobalRollingFrictionContactProblem.h",
+    "gfc3d_Solvers.h",
+    "gfc3d_compute_error.h",
+    "gfc3d_balancing.h",
+    "gfc3d_nonsmooth_Newton_AlartCurnier.h",
+    "gfc3d_Gams.h",
+    "global_rolling_fc_Solvers.h",
+    "fc3d_solvers_wr.h",
 ];
 
 /// The matrix layer: of these headers only the functions Siconos' 3D friction tests call are

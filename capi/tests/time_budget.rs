@@ -122,3 +122,59 @@ fn every_solver_id_keeps_a_50_ms_budget_with_int_max_limits() {
         frictionContactProblem_free(p);
     }
 }
+
+extern "C" {
+    fn fc2d_driver(
+        problem: *mut fc3d::types::FrictionContactProblem,
+        reaction: *mut f64,
+        velocity: *mut f64,
+        options: *mut SolverOptions,
+    ) -> c_int;
+}
+
+/// `fc2d_driver` with enumeration (405) on the 667-contact granular flow (an LCP of 2001
+/// unknowns, a dense 2001x2001 solve per case): with Siconos' defaults (no iteration limit, no
+/// budget) it is refused at once, nothing written; `iparam[0]` = 1 stops it after one case
+/// (info 1, `iparam[1]` = 1); a 50 ms budget stops it within its first case (info 2).
+#[test]
+fn fc2d_enumeration_holds_its_limits_on_667_contacts() {
+    let path = CString::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../shared/data/siconos/fc2d_granularflowonwall_00667_00000.dat"
+    ))
+    .unwrap();
+    unsafe {
+        let p = frictionContact_new_from_filename(path.as_ptr());
+        assert!(!p.is_null());
+        let n = 2 * (*p).numberOfContacts as usize;
+        for (max_iter, budget, expected) in [
+            (0, 0.0, fc3d::FC3D_ERR_INVALID_OPTION),
+            (1, 0.0, 1),
+            (0, BUDGET, 2),
+        ] {
+            let o = solver_options_create(405);
+            *(*o).iparam = max_iter;
+            *(*o).dparam.add(fc3d::FC3D_DPARAM_TIME_BUDGET as usize) = budget;
+            let (mut r, mut u) = (vec![7.0; n], vec![7.0; n]);
+            let start = Instant::now();
+            let info = fc2d_driver(p, r.as_mut_ptr(), u.as_mut_ptr(), o);
+            let elapsed = start.elapsed();
+            eprintln!("405, iparam[0] {max_iter}, budget {budget}: info {info} in {elapsed:?}");
+            assert_eq!(info, expected);
+            if info < 0 {
+                assert!(r.iter().chain(&u).all(|&v| v == 7.0), "written on failure");
+            } else {
+                let cases = *(*o).iparam.add(1);
+                assert!(cases <= 1 && (max_iter == 0 || cases == 1), "{cases} cases");
+                assert!(r.iter().all(|&v| v == 0.0));
+                assert!(elapsed < Duration::from_secs(10));
+            }
+            if budget > 0.0 {
+                assert!(elapsed <= Duration::from_secs_f64(budget) + Duration::from_millis(250));
+            }
+            solver_options_delete(o);
+            free(o.cast());
+        }
+        frictionContactProblem_free(p);
+    }
+}

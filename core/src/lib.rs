@@ -16,6 +16,7 @@
 //! `config` → `solve` → `workspace`; `io` and `scenes` build problems, `diagnostics` sits beside
 //! `measure`. See `docs/architecture.md`.
 
+mod alloc;
 pub mod config;
 pub mod contract;
 pub mod diagnostics;

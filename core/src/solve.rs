@@ -2,9 +2,10 @@
 //! trivial-case shortcut, the dispatch, and the one post-processing path that measures the error
 //! of the returned `(r, u)` and sets the status from it.
 
+use crate::alloc::try_collect;
 use crate::config::{scalar_factors, PlanarConfig, Rescaling, RollingConfig, SolverConfig};
 use crate::contract::{IterationEvent, Observer, SolveReport, SolveStatus, SolverOutcome};
-use crate::error::{check_finite, try_vec, Fc3dError};
+use crate::error::{check_finite, try_copy, try_vec, Fc3dError};
 use crate::matrix::Delassus;
 use crate::measure::{natural_map_error, rolling_error};
 use crate::problem::{FrictionProblem, FrictionProblem2d, RollingProblem};
@@ -152,12 +153,13 @@ fn run_rescaled(
 ) -> Result<SolverOutcome, Fc3dError> {
     let n = problem.size();
     let (s, t) = scalar_factors(problem);
-    let scaled_q: Vec<f64> = problem.q().iter().map(|v| t * v).collect();
-    let scaled = FrictionProblem::new(problem.w().scaled(s), scaled_q, problem.mu().to_vec())?;
+    let scaled_q = try_collect(problem.q().iter().map(|v| t * v), "the rescaled q")?;
+    let mu = try_copy(problem.mu(), "mu")?;
+    let scaled = FrictionProblem::new(problem.w().scaled(s)?, scaled_q, mu)?;
     let to_host = s / t;
-    let mut r_s: Vec<f64> = r.iter().map(|v| v / to_host).collect();
-    let mut u_s = vec![0.0; n];
-    let mut host_r = vec![0.0; n];
+    let mut r_s = try_collect(r.iter().map(|v| v / to_host), "the rescaled reaction")?;
+    let mut u_s = try_vec(n, 0.0, "the rescaled velocity")?;
+    let mut host_r = try_vec(n, 0.0, "the reaction in the host's units")?;
     let mut mapped = |ev: &IterationEvent<'_>| {
         for (h, v) in host_r.iter_mut().zip(ev.reaction) {
             *h = to_host * v;
@@ -269,12 +271,15 @@ fn grows_where_no_solution_is(
         }
         c
     };
-    w.for_each_coupling(|i, j| {
+    let coupled = w.for_each_coupling(|i, j| {
         let (a, b) = (root(&mut island, i), root(&mut island, j));
         if a != b {
             island[a.max(b)] = a.min(b) as u32;
         }
     });
+    if coupled.is_err() {
+        return false;
+    }
     // Number the islands in the order of their roots: a root comes before the other contacts
     // of its island, so each contact finds its root already numbered.
     for c in 0..n {

@@ -252,6 +252,16 @@ impl Workspace {
             }
         };
         let mut u_out = crate::error::try_vec(problem.size(), 0.0, "velocity")?;
+        // Room to remember this solve's contacts, taken before anything is written.
+        self.next_memory.clear();
+        self.next_memory
+            .try_reserve(ids.len())
+            .map_err(|_| Fc3dError::OutOfMemory {
+                what: "the workspace's memory of the contacts".into(),
+                bytes: ids
+                    .len()
+                    .saturating_mul(std::mem::size_of::<(i64, ContactMemory)>()),
+            })?;
         let report = solve_with_runner(
             problem,
             config,
@@ -269,7 +279,7 @@ impl Workspace {
         Ok(report)
     }
 
-    /// Replaces the remembered contacts by those of this solve.
+    /// Replaces the remembered contacts by those of this solve (room reserved before the solve).
     fn remember(&mut self, ids: &[i64], r: &[f64]) {
         self.next_memory.clear();
         for (rc, &id) in r.chunks_exact(3).zip(ids) {

@@ -11,6 +11,7 @@ use module_graph::{assert_no_sibling_cycle, crate_paths, sibling_edges, Source};
 
 const LAYERS: &[(&str, usize)] = &[
     ("error", 0),
+    ("alloc", 0),
     ("math", 1),
     ("matrix", 2),
     ("problem", 3),

@@ -992,4 +992,46 @@ mod with_hdf5 {
         assert_eq!(info.description, None);
         assert_eq!(info.number_of_degrees_of_freedom, Some(450));
     }
+
+    /// The global problem of Box_Stacks read, written as Siconos writes it (triplets) and read
+    /// again: the same problem, bit for bit, with its info; its reduction is the local problem
+    /// `read_fclib_file` gives, and the file holds what Siconos' reader expects.
+    #[test]
+    fn global_problems_round_trip_and_reduce() {
+        use fc3d_core::io::{read_fclib_global_file, write_fclib_global_file};
+        let path = data(BOX_STACKS);
+        let g = read_fclib_global_file(&path).unwrap();
+        assert_eq!((g.ndof(), g.n_contacts()), (450, 82));
+        assert_eq!(g.m().nnz(), 450);
+        let s = Scratch::new("global-write");
+        let out = s.path("box.hdf5");
+        let info = FclibInfo {
+            title: Some("Box stacks".into()),
+            description: Some("written by fc3d".into()),
+            math_info: None,
+            number_of_degrees_of_freedom: None,
+        };
+        write_fclib_global_file(&g, &out, &info).unwrap();
+        let again = read_fclib_global_file(&out).unwrap();
+        assert_eq!(again, g);
+        assert_eq!(
+            fc3d_core::io::read_fclib_info(&out).unwrap().title,
+            info.title
+        );
+        // Siconos' layout: triplets (nz = number of entries), f, w, mu.
+        let file = hdf5::File::open(&out).unwrap();
+        assert_eq!(read_ints(&file, "/fclib_global/H/nz"), [g.h().nnz() as i64]);
+        assert_eq!(read_ints(&file, "/fclib_global/spacedim"), [3]);
+        assert_eq!(read_vec(&file, "/fclib_global/vectors/w"), g.b());
+        // The local reading of a global file is the problem's reduction.
+        let mut operator = g.operator().unwrap();
+        let reduced = g.reduce(&mut operator).unwrap();
+        assert_eq!(read_fclib_file(&out).unwrap(), reduced);
+        assert_eq!(read_fclib_file(&path).unwrap(), reduced);
+        // A local file has no global problem.
+        match read_fclib_global_file(&data(PERIO_BOX)) {
+            Err(Fc3dError::InvalidStructure(m)) => assert!(m.contains("/fclib_global"), "{m}"),
+            other => panic!("{other:?}"),
+        }
+    }
 }

@@ -120,7 +120,8 @@ fn the_coupling_pairs_are_those_of_the_non_zero_entries_in_every_storage() {
         let mut pairs = BTreeSet::new();
         w.for_each_coupling(|a, b| {
             pairs.insert((a, b));
-        });
+        })
+        .unwrap();
         assert_eq!(pairs, entries);
     }
 }

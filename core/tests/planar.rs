@@ -159,10 +159,16 @@ fn lemke_cpg_and_enumeration() {
             let mut config = PlanarConfig::new(method);
             config.tolerance = 1e-5;
             config.max_iter = config.max_iter.max(10_000);
-            let (_, _, error, iterations, status) = run(&p, &config);
+            let (r, _, error, iterations, status) = run(&p, &config);
             println!(
                 "{}: nc {nc} {method:?} error {error:.3e} in {iterations} ({status:?})",
                 f.display()
+            );
+            let independent = independent_error_2d(&p, &r);
+            assert!(
+                // (Both relative; near rounding level the two computations differ by rounding.)
+                (error - independent).abs() <= 1e-9 * independent + 1e-12,
+                "{error} vs {independent}"
             );
         }
     }
@@ -200,6 +206,14 @@ fn limits_hold_for_every_2d_solver() {
     assert!(start.elapsed() < Duration::from_secs(2));
     assert_eq!(status, SolveStatus::TimeBudgetExhausted);
     assert!(r.iter().all(|v| v.is_finite()) && error.is_finite());
+    // An iteration limit of 1000 cases stops it there.
+    let mut config = PlanarConfig::new(PlanarMethod::Enumeration { seed: 0 });
+    config.max_iter = 1000;
+    let (_, _, _, iterations, status) = run(&p, &config);
+    assert_eq!(
+        (iterations, status),
+        (1000, SolveStatus::MaxIterationsReached)
+    );
 
     for method in [
         PlanarMethod::Lemke,
@@ -225,4 +239,77 @@ fn limits_hold_for_every_2d_solver() {
         assert_eq!(status, SolveStatus::Converged, "{method:?}: {error:e}");
         assert!(r[2..].iter().all(|&v| v == 0.0), "{method:?}: {r:?}");
     }
+}
+
+/// The relative natural-map error of `r` for a 2D problem, recomputed here from W's entries:
+/// `u = W r + q`, per contact `r_c - P_K(r_c - (u_N + mu |u_T|, u_T))` with `K` the cone
+/// `|t| <= mu n`, over `max(||q||, ||r||, ||u||)`.
+fn independent_error_2d(p: &FrictionProblem2d<'_>, r: &[f64]) -> f64 {
+    let mut u = p.q().to_vec();
+    p.w().for_each_entry(|i, j, v| u[i] += v * r[j]);
+    let mut sum = 0.0;
+    for (c, &mu) in p.mu().iter().enumerate() {
+        let (rn, rt, un, ut) = (r[2 * c], r[2 * c + 1], u[2 * c], u[2 * c + 1]);
+        let (x, y) = (rn - (un + mu * ut.abs()), rt - ut);
+        let (pn, pt) = if y.abs() <= mu * x {
+            (x, y)
+        } else if mu * y.abs() <= -x {
+            (0.0, 0.0)
+        } else {
+            let n = (x + mu * y.abs()) / (1.0 + mu * mu);
+            (n, mu * n * y.signum())
+        };
+        sum += (rn - pn).powi(2) + (rt - pt).powi(2);
+    }
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let scale = norm(p.q()).max(norm(r)).max(norm(&u));
+    sum.sqrt() / if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// Enumeration (405) on the 667-contact granular flow, an LCP of 2001 unknowns, in Siconos'
+/// order: each case is a dense 2001x2001 solve. It stops at the iteration limit (cases) and at
+/// the time budget, even within a case, returning r = 0 with its true error (no early case is
+/// a solution: the flow's contacts slide and stick in both directions, where the first cases
+/// change the first few unknowns only). Without either limit it is refused. (Siconos 4.4 tries
+/// no case at all there: it counts the 2^2001 cases in 64 bits, 0, and returns r = 0 as
+/// converged, its absolute error 3e-18 being below the tolerance on data of order 1e-18.)
+#[test]
+fn enumeration_of_a_large_problem_holds_its_limits() {
+    use std::time::{Duration, Instant};
+    let p = read_planar(&Path::new(DATA_DIR).join("fc2d_granularflowonwall_00667_00000.dat"));
+    assert_eq!(p.n_contacts(), 667);
+    let mut config = PlanarConfig::new(PlanarMethod::Enumeration { seed: 0 });
+    let n = p.size();
+    let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+    let refused = solve_planar(&p, &config, &mut r, &mut u).unwrap_err();
+    assert!(refused.to_string().contains("max_iter"), "{refused}");
+
+    config.max_iter = 2;
+    let start = Instant::now();
+    let (r, _, error, iterations, status) = run(&p, &config);
+    let per_case = start.elapsed() / 2;
+    assert_eq!((iterations, status), (2, SolveStatus::MaxIterationsReached));
+    assert!(r.iter().all(|&v| v == 0.0));
+    let independent = independent_error_2d(&p, &r);
+    assert!(
+        (error - independent).abs() <= 1e-12 * independent,
+        "{error} vs {independent}"
+    );
+    eprintln!("two cases: {per_case:?} a case; error of r = 0: {error:.3e}");
+
+    config.max_iter = 0;
+    let budget = Duration::from_millis(300);
+    config.time_budget = Some(budget);
+    let start = Instant::now();
+    let (r, _, error, iterations, status) = run(&p, &config);
+    let elapsed = start.elapsed();
+    eprintln!("budget {budget:?}: {iterations} cases in {elapsed:?}");
+    assert_eq!(status, SolveStatus::TimeBudgetExhausted);
+    assert!(elapsed < budget + Duration::from_millis(250), "{elapsed:?}");
+    assert!(r.iter().all(|&v| v == 0.0));
+    let independent = independent_error_2d(&p, &r);
+    assert!(
+        (error - independent).abs() <= 1e-12 * independent,
+        "{error} vs {independent}"
+    );
 }

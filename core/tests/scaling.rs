@@ -22,7 +22,7 @@ fn load(name: &str) -> FrictionProblem<'static> {
 
 fn scaled(p: &FrictionProblem<'_>, alpha: f64, beta: f64) -> FrictionProblem<'static> {
     FrictionProblem::new(
-        p.w().scaled(alpha),
+        p.w().scaled(alpha).unwrap(),
         p.q().iter().map(|v| beta * v).collect::<Vec<_>>(),
         p.mu().to_vec(),
     )

@@ -5,5 +5,7 @@
 #define FC3D_COMPAT_NONSMOOTHDRIVERS_H
 #include <fc3d.h>
 #include "FrictionContactProblem.h"
+#include "GlobalFrictionContactProblem.h"
+#include "GlobalRollingFrictionContactProblem.h"
 #include "SolverOptions.h"
 #endif

@@ -27,8 +27,20 @@
    - title, description and mathInfo may be NULL (not written); ndof is written as the info
      attribute numberOfDegreeOfFreedom, as Siconos does.
 
-   Not implemented (fc3d has no global problem type and no fclib structs): from_fclib_local,
-   frictionContact_fclib_write_guess, and the global and rolling functions. */
+   The global calls (declared in fc3d.h, with the same build-dependent behaviour):
+
+     GlobalFrictionContactProblem* globalFrictionContact_fclib_read(const char *path);
+     int globalFrictionContact_fclib_write(GlobalFrictionContactProblem* problem, char *title,
+                                           char *description, char *mathInfo, const char *path);
+     int globalRollingFrictionContact_fclib_write(GlobalRollingFrictionContactProblem* problem,
+                                                  char *title, char *description,
+                                                  char *mathInfo, const char *path);
+
+   M and H of any storage are written as triplets (Siconos exits unless they are sparse with a
+   triplet form); a global rolling problem is written as FCLIB's /fclib_global_rolling.
+
+   Not implemented (they take FCLIB's own structs, which fc3d does not use): from_fclib_local,
+   from_fclib_global, and frictionContact_fclib_write_guess. */
 #ifndef FC3D_COMPAT_FCLIB_INTERFACE_H
 #define FC3D_COMPAT_FCLIB_INTERFACE_H
 #include <fc3d.h>

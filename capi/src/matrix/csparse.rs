@@ -15,7 +15,7 @@ use super::{NSM_CSC, NSM_CSR, NSM_HALF_TRIPLET, NSM_TRIPLET, NSM_UNKNOWN};
 use crate::alloc::c_free;
 use crate::types::*;
 use crate::{CError, CResult, FC3D_ERR_OUT_OF_MEMORY};
-use fc3d_core::error::{try_vec, Fc3dError};
+use fc3d_core::error::try_vec;
 use fc3d_core::matrix::CsrMatrix;
 
 /// A host CSparse matrix read as a `rows x cols` matrix of the given kind, its sizes and counts
@@ -261,21 +261,6 @@ pub(super) unsafe fn csr_from_cs(
 ) -> CResult<CsrMatrix> {
     let view = CsView::new(cs, kind, rows, cols)?;
     let t = view.triplets()?;
-    // The core builds rows + 1 row pointers and a few arrays of the entries' size with infallible
-    // allocations: make sure now that this much memory can be had (an impossible size is then
-    // FC3D_ERR_OUT_OF_MEMORY, not an abort).
-    let words = rows
-        .checked_add(1)
-        .and_then(|r| t.len().checked_mul(6).and_then(|e| e.checked_add(r)));
-    let probe = words.and_then(|w| w.checked_mul(std::mem::size_of::<usize>()));
-    let fits = probe.is_some_and(|bytes| Vec::<u8>::new().try_reserve_exact(bytes).is_ok());
-    if !fits {
-        return Err(Fc3dError::OutOfMemory {
-            what: format!("a {rows}x{cols} sparse W with {} entries", t.len()),
-            bytes: probe.unwrap_or(usize::MAX),
-        }
-        .into());
-    }
     Ok(CsrMatrix::from_triplets(rows, cols, &t)?)
 }
 

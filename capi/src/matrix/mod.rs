@@ -28,6 +28,8 @@ mod sbm;
 
 mod file;
 
+mod stored;
+
 use std::borrow::Cow;
 use std::os::raw::{c_double, c_int};
 use std::ptr::null_mut;
@@ -42,6 +44,7 @@ pub(crate) use file::read_from_stream;
 use sbm::{
     block_sparse_from_sbm, check_sbm_clearable, csr_from_uniform_sbm, sbm_clear_impl, sbm_to_c,
 };
+pub(crate) use stored::{stored_from_c, stored_to_c};
 
 pub(crate) const NM_DENSE: c_int = 0;
 pub(crate) const NM_SPARSE_BLOCK: c_int = 1;

@@ -11,7 +11,7 @@
 // cbindgen reads a module's own items, then its submodules in the order declared here: the order
 // of include/fc3d.h and fc3d_native.h (settings, then solves, then problems read from files).
 // The blank lines keep rustfmt from sorting the declarations.
-mod settings;
+pub(crate) mod settings;
 
 mod solve;
 

@@ -23,7 +23,7 @@ pub unsafe extern "C" fn fc3d_problem_read(path: *const c_char) -> *mut Fc3dProb
             }
             let path = CStr::from_ptr(path).to_string_lossy().into_owned();
             let problem = fc3d_core::io::read_problem_file(std::path::Path::new(&path))?;
-            let csr = problem.w().to_csr();
+            let csr = problem.w().try_to_csr()?;
             Ok(Box::into_raw(Box::new(Fc3dProblem { problem, csr })))
         },
     )

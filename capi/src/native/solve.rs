@@ -10,6 +10,7 @@ use crate::matrix::c_slice;
 use crate::options::create_options;
 use crate::params::config_from_c;
 use crate::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_SIZE};
+use fc3d_core::error::{try_copy, try_vec};
 use fc3d_core::{
     solve, BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix, FrictionProblem, SolverConfig,
 };
@@ -32,7 +33,11 @@ fn size_of(n_contacts: i64) -> CResult<(usize, usize)> {
 }
 
 fn indices(v: &[i64], what: &str) -> CResult<Vec<usize>> {
-    v.iter().map(|&x| count(x, what)).collect()
+    let mut out = try_vec(v.len(), 0, what)?;
+    for (o, &x) in out.iter_mut().zip(v) {
+        *o = count(x, what)?;
+    }
+    Ok(out)
 }
 
 /// Solves `problem` from `r` with `settings` (NULL: NSGS with Siconos' defaults), writing r, u
@@ -51,8 +56,8 @@ pub(super) unsafe fn solve_into(
     let r_in = c_slice(r as *const c_double, n, "r")?;
     c_slice(u as *const c_double, n, "u")?;
     let config = settings_config(settings)?;
-    let mut rr = r_in.to_vec();
-    let mut uu = vec![0.0; n];
+    let mut rr = try_copy(r_in, "r")?;
+    let mut uu = try_vec(n, 0.0, "u")?;
     let start = Instant::now();
     let report = solve(problem, &config, &mut rr, &mut uu)?;
     let seconds = start.elapsed().as_secs_f64();
@@ -102,8 +107,8 @@ unsafe fn problem_from(
     q: *const c_double,
     mu: *const c_double,
 ) -> CResult<FrictionProblem<'static>> {
-    let q = c_slice(q, 3 * nc, "q")?.to_vec();
-    let mu = c_slice(mu, nc, "mu")?.to_vec();
+    let q = try_copy(c_slice(q, 3 * nc, "q")?, "q")?;
+    let mu = try_copy(c_slice(mu, nc, "mu")?, "mu")?;
     Ok(FrictionProblem::new(w, q, mu)?)
 }
 
@@ -132,7 +137,7 @@ pub unsafe extern "C" fn fc3d_solve_dense(
                     format!("a dense W of {n} rows is too large"),
                 )
             })?;
-            let values = c_slice(w, len, "W")?.to_vec();
+            let values = try_copy(c_slice(w, len, "W")?, "W")?;
             let w = Delassus::Dense(DenseMatrix::new(n, n, values)?);
             let p = problem_from(w, nc, q, mu)?;
             solve_into(&p, r, u, settings, result)
@@ -203,12 +208,10 @@ pub unsafe extern "C" fn fc3d_solve_coo(
             let rows = indices(c_slice(rows, nnz, "rows")?, "rows")?;
             let cols = indices(c_slice(cols, nnz, "cols")?, "cols")?;
             let values = c_slice(values, nnz, "values")?;
-            let triplets: Vec<(usize, usize, f64)> = rows
-                .iter()
-                .zip(&cols)
-                .zip(values)
-                .map(|((&i, &j), &v)| (i, j, v))
-                .collect();
+            let mut triplets = try_vec(nnz, (0, 0, 0.0), "the entries of W")?;
+            for (t, ((&i, &j), &v)) in triplets.iter_mut().zip(rows.iter().zip(&cols).zip(values)) {
+                *t = (i, j, v);
+            }
             let w = Delassus::Sparse(CsrMatrix::from_triplets(n, n, &triplets)?);
             let p = problem_from(w, nc, q, mu)?;
             solve_into(&p, r, u, settings, result)
@@ -254,14 +257,10 @@ pub unsafe extern "C" fn fc3d_solve_blocks(
                 )
             })?;
             let values = c_slice(blocks, len, "blocks")?;
-            let blocks: Vec<[f64; 9]> = values
-                .chunks_exact(9)
-                .map(|b| {
-                    let mut a = [0.0; 9];
-                    a.copy_from_slice(b);
-                    a
-                })
-                .collect();
+            let mut blocks = try_vec(nb, [0.0; 9], "the blocks of W")?;
+            for (a, b) in blocks.iter_mut().zip(values.chunks_exact(9)) {
+                a.copy_from_slice(b);
+            }
             let w =
                 Delassus::SparseBlock(BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)?);
             let p = problem_from(w, nc, q, mu)?;

@@ -24,6 +24,26 @@ const DPARAM_BALANCING_TAU: usize = 5;
 const DPARAM_BALANCING_PHI: usize = 6;
 
 pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
+    let a = read_iteration(p)?;
+    p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
+    Ok(a)
+}
+
+/// Whether De Saxcé's term is updated at every iteration (`iparam[15]`: 0 yes, 1 no: the convex
+/// relaxation), for the global ADMM (613).
+pub(super) fn read_update_s(p: &Params<'_>) -> CResult<bool> {
+    match p.iparam[IPARAM_UPDATE_S] {
+        0 => Ok(true),
+        1 => Ok(false),
+        other => Err(invalid(format!(
+            "ADMM: De Saxcé term update (iparam[15]) = {other} is not 0 (yes) or 1 (no)"
+        ))),
+    }
+}
+
+/// The slots of the iteration shared by the local (523) and global (613) ADMM: all but the
+/// De Saxcé term update.
+pub(super) fn read_iteration(p: &Params<'_>) -> CResult<AdmmOptions> {
     let mut a = AdmmOptions {
         rho: p.dparam[DPARAM_RHO],
         restart_eta: p.dparam[DPARAM_RESTART_ETA],
@@ -58,7 +78,6 @@ pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
         other => return Err(invalid(format!("ADMM: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none, 1 scalar; Siconos' ADMM ignores the balancing values)"))),
     };
     p.require(IPARAM_GET_PROBLEM_INFO, 0, "problem info printing")?;
-    p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
     p.require(IPARAM_FULL_H, 0, "full H")?;
     Ok(a)
 }

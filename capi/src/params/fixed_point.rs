@@ -87,7 +87,7 @@ unsafe fn tresca_inner(i: &SolverOptions) -> CResult<(TrescaInnerSolver, usize)>
     ))
 }
 
-unsafe fn inner_tolerance(
+pub(super) unsafe fn inner_tolerance(
     p: &Params<'_>,
     internal: Option<&SolverOptions>,
 ) -> CResult<InnerTolerance> {

@@ -8,6 +8,7 @@
 mod admm;
 pub(crate) mod auto;
 mod fixed_point;
+pub(crate) mod global;
 mod local;
 mod nsgs;
 mod nsn;
@@ -146,9 +147,8 @@ pub(crate) fn unsupported_solver(id: c_int) -> CError {
         514 | 515 | 518 | 519 | 608 | 609 => {
             "is not provided by fc3d: it calls GAMS/PATH, a commercial solver fc3d does not link"
         }
-        600..=615 | 5000 => {
-            "is a solver of the global formulation (gfc3d_driver), which fc3d does not provide"
-        }
+        600..=615 => "is a solver of the global formulation: call gfc3d_driver",
+        5000 => "is the global rolling-friction solver: call g_rolling_fc3d_driver",
         3000..=3003 => "is a rolling-friction solver: call rolling_fc3d_driver",
         4000..=4002 => "is a 2D rolling-friction solver: call rolling_fc2d_driver",
         400..=405 => "is a 2D solver: it runs through fc2d_driver, not fc3d_driver",
@@ -349,7 +349,12 @@ pub(crate) unsafe fn rolling_config_from_c(
 
 /// `config_from_c` of a node of a checked tree.
 pub(crate) unsafe fn config_from_node(o: &SolverOptions) -> CResult<SolverConfig> {
-    let id = o.solverId;
+    config_from_node_as(o, o.solverId)
+}
+
+/// [`config_from_node`] reading the options as those of solver `id` (a global `_WR` id reads
+/// its slots as its local solver does: 600 as 500, ...).
+pub(crate) unsafe fn config_from_node_as(o: &SolverOptions, id: c_int) -> CResult<SolverConfig> {
     let what = solver_name(id).to_string_lossy();
     let p = Params::of(o, &format!("{what} options"))?;
     let internal = first_internal(o);

@@ -3,7 +3,9 @@
 //! Siconos' 2D NSGS does; seed iparam[6]), iparam[4] relaxation with omega dparam[8], iparam[8]
 //! evaluation frequency, iparam[19] freezing; 402 CPG has no option; 404 Lemke requires
 //! iparam[5] (pivoting rule) = 0, lexicographic; 405 enumeration reads its first case iparam[9]
-//! and requires iparam[10] (least squares) and iparam[11] (all solutions) = 0.
+//! and requires iparam[10] (least squares) and iparam[11] (all solutions) = 0; its iparam[0]
+//! counts the cases to try (0, Siconos' default: every case, refused for more than 10 contacts
+//! unless a time budget is set).
 
 use std::os::raw::c_int;
 

@@ -14,17 +14,25 @@ const GIVEN_VALUE: c_int = 1;
 const ADAPTIVE_N_CONTACT: c_int = 2;
 
 /// The internal solver's tolerance for the outer error `error` on `nc` contacts, or `None` when
-/// the strategy keeps the internal solver's own value.
+/// the strategy keeps the internal solver's own value. The adaptive rule is floored at
+/// `dparam[0] / nc` for the local fixed points (`fc3d_set_internalsolver_tolerance`), not for the
+/// global ones (`gfc3d_set_internalsolver_tolerance`: `floored` false), as in Siconos 4.4.
 pub(crate) unsafe fn internal_solver_tolerance(
     o: &SolverOptions,
     nc: c_int,
     error: c_double,
+    floored: bool,
 ) -> CResult<Option<c_double>> {
     let p = Params::of(o, "options")?;
     let ratio = p.dparam[DPARAM_INTERNAL_ERROR_RATIO];
     let nc = c_double::from(nc);
+    let floor = if floored {
+        p.dparam[DPARAM_TOL] / nc
+    } else {
+        f64::NEG_INFINITY
+    };
     match p.iparam[IPARAM_INTERNAL_ERROR_STRATEGY] {
-        ADAPTIVE => Ok(Some((error / ratio).max(p.dparam[DPARAM_TOL] / nc))),
+        ADAPTIVE => Ok(Some((error / ratio).max(floor))),
         ADAPTIVE_N_CONTACT => Ok(Some(error / (ratio * nc))),
         GIVEN_VALUE => Ok(None),
         other => Err(invalid(format!(

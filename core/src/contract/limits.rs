@@ -3,7 +3,7 @@
 use std::time::{Duration, Instant};
 
 use super::SolverOutcome;
-use crate::error::{require_setting, Fc3dError};
+use crate::error::{require_setting, try_copy, Fc3dError};
 
 /// The limits every family honours. Their defaults depend on the family (Siconos' defaults):
 /// [`crate::SolverConfig::new`] fills them in.
@@ -132,11 +132,16 @@ pub(crate) struct BestIterate {
 
 impl BestIterate {
     /// Starts from `r` with its `error` (use infinity when it was not measured).
-    pub fn new(r: &[f64], error: f64) -> Self {
-        BestIterate {
-            r: r.to_vec(),
+    pub fn try_new(r: &[f64], error: f64) -> Result<Self, Fc3dError> {
+        Ok(BestIterate {
+            r: try_copy(r, "the best iterate")?,
             error,
-        }
+        })
+    }
+
+    /// [`BestIterate::try_new`], panicking when the copy cannot be allocated.
+    pub fn new(r: &[f64], error: f64) -> Self {
+        Self::try_new(r, error).expect("room for the best iterate")
     }
 
     /// Keeps `r` if its error is below the best so far.

@@ -2,7 +2,7 @@
 //! inner tolerance, then the Coulomb error measured, the iterate guarded, the observer told.
 
 use super::{IterationEvent, Observer, Run, SolverOutcome};
-use crate::error::{require_setting, Fc3dError};
+use crate::error::{require_setting, try_copy, Fc3dError};
 use crate::matrix::BlockRows;
 use crate::measure::natural_map_error_by_rows;
 use crate::problem::FrictionProblem;
@@ -53,11 +53,11 @@ pub(crate) struct OuterLoop {
 }
 
 impl OuterLoop {
-    pub fn new(run: Run, r: &[f64]) -> Self {
-        OuterLoop {
+    pub fn new(run: Run, r: &[f64]) -> Result<Self, Fc3dError> {
+        Ok(OuterLoop {
             run,
-            previous: r.to_vec(),
-        }
+            previous: try_copy(r, "the previous iterate")?,
+        })
     }
 
     /// Restores the previous iterate if `r` is not finite (returns false then); otherwise

@@ -80,7 +80,7 @@ pub(super) fn run(
     let mut admm = GlobalAdmm::new(problem, operator, &options.inner)?;
     let mut work = ErrorWork::new(problem.ndof());
     let mut shift = vec![0.0; problem.size()];
-    let mut outer = OuterLoop::new(run, r);
+    let mut outer = OuterLoop::new(run, r)?;
     operator.global_velocity(problem.q(), r, v);
     let mut error = global_error_with(problem, ContactLaw::Coulomb, r, u, v, None, &mut work);
     for iteration in 1..=run.max_iter {

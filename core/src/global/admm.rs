@@ -408,7 +408,7 @@ impl GlobalAdmm {
             &z0,
             &xi0,
             observer,
-        );
+        )?;
         Ok((outcome, splitting.last_error))
     }
 }

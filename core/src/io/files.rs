@@ -8,7 +8,7 @@ use std::path::Path;
 use super::dat::{read_dat_file, write_dat_file};
 use super::info::FclibInfo;
 use crate::error::Fc3dError;
-use crate::problem::FrictionProblem;
+use crate::problem::{FrictionProblem, GlobalProblem, GlobalRollingProblem};
 
 /// Whether this build reads and writes FCLIB `.hdf5` files (the `fclib` cargo feature).
 pub const FCLIB_AVAILABLE: bool = cfg!(feature = "fclib");
@@ -95,6 +95,52 @@ pub fn write_fclib_file(
 ) -> Result<(), Fc3dError> {
     #[cfg(feature = "fclib")]
     return super::fclib::write_fclib_file(problem, path, info);
+    #[cfg(not(feature = "fclib"))]
+    {
+        let _ = (problem, info);
+        Err(without_fclib(path, "written"))
+    }
+}
+
+/// Reads the global problem (`/fclib_global`) of an FCLIB file; see
+/// `io::fclib::read_fclib_global_file` with the `fclib` feature. Without the feature, an
+/// [`Fc3dError::Unsupported`] naming the file and the feature.
+pub fn read_fclib_global_file(path: &Path) -> Result<GlobalProblem<'static>, Fc3dError> {
+    #[cfg(feature = "fclib")]
+    return super::fclib::read_fclib_global_file(path);
+    #[cfg(not(feature = "fclib"))]
+    Err(without_fclib(path, "read"))
+}
+
+/// Writes `problem` as an FCLIB global problem (`/fclib_global`, M and H as triplets, as
+/// Siconos' `globalFrictionContact_fclib_write`), replacing the file; see
+/// `io::fclib::write_fclib_global_file` with the `fclib` feature. Without the feature, an
+/// [`Fc3dError::Unsupported`] naming the file and the feature, and nothing is written.
+pub fn write_fclib_global_file(
+    problem: &GlobalProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    #[cfg(feature = "fclib")]
+    return super::fclib::write_fclib_global_file(problem, path, info);
+    #[cfg(not(feature = "fclib"))]
+    {
+        let _ = (problem, info);
+        Err(without_fclib(path, "written"))
+    }
+}
+
+/// Writes `problem` as an FCLIB global rolling problem (`/fclib_global_rolling`, as FCLIB's
+/// `fclib_write_global_rolling`), replacing the file; see
+/// `io::fclib::write_fclib_global_rolling_file` with the `fclib` feature. Without the feature, an
+/// [`Fc3dError::Unsupported`] naming the file and the feature, and nothing is written.
+pub fn write_fclib_global_rolling_file(
+    problem: &GlobalRollingProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    #[cfg(feature = "fclib")]
+    return super::fclib::write_fclib_global_rolling_file(problem, path, info);
     #[cfg(not(feature = "fclib"))]
     {
         let _ = (problem, info);

@@ -1,6 +1,5 @@
 //! Problem files.
 
-mod alloc;
 pub mod dat;
 mod files;
 mod info;
@@ -11,8 +10,9 @@ pub use dat::{
     write_matrix, write_sbm,
 };
 pub use files::{
-    has_fclib_extension, is_hdf5_file, read_fclib_file, read_fclib_info, read_problem_file,
-    write_fclib_file, write_problem_file, FCLIB_AVAILABLE,
+    has_fclib_extension, is_hdf5_file, read_fclib_file, read_fclib_global_file, read_fclib_info,
+    read_problem_file, write_fclib_file, write_fclib_global_file, write_fclib_global_rolling_file,
+    write_problem_file, FCLIB_AVAILABLE,
 };
 pub use info::FclibInfo;
 

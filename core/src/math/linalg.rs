@@ -201,15 +201,20 @@ pub fn lambda_min_sym2(a: f64, b: f64, c: f64, d: f64) -> f64 {
 /// Euclidean norm of a slice: one pass of squares, and a scaled second pass only when the sum of
 /// squares overflows or underflows (W scaled by 1e8 with reactions beyond 1e150).
 pub fn norm(x: &[f64]) -> f64 {
-    let s: f64 = x.iter().map(|v| v * v).sum();
+    norm_of(x.iter().copied())
+}
+
+/// [`norm`] of the values `x` yields (read up to three times), e.g. a vector scaled on the fly.
+pub fn norm_of(x: impl Iterator<Item = f64> + Clone) -> f64 {
+    let s: f64 = x.clone().map(|v| v * v).sum();
     if s >= f64::MIN_POSITIVE && s < f64::INFINITY {
         return s.sqrt();
     }
-    let amax = x.iter().fold(0.0_f64, |a, &v| a.max(v.abs()));
+    let amax = x.clone().fold(0.0_f64, |a, v| a.max(v.abs()));
     if amax == 0.0 || !amax.is_finite() {
         return if s.is_nan() { f64::NAN } else { amax };
     }
-    let s: f64 = x.iter().map(|v| (v / amax) * (v / amax)).sum();
+    let s: f64 = x.map(|v| (v / amax) * (v / amax)).sum();
     amax * s.sqrt()
 }
 

@@ -3,7 +3,8 @@ use std::sync::Arc;
 use super::block_sparse::NO_DIAGONAL;
 use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
 use super::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
-use crate::error::Fc3dError;
+use crate::alloc::{reserve, try_collect, try_extend, try_push};
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::{block_vec_add, contact_of, Block};
 
 /// Block-row view of a square W with `D x D` blocks (`D` the contact dimension, 3 by default),
@@ -45,8 +46,8 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         }
         match w {
             Delassus::SparseBlock(s) => Self::from_block_sparse(s),
-            Delassus::Dense(d) => Ok(Self::from_dense(d)),
-            Delassus::Sparse(s) => Ok(Self::from_csr(s)),
+            Delassus::Dense(d) => Self::from_dense(d),
+            Delassus::Sparse(s) => Self::from_csr(s),
         }
     }
 
@@ -144,7 +145,7 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         row_ptr: &mut Vec<usize>,
         cols: &mut Vec<usize>,
         values: &mut Vec<f64>,
-    ) {
+    ) -> Result<(), Fc3dError> {
         for (slot, &bj) in scratch_cols.iter().enumerate() {
             let b = &scratch[D * D * slot..D * D * (slot + 1)];
             if bj == bi {
@@ -154,23 +155,29 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                     }
                 }
             } else if b.iter().any(|&v| v != 0.0) {
-                cols.push(bj);
-                values.extend_from_slice(b);
+                try_push(cols, bj, "the coupling blocks of W")?;
+                try_extend(values, b, "the coupling blocks of W")?;
             }
         }
         row_ptr.push(cols.len());
+        Ok(())
     }
 
-    fn owned(nc: usize) -> Self {
-        BlockRows {
+    /// Rows for `nc` contacts, their diagonal blocks zero, and room for the row pointers.
+    fn owned(nc: usize) -> Result<(Self, Vec<usize>), Fc3dError> {
+        let rows = BlockRows {
             n_contacts: nc,
-            diagonal: vec![[[0.0; D]; D]; nc],
+            diagonal: try_vec(nc, [[0.0; D]; D], "the diagonal blocks of W")?,
             diagonal_at: Arc::new(Vec::new()),
             n_off_diagonal: 0,
             row_ptr: Shared::Owned(Arc::new(Vec::new())),
             cols: Shared::Owned(Arc::new(Vec::new())),
             values: BlockValues::Packed(Arc::new(Vec::new())),
-        }
+        };
+        let mut row_ptr = Vec::new();
+        reserve(&mut row_ptr, nc + 1, "the block rows of W")?;
+        row_ptr.push(0);
+        Ok((rows, row_ptr))
     }
 
     fn finish(mut self, row_ptr: Vec<usize>, cols: Vec<usize>, values: Vec<f64>) -> Self {
@@ -181,12 +188,12 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         self
     }
 
-    fn from_dense(d: &DenseMatrix<'_>) -> Self {
+    fn from_dense(d: &DenseMatrix<'_>) -> Result<Self, Fc3dError> {
         let nc = d.nrows() / D;
-        let mut out = Self::owned(nc);
-        let (mut row_ptr, mut cols, mut values) = (vec![0usize], Vec::new(), Vec::new());
-        let all_cols: Vec<usize> = (0..nc).collect();
-        let mut scratch = vec![0.0; D * D * nc];
+        let (mut out, mut row_ptr) = Self::owned(nc)?;
+        let (mut cols, mut values) = (Vec::new(), Vec::new());
+        let all_cols = try_collect(0..nc, "the block columns of W")?;
+        let mut scratch = try_vec(D * D * nc, 0.0, "a block row of W")?;
         for bi in 0..nc {
             for (bj, b) in scratch.chunks_exact_mut(D * D).enumerate() {
                 for j in 0..D {
@@ -202,29 +209,28 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                 &mut row_ptr,
                 &mut cols,
                 &mut values,
-            );
+            )?;
         }
-        out.finish(row_ptr, cols, values)
+        Ok(out.finish(row_ptr, cols, values))
     }
 
-    fn from_csr(s: &CsrMatrix) -> Self {
+    fn from_csr(s: &CsrMatrix) -> Result<Self, Fc3dError> {
         let nc = s.nrows() / D;
-        let mut out = Self::owned(nc);
-        let (mut row_ptr, mut cols, mut values) = (vec![0usize], Vec::new(), Vec::new());
+        let (mut out, mut row_ptr) = Self::owned(nc)?;
+        let (mut cols, mut values) = (Vec::new(), Vec::new());
         let (rp, ci, vals) = (s.row_ptr(), s.col_idx(), s.values());
         let mut scratch_cols: Vec<usize> = Vec::new();
         let mut scratch: Vec<f64> = Vec::new();
         for bi in 0..nc {
-            let entries = rp[D * bi]..rp[D * bi + D];
-            scratch_cols.clear();
-            scratch_cols.extend(ci[entries.clone()].iter().map(|&j| j / D));
-            scratch_cols.push(bi);
-            scratch_cols.sort_unstable();
-            scratch_cols.dedup();
+            s.block_columns(D, bi, &mut scratch_cols)?;
             scratch.clear();
+            reserve(&mut scratch, D * D * scratch_cols.len(), "a block row of W")?;
             scratch.resize(D * D * scratch_cols.len(), 0.0);
             for i in 0..D {
                 for k in rp[D * bi + i]..rp[D * bi + i + 1] {
+                    if vals[k] == 0.0 {
+                        continue;
+                    }
                     let (bj, j) = (ci[k] / D, ci[k] % D);
                     let slot = scratch_cols.binary_search(&bj).expect("gathered above");
                     scratch[D * D * slot + i + D * j] += vals[k];
@@ -237,9 +243,9 @@ impl<'a, const D: usize> BlockRows<'a, D> {
                 &mut row_ptr,
                 &mut cols,
                 &mut values,
-            );
+            )?;
         }
-        out.finish(row_ptr, cols, values)
+        Ok(out.finish(row_ptr, cols, values))
     }
 
     pub fn n_contacts(&self) -> usize {

@@ -1,6 +1,7 @@
 use std::sync::Arc;
 
 use super::storage::{with_blocks, BlockAt, BlockValues, Shared};
+use crate::alloc::reserve;
 use crate::error::{check_finite, Fc3dError};
 use crate::math::linalg::{mat3_from_col_major, Mat3};
 
@@ -190,13 +191,27 @@ impl<'a> BlockSparseMatrix<'a> {
         }
     }
 
-    /// `alpha * self`, same block structure (owned).
-    pub fn scaled(&self, alpha: f64) -> BlockSparseMatrix<'static> {
-        let mut m = self.clone().into_owned();
-        if let BlockValues::Packed(v) = &mut m.values {
-            Arc::make_mut(v).iter_mut().for_each(|v| *v *= alpha);
+    /// `alpha * self`, same block structure (owned; index arrays shared when owned), allocated
+    /// fallibly.
+    pub fn scaled(&self, alpha: f64) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
+        let nb = self.n_blocks();
+        let mut values = Vec::new();
+        reserve(&mut values, 9 * nb, "the blocks of a rescaled W")?;
+        for k in 0..nb {
+            values.extend(self.block(k).iter().map(|v| v * alpha));
         }
-        m
+        Ok(BlockSparseMatrix {
+            n_block_rows: self.n_block_rows,
+            n_block_cols: self.n_block_cols,
+            row_ptr: self.row_ptr.clone().try_into_owned("the block rows of W")?,
+            col_idx: self
+                .col_idx
+                .clone()
+                .try_into_owned("the block columns of W")?,
+            values: BlockValues::Packed(Arc::new(values)),
+            diagonal_at: Arc::clone(&self.diagonal_at),
+            repeated_diagonal: self.repeated_diagonal,
+        })
     }
 
     /// `(n_block_rows, n_block_cols, row_ptr, col_idx, values)` (9 column-major values per

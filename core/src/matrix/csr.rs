@@ -1,4 +1,5 @@
-use crate::error::{check_finite, Fc3dError};
+use crate::alloc::reserve;
+use crate::error::{check_finite, try_copy, try_vec, Fc3dError};
 
 /// General sparse matrix in compressed sparse row form, column indices sorted within each row and
 /// free of duplicates (constructors sort and sum).
@@ -12,11 +13,22 @@ pub struct CsrMatrix {
 }
 
 impl CsrMatrix {
-    /// `alpha * self`, same structure.
-    pub fn scaled(&self, alpha: f64) -> CsrMatrix {
-        let mut m = self.clone();
+    /// `alpha * self`, same structure, allocated fallibly.
+    pub fn scaled(&self, alpha: f64) -> Result<CsrMatrix, Fc3dError> {
+        let mut m = self.try_clone()?;
         m.values.iter_mut().for_each(|v| *v *= alpha);
-        m
+        Ok(m)
+    }
+
+    /// A copy, allocated fallibly.
+    pub fn try_clone(&self) -> Result<CsrMatrix, Fc3dError> {
+        Ok(CsrMatrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            row_ptr: try_copy(&self.row_ptr, "the row pointers of a sparse W")?,
+            col_idx: try_copy(&self.col_idx, "the column indices of a sparse W")?,
+            values: try_copy(&self.values, "the values of a sparse W")?,
+        })
     }
 
     /// From triplets `(row, col, value)`, in any order; duplicates are summed.
@@ -38,25 +50,56 @@ impl CsrMatrix {
                 });
             }
         }
-        let mut order: Vec<usize> = (0..triplets.len()).collect();
-        order.sort_by_key(|&k| (triplets[k].0, triplets[k].1));
-        let mut row_ptr = vec![0usize; nrows + 1];
-        let mut col_idx = Vec::with_capacity(triplets.len());
-        let mut values: Vec<f64> = Vec::with_capacity(triplets.len());
-        let mut last: Option<(usize, usize)> = None;
-        for k in order {
-            let (i, j, v) = triplets[k];
-            if last == Some((i, j)) {
-                *values.last_mut().expect("a previous entry exists") += v;
-            } else {
-                col_idx.push(j);
-                values.push(v);
-                row_ptr[i + 1] += 1;
-                last = Some((i, j));
-            }
+        // The entries grouped by row (a counting sort, stable: filled from the last entry back
+        // into each row's end), then each row's by column and entry index: the order of a stable
+        // sort by (row, column), so duplicates are summed in input order. Memory: the row
+        // pointers, one index per entry and the result, all allocated fallibly.
+        let rows_plus_one = nrows
+            .checked_add(1)
+            .ok_or_else(|| Fc3dError::InvalidStructure(format!("{nrows} rows")))?;
+        let mut row_ptr = try_vec(rows_plus_one, 0usize, "the row pointers of a sparse W")?;
+        for &(i, _, _) in triplets {
+            row_ptr[i + 1] += 1;
         }
         for i in 0..nrows {
             row_ptr[i + 1] += row_ptr[i];
+        }
+        let mut order = try_vec(triplets.len(), 0usize, "the entries of a sparse W by row")?;
+        for (k, &(i, _, _)) in triplets.iter().enumerate().rev() {
+            row_ptr[i + 1] -= 1;
+            order[row_ptr[i + 1]] = k;
+        }
+        // row_ptr[i + 1] is now where row i starts.
+        let mut col_idx = Vec::new();
+        reserve(
+            &mut col_idx,
+            triplets.len(),
+            "the column indices of a sparse W",
+        )?;
+        let mut values: Vec<f64> = Vec::new();
+        reserve(&mut values, triplets.len(), "the values of a sparse W")?;
+        for i in 0..nrows {
+            let start = row_ptr[i + 1];
+            let end = if i + 1 < nrows {
+                row_ptr[i + 2]
+            } else {
+                triplets.len()
+            };
+            let row = &mut order[start..end];
+            row.sort_unstable_by_key(|&k| (triplets[k].1, k));
+            row_ptr[i + 1] = row_ptr[i];
+            let mut last = None;
+            for &k in row.iter() {
+                let (_, j, v) = triplets[k];
+                if last == Some(j) {
+                    *values.last_mut().expect("a previous entry exists") += v;
+                } else {
+                    col_idx.push(j);
+                    values.push(v);
+                    row_ptr[i + 1] += 1;
+                    last = Some(j);
+                }
+            }
         }
         Ok(CsrMatrix {
             nrows,
@@ -129,6 +172,28 @@ impl CsrMatrix {
         }
     }
 
+    /// Into `cols`, sorted: the block columns (`d x d` blocks) of block row `bi` (rows `d bi` to
+    /// `d bi + d - 1`) that hold a non-zero entry, and `bi` itself (room allocated fallibly).
+    pub(crate) fn block_columns(
+        &self,
+        d: usize,
+        bi: usize,
+        cols: &mut Vec<usize>,
+    ) -> Result<(), Fc3dError> {
+        let entries = self.row_ptr[d * bi]..self.row_ptr[d * bi + d];
+        cols.clear();
+        reserve(cols, entries.len() + 1, "a block row of W")?;
+        cols.extend(
+            entries
+                .filter(|&k| self.values[k] != 0.0)
+                .map(|k| self.col_idx[k] / d),
+        );
+        cols.push(bi);
+        cols.sort_unstable();
+        cols.dedup();
+        Ok(())
+    }
+
     pub fn for_each_entry(&self, mut f: impl FnMut(usize, usize, f64)) {
         for i in 0..self.nrows {
             for k in self.row_ptr[i]..self.row_ptr[i + 1] {
@@ -168,7 +233,8 @@ fn compressed_to_triplets(
         ));
     }
     check_finite("W", &values[..nnz])?;
-    let mut out = Vec::with_capacity(nnz);
+    let mut out = Vec::new();
+    reserve(&mut out, nnz, "the entries of a sparse W")?;
     for o in 0..n_outer {
         for k in ptr[o]..ptr[o + 1] {
             out.push((o, idx[k], values[k]));
@@ -191,6 +257,30 @@ mod tests {
         assert_eq!(m.values(), &[2.0, 3.0, 5.0]);
         assert_eq!(m.get(1, 2), 5.0);
         assert_eq!(m.get(0, 0), 0.0);
+    }
+
+    /// Duplicates are summed in input order (1e16 + 1 rounds to 1e16, then -1e16 gives 0; in
+    /// another order the sum would be 1), whatever the order of the rows around them; empty
+    /// rows and a matrix without entries have their pointers.
+    #[test]
+    fn duplicates_are_summed_in_input_order() {
+        let m = CsrMatrix::from_triplets(
+            3,
+            2,
+            &[
+                (2, 1, 5.0),
+                (0, 0, 1e16),
+                (2, 0, 4.0),
+                (0, 0, 1.0),
+                (0, 0, -1e16),
+            ],
+        )
+        .unwrap();
+        assert_eq!(m.row_ptr(), &[0, 1, 1, 3]);
+        assert_eq!(m.col_idx(), &[0, 0, 1]);
+        assert_eq!(m.values(), &[0.0, 4.0, 5.0]);
+        let empty = CsrMatrix::from_triplets(4, 4, &[]).unwrap();
+        assert_eq!((empty.row_ptr(), empty.nnz()), (&[0, 0, 0, 0, 0][..], 0));
     }
 
     #[test]

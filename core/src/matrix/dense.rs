@@ -1,5 +1,6 @@
 use std::borrow::Cow;
 
+use crate::alloc::try_collect;
 use crate::error::{check_finite, Fc3dError};
 
 /// Dense column-major matrix; borrows the host's array when created from a slice.
@@ -73,12 +74,15 @@ impl<'a> DenseMatrix<'a> {
 
     /// An owned copy that no longer borrows the host.
     /// `alpha * self`, owned.
-    pub fn scaled(&self, alpha: f64) -> DenseMatrix<'static> {
-        DenseMatrix {
+    pub fn scaled(&self, alpha: f64) -> Result<DenseMatrix<'static>, Fc3dError> {
+        Ok(DenseMatrix {
             nrows: self.nrows,
             ncols: self.ncols,
-            data: Cow::Owned(self.data.iter().map(|v| alpha * v).collect()),
-        }
+            data: Cow::Owned(try_collect(
+                self.data.iter().map(|v| alpha * v),
+                "a rescaled W",
+            )?),
+        })
     }
 
     pub fn into_owned(self) -> DenseMatrix<'static> {

@@ -25,7 +25,8 @@ pub use hform::{transpose, transpose_mul_add, HForm};
 pub use mass::{MassFactor, DENSE_BLOCK_MAX};
 pub use storage::{BlockValues, Shared};
 
-use crate::error::Fc3dError;
+use crate::alloc::try_push;
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::linalg::Mat3;
 
 /// A dense W is solved through its [`Delassus::sparse_block_view`] when at most this fraction of
@@ -73,13 +74,13 @@ impl<'a> Delassus<'a> {
         self.mul_add(r, u);
     }
 
-    /// `alpha W` in the same storage (owned).
-    pub fn scaled(&self, alpha: f64) -> Delassus<'static> {
-        match self {
-            Delassus::Dense(m) => Delassus::Dense(m.scaled(alpha)),
-            Delassus::SparseBlock(m) => Delassus::SparseBlock(m.scaled(alpha)),
-            Delassus::Sparse(m) => Delassus::Sparse(m.scaled(alpha)),
-        }
+    /// `alpha W` in the same storage (owned), allocated fallibly.
+    pub fn scaled(&self, alpha: f64) -> Result<Delassus<'static>, Fc3dError> {
+        Ok(match self {
+            Delassus::Dense(m) => Delassus::Dense(m.scaled(alpha)?),
+            Delassus::SparseBlock(m) => Delassus::SparseBlock(m.scaled(alpha)?),
+            Delassus::Sparse(m) => Delassus::Sparse(m.scaled(alpha)?),
+        })
     }
 
     /// Entry (i, j), zero where nothing is stored.
@@ -130,20 +131,30 @@ impl<'a> Delassus<'a> {
         DenseMatrix::new(m, n, data).expect("sizes agree by construction")
     }
 
-    /// A CSR copy (sorted, no duplicates; exact zeros of a dense W are not stored).
+    /// A CSR copy (sorted, no duplicates; exact zeros are not stored). Panics when it cannot be
+    /// allocated: see [`Delassus::try_to_csr`].
     pub fn to_csr(&self) -> CsrMatrix {
+        self.try_to_csr().expect("room for a CSR copy of W")
+    }
+
+    /// A CSR copy (sorted, no duplicates; exact zeros are not stored), allocated fallibly.
+    pub fn try_to_csr(&self) -> Result<CsrMatrix, Fc3dError> {
+        // A view of a host's blocks has not been read yet: a NaN is named by its block.
+        self.check_finite()?;
         let mut triplets = Vec::new();
+        let mut failed = Ok(());
         self.for_each_entry(|i, j, v| {
-            if v != 0.0 {
-                triplets.push((i, j, v))
+            if v != 0.0 && failed.is_ok() {
+                failed = try_push(&mut triplets, (i, j, v), "the entries of W");
             }
         });
+        failed?;
         CsrMatrix::from_triplets(self.nrows(), self.ncols(), &triplets)
-            .expect("indices in range by construction")
     }
 
     /// A sparse-block copy (3x3 blocks) holding every block with a non-zero entry and every
-    /// diagonal block. W must be square with a size divisible by 3.
+    /// diagonal block. W must be square with a size divisible by 3. Built in two passes over
+    /// W's rows (count, then fill), every array allocated fallibly.
     pub fn to_block_sparse(&self) -> Result<BlockSparseMatrix<'static>, Fc3dError> {
         let n = self.nrows();
         if n != self.ncols() || n % 3 != 0 {
@@ -153,41 +164,55 @@ impl<'a> Delassus<'a> {
                 self.ncols()
             )));
         }
-        let nc = n / 3;
-        let mut map = std::collections::BTreeMap::<(usize, usize), [f64; 9]>::new();
-        for c in 0..nc {
-            map.insert((c, c), [0.0; 9]);
-        }
-        self.for_each_entry(|i, j, v| {
-            if v != 0.0 {
-                map.entry((i / 3, j / 3)).or_insert([0.0; 9])[i % 3 + 3 * (j % 3)] += v;
+        let copy;
+        let csr = match self {
+            Delassus::Sparse(s) => s,
+            _ => {
+                copy = self.try_to_csr()?;
+                &copy
             }
-        });
-        let mut row_ptr = vec![0usize; nc + 1];
-        let mut col_idx = Vec::with_capacity(map.len());
-        let mut blocks = Vec::with_capacity(map.len());
-        for ((bi, bj), b) in map {
-            row_ptr[bi + 1] += 1;
-            col_idx.push(bj);
-            blocks.push(b);
+        };
+        let nc = n / 3;
+        let (rp, ci, vals) = (csr.row_ptr(), csr.col_idx(), csr.values());
+        let mut cols = Vec::new();
+        let mut row_ptr = try_vec(nc + 1, 0usize, "the block rows of W")?;
+        for bi in 0..nc {
+            csr.block_columns(3, bi, &mut cols)?;
+            row_ptr[bi + 1] = row_ptr[bi] + cols.len();
         }
-        for i in 0..nc {
-            row_ptr[i + 1] += row_ptr[i];
+        let nb = row_ptr[nc];
+        let mut col_idx = try_vec(nb, 0usize, "the block columns of W")?;
+        let mut blocks = try_vec(nb, [0.0; 9], "the blocks of W")?;
+        for bi in 0..nc {
+            let start = row_ptr[bi];
+            csr.block_columns(3, bi, &mut cols)?;
+            col_idx[start..start + cols.len()].copy_from_slice(&cols);
+            for i in 0..3 {
+                for k in rp[3 * bi + i]..rp[3 * bi + i + 1] {
+                    if vals[k] != 0.0 {
+                        let (bj, j) = (ci[k] / 3, ci[k] % 3);
+                        let slot = cols.binary_search(&bj).expect("gathered above");
+                        blocks[start + slot][i + 3 * j] += vals[k];
+                    }
+                }
+            }
         }
         BlockSparseMatrix::new(nc, nc, row_ptr, col_idx, blocks)
     }
 
     /// Calls `f(a, b)` for each pair of distinct contacts (3x3 blocks) that a non-zero entry of
     /// W couples: once per stored block holding one (per entry on a CSR W; a pair may repeat).
-    /// The contact graph at the cost of reading W once, without a call per entry.
-    pub fn for_each_coupling(&self, mut f: impl FnMut(usize, usize)) {
+    /// The contact graph at the cost of reading W once, without a call per entry (a dense W's
+    /// scratch, two arrays of its size, allocated fallibly).
+    pub fn for_each_coupling(&self, mut f: impl FnMut(usize, usize)) -> Result<(), Fc3dError> {
         match self {
             Delassus::Dense(d) => {
                 let n = d.nrows();
                 if n != d.ncols() || n % 3 != 0 {
-                    return;
+                    return Ok(());
                 }
-                let (mut flags, mut rows) = (vec![false; n / 3], vec![0u64; n]);
+                let mut flags = try_vec(n / 3, false, "a block column of W")?;
+                let mut rows = try_vec(n, 0u64, "a block column of W")?;
                 for bj in 0..n / 3 {
                     dense_block_column_pattern(d.values(), n, bj, &mut flags, &mut rows);
                     for (bi, _) in flags.iter().enumerate().filter(|&(bi, f)| *f && bi != bj) {
@@ -208,13 +233,15 @@ impl<'a> Delassus<'a> {
                 }
             }),
         }
+        Ok(())
     }
 
     /// For a dense W of 3x3 blocks whose blocks are mostly zero (at most
     /// [`SPARSE_VIEW_MAX_FILL`] of them hold a non-zero entry), the same matrix in sparse-block
     /// storage: every block with a non-zero entry and every diagonal block, values unchanged.
-    /// `None` for other storages and for dense matrices that are not mostly zero. One pass
-    /// over the dense values, column by column; memory in proportion to the non-zero blocks.
+    /// `None` for other storages, for dense matrices that are not mostly zero, and when the view
+    /// cannot be allocated. One pass over the dense values, column by column; memory in
+    /// proportion to the non-zero blocks.
     pub fn sparse_block_view(&self) -> Option<BlockSparseMatrix<'static>> {
         let Delassus::Dense(d) = self else {
             return None;
@@ -226,13 +253,15 @@ impl<'a> Delassus<'a> {
         let nc = n / 3;
         let values = d.values();
         // The block rows of block column bj holding a non-zero entry, and the diagonal.
-        let mut rows = vec![0u64; n];
+        // Memory in proportion to the blocks kept, allocated fallibly: without it, no view (the
+        // solve runs on the dense W).
+        let mut rows = try_vec(n, 0u64, "a block column of W").ok()?;
         let mut mark = |bj: usize, flags: &mut [bool]| {
             dense_block_column_pattern(values, n, bj, flags, &mut rows);
             flags[bj] = true;
         };
-        let mut flags = vec![false; nc];
-        let mut row_count = vec![0usize; nc + 1];
+        let mut flags = try_vec(nc, false, "a block column of W").ok()?;
+        let mut row_count = try_vec(nc + 1, 0usize, "the block rows of W").ok()?;
         let limit = (SPARSE_VIEW_MAX_FILL * (nc * nc) as f64) as usize;
         // The blocks kept, column by column: W's values are read once for the pattern.
         let mut found: Vec<(usize, usize)> = Vec::new();
@@ -240,7 +269,7 @@ impl<'a> Delassus<'a> {
             mark(bj, &mut flags);
             for (bi, _) in flags.iter().enumerate().filter(|(_, f)| **f) {
                 row_count[bi + 1] += 1;
-                found.push((bi, bj));
+                try_push(&mut found, (bi, bj), "the blocks of W").ok()?;
             }
             if found.len() > limit {
                 return None;
@@ -249,10 +278,10 @@ impl<'a> Delassus<'a> {
         for i in 0..nc {
             row_count[i + 1] += row_count[i];
         }
-        let row_ptr = row_count.clone();
+        let row_ptr = try_copy(&row_count, "the block rows of W").ok()?;
         let mut next = row_count;
-        let mut col_idx = vec![0usize; found.len()];
-        let mut blocks = vec![[0.0; 9]; found.len()];
+        let mut col_idx = try_vec(found.len(), 0usize, "the block columns of W").ok()?;
+        let mut blocks = try_vec(found.len(), [0.0; 9], "the blocks of W").ok()?;
         for (bi, bj) in found {
             let k = next[bi];
             next[bi] += 1;
@@ -358,5 +387,42 @@ fn dense_block_column_pattern(
     }
     for (f, r) in flags.iter_mut().zip(rows.chunks_exact(3)) {
         *f = (r[0] | r[1] | r[2]) != 0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// From every storage, the sparse-block copy holds each diagonal block and each block with
+    /// a non-zero entry (duplicates summed; a block holding only an explicit zero is left out),
+    /// with W's values.
+    #[test]
+    fn block_sparse_copies_keep_the_values_and_the_non_zero_blocks() {
+        let triplets = [
+            (0, 0, 1.0),
+            (1, 1, 2.0),
+            (2, 2, 3.0),
+            (0, 4, 1.5),
+            (0, 4, 0.5),
+            (7, 1, 0.0),
+            (4, 4, 1.0),
+            (6, 6, 1.0),
+            (8, 3, -2.0),
+        ];
+        let csr = Delassus::Sparse(CsrMatrix::from_triplets(9, 9, &triplets).unwrap());
+        let dense = Delassus::Dense(csr.to_dense());
+        let blocks = Delassus::SparseBlock(csr.to_block_sparse().unwrap());
+        for w in [&csr, &dense, &blocks] {
+            let b = w.to_block_sparse().unwrap();
+            assert_eq!(b.row_ptr(), &[0, 2, 3, 5]);
+            assert_eq!(b.col_idx(), &[0, 1, 1, 1, 2]);
+            for i in 0..9 {
+                for j in 0..9 {
+                    assert_eq!(b.get(i, j), csr.get(i, j), "({i}, {j})");
+                }
+            }
+        }
+        assert_eq!(csr.get(0, 4), 2.0);
     }
 }

@@ -8,6 +8,8 @@
 use std::ops::Deref;
 use std::sync::Arc;
 
+use crate::error::{try_copy, Fc3dError};
+
 /// An array owned by fc3d and shared between W and its views, or borrowed for `'a`.
 #[derive(Debug)]
 pub enum Shared<'a, T> {
@@ -51,6 +53,17 @@ impl<'a, T: Clone> Shared<'a, T> {
             Shared::Owned(a) => Shared::Owned(a),
             Shared::Borrowed(s) => Shared::Owned(Arc::new(s.to_vec())),
         }
+    }
+
+    /// [`Shared::into_owned`], the copy of a borrowed array allocated fallibly.
+    pub fn try_into_owned(self, what: &str) -> Result<Shared<'static, T>, Fc3dError>
+    where
+        T: 'static,
+    {
+        Ok(match self {
+            Shared::Owned(a) => Shared::Owned(a),
+            Shared::Borrowed(s) => Shared::Owned(Arc::new(try_copy(s, what)?)),
+        })
     }
 
     /// The values as a vector, without a copy when this is the only owner.

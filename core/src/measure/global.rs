@@ -43,11 +43,13 @@ impl ErrorWork {
     }
 }
 
-/// The balance term `||q + H r - M v|| / max(||q||, ||M v||, ||H r||)`.
+/// The balance term `||q + H r - M v|| / max(norm_q, ||M v||, ||H r||)` (`norm_q` is `||q||`
+/// but where a host passes its own, as to Siconos' `gfc3d_compute_error`).
 fn balance<const D: usize>(
     problem: &GlobalProblem<'_, D>,
     r: &[f64],
     v: &[f64],
+    norm_q: f64,
     work: &mut ErrorWork,
 ) -> f64 {
     let n = problem.ndof();
@@ -69,8 +71,8 @@ fn balance<const D: usize>(
         })
         .sum::<f64>()
         .sqrt();
-    let scale = norm(problem.q()).max(norm(mv)).max(norm(hr));
-    if scale > f64::EPSILON {
+    let scale = norm_q.max(norm(mv)).max(norm(hr));
+    if scale.abs() > f64::EPSILON {
         residual / scale
     } else {
         residual
@@ -129,6 +131,24 @@ pub fn global_error_with<const D: usize>(
     shift: Option<&[f64]>,
     work: &mut ErrorWork,
 ) -> f64 {
+    let norm_q = norm(problem.q());
+    global_error_with_norm_q(problem, law, r, u, v, shift, norm_q, work)
+}
+
+/// [`global_error_with`] with the balance term scaled by `max(norm_q, ||M v||, ||H r||)` for a
+/// given `norm_q` (Siconos' `gfc3d_compute_error` takes it from its caller; every caller passes
+/// `||q||`, which [`global_error_with`] uses).
+#[allow(clippy::too_many_arguments)]
+pub fn global_error_with_norm_q<const D: usize>(
+    problem: &GlobalProblem<'_, D>,
+    law: ContactLaw,
+    r: &[f64],
+    u: &mut [f64],
+    v: &[f64],
+    shift: Option<&[f64]>,
+    norm_q: f64,
+    work: &mut ErrorWork,
+) -> f64 {
     local_velocity(problem, v, u);
     let mut shifted_u = std::mem::take(&mut work.shifted);
     let u_law = shifted(u, shift, &mut shifted_u);
@@ -144,7 +164,7 @@ pub fn global_error_with<const D: usize>(
             .sqrt(),
         ContactLaw::Convex => convex_residual::<D>(problem.mu(), r, u_law),
     };
-    let error = balance(problem, r, v, work) + law_term(absolute, r, u_law);
+    let error = balance(problem, r, v, norm_q, work) + law_term(absolute, r, u_law);
     work.shifted = shifted_u;
     error
 }
@@ -189,5 +209,5 @@ pub fn global_rolling_error(
         })
         .sum::<f64>()
         .sqrt();
-    balance(base, r, v, &mut ErrorWork::default()) + law_term(absolute, r, u)
+    balance(base, r, v, norm(base.q()), &mut ErrorWork::default()) + law_term(absolute, r, u)
 }

@@ -8,12 +8,15 @@
 
 mod global;
 
-pub use global::{global_error, global_error_with, global_rolling_error, ContactLaw, ErrorWork};
+pub use global::{
+    global_error, global_error_with, global_error_with_norm_q, global_rolling_error, ContactLaw,
+    ErrorWork,
+};
 
 use crate::math::cone::{
     modified_velocity, modified_velocity_d, project_on_cone, project_on_cone_d,
 };
-use crate::math::linalg::{contact_of, norm, Vec3};
+use crate::math::linalg::{contact_of, norm, norm_of, Vec3};
 use crate::math::rolling::{part_norms, project_on_rolling_cone, rolling_residual_sq};
 use crate::matrix::{BlockRows, Delassus};
 use crate::problem::{FrictionProblem, RollingProblem};
@@ -66,7 +69,12 @@ pub fn absolute_natural_map_residual_d<const D: usize>(r: &[f64], u: &[f64], mu:
 
 /// Siconos' normalisation `max(||q||, ||r||, ||u||)`, or 1 when that is zero.
 pub fn relative_scale(norm_q: f64, r: &[f64], u: &[f64]) -> f64 {
-    let s = norm_q.max(norm(r)).max(norm(u));
+    largest_norm(norm_q, norm(r), norm(u))
+}
+
+/// `max(norm_q, norm_r, norm_u)`, or 1 when that is zero.
+fn largest_norm(norm_q: f64, norm_r: f64, norm_u: f64) -> f64 {
+    let s = norm_q.max(norm_r).max(norm_u);
     if s > 0.0 {
         s
     } else {
@@ -103,10 +111,15 @@ pub fn relative_natural_map_error_d<const D: usize>(
     if !(largest > 0.0 && largest.is_finite()) {
         return e;
     }
-    // Rare path (overflow): scaled copies.
-    let rs: Vec<f64> = r.iter().map(|v| v / largest).collect();
-    let us: Vec<f64> = u.iter().map(|v| v / largest).collect();
-    absolute_natural_map_residual_d::<D>(&rs, &us, mu) / relative_scale(norm_q / largest, &rs, &us)
+    // Rare path (overflow): the pair scaled by its largest entry, contact by contact (nothing
+    // allocated: r and u may be as large as the problem).
+    let scaled = |v: &[f64], c: usize| contact_of::<D>(v, c).map(|x| x / largest);
+    let mut s = 0.0;
+    for (c, &m) in mu.iter().enumerate() {
+        s += contact_residual_sq_d::<D>(&scaled(r, c), &scaled(u, c), m);
+    }
+    let norm_scaled = |v: &[f64]| norm_of(v.iter().map(|x| x / largest));
+    s.sqrt() / largest_norm(norm_q / largest, norm_scaled(r), norm_scaled(u))
 }
 
 /// The relative natural-map error of `r` for `problem`: computes `u = W r + q` into `u` (as

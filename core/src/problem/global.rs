@@ -177,7 +177,9 @@ impl<'a> GlobalRollingProblem<'a> {
 
     /// The local rolling problem (W, q_loc, mu, mu_r).
     pub fn reduce(&self, operator: &mut HForm) -> Result<RollingProblem<'static, 5>, Fc3dError> {
-        let (w, q, mu) = self.base.reduce(operator)?.into_parts();
-        RollingProblem::new(w, q.into_owned(), mu.into_owned(), self.mu_r.to_vec())
+        // Built as a rolling problem directly: a friction problem of dimension 5 does not exist.
+        let w = operator.assemble::<5>()?;
+        let q = operator.local_q(self.base.q(), self.base.b())?;
+        RollingProblem::new(w, q, self.base.mu().to_vec(), self.mu_r.to_vec())
     }
 }

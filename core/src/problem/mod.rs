@@ -9,7 +9,7 @@ pub use global::{GlobalProblem, GlobalRollingProblem};
 
 use std::borrow::Cow;
 
-use crate::error::{check_finite, Fc3dError};
+use crate::error::{check_finite, try_copy, Fc3dError};
 use crate::matrix::Delassus;
 
 /// FC(W, q, mu): `nc` contacts, `W` of size `D nc x D nc`, `q` of size `D nc`, `mu` of size `nc`.
@@ -138,7 +138,11 @@ impl<'a, const D: usize> FrictionProblem<'a, D> {
 
     /// The same problem with W in another storage (used to cross-check storages).
     pub fn with_w(&self, w: Delassus<'static>) -> Result<FrictionProblem<'static, D>, Fc3dError> {
-        FrictionProblem::validated(w, Cow::Owned(self.q.to_vec()), Cow::Owned(self.mu.to_vec()))
+        FrictionProblem::validated(
+            w,
+            Cow::Owned(try_copy(&self.q, "q")?),
+            Cow::Owned(try_copy(&self.mu, "mu")?),
+        )
     }
 
     /// W, q and mu, taken apart without a copy (what a converter that releases the problem as it

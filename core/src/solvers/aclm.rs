@@ -5,7 +5,7 @@
 //! Gauss-Seidel sweep of [`crate::solvers::soclcp`].
 
 use crate::contract::{Family, InnerTolerance, Limits, Observer, OuterLoop, SolverOutcome};
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::norm2;
 use crate::measure::{cheap_error, natural_map_error_by_rows};
 use crate::problem::FrictionProblem;
@@ -77,8 +77,8 @@ fn aclmfp(
     let (q, mu) = (problem.q(), problem.mu());
     let run = limits.start();
     let tol = run.tolerance;
-    let mut shift = vec![0.0; rows.n_contacts()];
-    let mut outer = OuterLoop::new(run, r);
+    let mut shift = try_vec(rows.n_contacts(), 0.0, "the ACLM shifts")?;
+    let mut outer = OuterLoop::new(run, r)?;
     let mut error = natural_map_error_by_rows(problem, &rows, r, u);
     for iteration in 1..=run.max_iter {
         // u = W r + q is current here (coulomb_error computed it).

@@ -28,7 +28,7 @@ use fc3d_core::error::try_vec;
 use fc3d_core::matrix::{BlockSparseMatrix, CsrMatrix, Shared};
 
 /// Checks cumulative block sizes: strictly increasing from a positive first size.
-fn check_block_sizes(bs: &[c_uint], what: &str) -> CResult<()> {
+pub(in crate::matrix) fn check_block_sizes(bs: &[c_uint], what: &str) -> CResult<()> {
     let mut prev = 0;
     for (k, &v) in bs.iter().enumerate() {
         if v <= prev {
@@ -54,7 +54,9 @@ fn check_block_count(count: c_uint, what: &str) -> CResult<()> {
 /// The `blocknumber0 + 1` block-row pointers of a host SBM. Siconos' `filled1` counts the
 /// pointers up to the last block row that holds a block (`SBCM_to_SBM` sets it so, and to 2 for
 /// a grid without rows): the rows past it are empty.
-unsafe fn sbm_row_ptr(s: &SparseBlockStructuredMatrix) -> CResult<Shared<'_, usize>> {
+pub(in crate::matrix) unsafe fn sbm_row_ptr(
+    s: &SparseBlockStructuredMatrix,
+) -> CResult<Shared<'_, usize>> {
     let nbr = s.blocknumber0 as usize;
     let given = s.filled1.min(nbr + 1);
     if s.filled1 > nbr + 1 && nbr > 0 || given == 0 && s.nbblocks != 0 {

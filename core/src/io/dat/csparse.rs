@@ -1,6 +1,6 @@
 //! The sparse storage (code 2): the CSparse triplet and compressed (CSC / CSR) dumps.
 
-use super::tokens::{ensure_headroom, token_count, try_push, Reader};
+use super::tokens::{token_count, try_push, Reader};
 use super::{ORIGIN_CSC, ORIGIN_CSR, ORIGIN_HALF_TRIPLET, ORIGIN_TRIPLET};
 use crate::error::Fc3dError;
 use crate::matrix::{CsrMatrix, Delassus};
@@ -16,21 +16,19 @@ pub(super) struct SparseEntries {
 }
 
 impl SparseEntries {
-    /// The compressed matrix. `CsrMatrix::from_triplets` allocates a pointer per row (the rows
-    /// are declared, not given by values) and a few arrays per entry, without a fallible path:
-    /// that memory is probed first, so that an impossible size is an out-of-memory error.
+    /// The compressed matrix (a pointer per declared row and a few arrays per entry, allocated
+    /// fallibly: an impossible size is an out-of-memory error, any other refusal is placed in
+    /// the file).
     pub(super) fn finish(self, r: &Reader<'_>) -> Result<Delassus<'static>, Fc3dError> {
-        let words = self
-            .rows
-            .saturating_add(1)
-            .saturating_add(self.entries.len().saturating_mul(3));
-        ensure_headroom(
-            words.saturating_mul(std::mem::size_of::<usize>()),
-            &format!("the compressed rows of {}", r.name),
-        )?;
         CsrMatrix::from_triplets(self.rows, self.cols, &self.entries)
             .map(Delassus::Sparse)
-            .map_err(|e| r.error_at(self.origin_index, e.to_string()))
+            .map_err(|e| match e {
+                Fc3dError::OutOfMemory { what, bytes } => Fc3dError::OutOfMemory {
+                    what: format!("{what} of {}", r.name),
+                    bytes,
+                },
+                other => r.error_at(self.origin_index, other.to_string()),
+            })
     }
 }
 

@@ -56,6 +56,7 @@
 //! where the matrix text ends, for readers that continue after it.
 
 mod csparse;
+mod global;
 mod parse;
 mod scan;
 mod storage;
@@ -65,6 +66,12 @@ mod tests;
 mod tokens;
 mod write;
 
+pub use global::{
+    block_cut, block_start, block_values, csr_of_dense, parse_global_dat, read_global_dat,
+    read_global_dat_file, read_global_rolling_dat, read_global_rolling_dat_file, write_global_dat,
+    write_global_dat_file, write_global_rolling_dat, write_stored_matrix, BlockCut, GlobalDat,
+    GlobalDatProblem, GlobalStorage, MatrixStorage,
+};
 pub use parse::{
     parse_dat, parse_dat_any, parse_matrix, parse_matrix_prefix, parse_sbm, parse_sbm_prefix,
     read_dat, read_dat_any, read_dat_file, read_dat_file_any, read_dat_file_into, read_dat_into,

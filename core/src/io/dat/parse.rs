@@ -282,7 +282,7 @@ fn rolling_body<const D: usize>(
 
 /// Opens `path` for the streaming readers: the file and its length when it is a regular file
 /// with a length (not a device, a pipe, or a `/proc` file that says 0).
-fn open(path: &Path, label: &str) -> Result<(std::fs::File, Option<u64>), Fc3dError> {
+pub(super) fn open(path: &Path, label: &str) -> Result<(std::fs::File, Option<u64>), Fc3dError> {
     let io_error = |e: std::io::Error| Fc3dError::Io {
         file: label.to_string(),
         message: format!("cannot read: {e}"),

@@ -46,8 +46,13 @@ pub(super) fn parse_matrix_body<S: DatStore>(
         STORAGE_SPARSE_BLOCK if block == DIMENSION => {
             parse_sparse_block(r, Some((rows, cols)), require_diagonal).map(MatrixBody::Done)
         }
-        STORAGE_SPARSE_BLOCK => parse_sparse_block_as_csr(r, (rows, cols), require_diagonal, block)
-            .map(|m| MatrixBody::Done(ReadMatrix::Built(Delassus::Sparse(m)))),
+        STORAGE_SPARSE_BLOCK => parse_sparse_block_as_csr(
+            r,
+            (rows, cols),
+            require_diagonal,
+            BlockSizes::Uniform(block),
+        )
+        .map(|(m, _)| MatrixBody::Done(ReadMatrix::Built(Delassus::Sparse(m)))),
         STORAGE_SPARSE => parse_sparse(r, rows, cols).map(MatrixBody::Sparse),
         _ => Err(r.error_at(
             storage_index,
@@ -59,7 +64,7 @@ pub(super) fn parse_matrix_body<S: DatStore>(
     }
 }
 
-fn parse_dense<S: DatStore>(
+pub(super) fn parse_dense<S: DatStore>(
     r: &mut Reader<'_>,
     rows: usize,
     cols: usize,
@@ -84,17 +89,39 @@ fn parse_dense<S: DatStore>(
     Ok(ReadMatrix::Dense { rows, cols, values })
 }
 
-/// Reads `count` cumulative block sizes that must be `block`, `2 block`, `3 block`, ..., up to
-/// `n` when it is given; returns the last one (the number of rows or columns the blocks cover).
+/// The block sizes a sparse-block reader accepts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum BlockSizes {
+    /// Every block `b x b` (the contact blocks of a problem's W).
+    Uniform(usize),
+    /// Any sizes (Siconos' general sparse-block matrices: the mass matrix of a global problem
+    /// has one diagonal block per body, 27x27 in `GFC3D_TwoRods1.dat`, and H blocks of
+    /// `body x contact` unknowns).
+    Any,
+}
+
+/// Reads `count` cumulative block sizes: for [`BlockSizes::Uniform`]`(b)` they must be `b`,
+/// `2 b`, `3 b`, ...; for [`BlockSizes::Any`] they must increase, and are appended to `kept`.
+/// They must end at `n` when it is given; returns the last one (the number of rows or columns
+/// the blocks cover).
 fn parse_block_sizes(
     r: &mut Reader<'_>,
     count: usize,
     count_index: usize,
     n: Option<usize>,
     what: &str,
-    block: usize,
+    sizes: BlockSizes,
+    kept: &mut Vec<usize>,
 ) -> Result<usize, Fc3dError> {
     r.ensure_remaining(count, &format!("the cumulative {what} block sizes"))?;
+    if sizes == BlockSizes::Any {
+        // `count` tokens are left (checked above for inputs of known size).
+        reserve(
+            kept,
+            r.capacity_for(count, 1),
+            &format!("the {what} block sizes"),
+        )?;
+    }
     let mut previous = 0;
     let mut last_index = count_index;
     for k in 0..count {
@@ -105,14 +132,18 @@ fn parse_block_sizes(
                 format!("cumulative {what} block sizes must increase ({size} after {previous})"),
             ));
         }
-        if size - previous != block {
-            return Err(Fc3dError::Unsupported(format!(
-                "{}: sparse-block {} with a block {what} of size {} (block {what} {k}, token {index}); \
-                 fc3d handles {block}x{block} blocks only here",
-                r.file,
-                r.name,
-                size - previous
-            )));
+        match sizes {
+            BlockSizes::Uniform(block) if size - previous != block => {
+                return Err(Fc3dError::Unsupported(format!(
+                    "{}: sparse-block {} with a block {what} of size {} (block {what} {k}, token {index}); \
+                     fc3d handles {block}x{block} blocks only here",
+                    r.file,
+                    r.name,
+                    size - previous
+                )));
+            }
+            BlockSizes::Uniform(_) => {}
+            BlockSizes::Any => try_push(kept, size, &format!("the {what} block sizes"))?,
         }
         previous = size;
         last_index = index;
@@ -142,20 +173,20 @@ pub(super) fn parse_sparse_block<S: DatStore>(
         r,
         shape,
         require_diagonal,
-        DIMENSION,
-        |r, values| {
+        BlockSizes::Uniform(DIMENSION),
+        |r, values, _| {
             let blocks = match &mut blocks {
                 Some(b) => b,
                 None => {
                     let what = format!("the blocks of {}", r.name);
                     blocks.insert(S::Blocks::with_capacity(
-                        r.capacity_for(values.1, 1 + 9),
+                        r.capacity_for(values.count, 1 + 9),
                         &what,
                     )?)
                 }
             };
             let mut block = [0.0; 9];
-            block.copy_from_slice(values.0);
+            block.copy_from_slice(values.block);
             blocks.push(&block, "the blocks")
         },
     )?;
@@ -172,42 +203,77 @@ pub(super) fn parse_sparse_block<S: DatStore>(
     })
 }
 
-/// A sparse-block body of `block x block` blocks (the 2x2 blocks of a 2D problem's W) as a
-/// general sparse matrix of the declared `shape`; exact zeros inside stored blocks are kept.
-fn parse_sparse_block_as_csr(
+/// The cumulative row and column block sizes of a sparse-block matrix.
+pub(super) type CumulativeSizes = (Vec<usize>, Vec<usize>);
+
+/// A sparse-block body as a general sparse matrix of the declared `shape`: the `b x b` blocks
+/// of a 2D problem's W ([`BlockSizes::Uniform`]), or blocks of any sizes ([`BlockSizes::Any`]:
+/// the matrices of a global problem). Exact zeros inside stored blocks are kept, so that the
+/// blocks can be written back as they were read. Returns the matrix and, for
+/// [`BlockSizes::Any`], the cumulative row and column block sizes (empty without blocks).
+pub(super) fn parse_sparse_block_as_csr(
     r: &mut Reader<'_>,
     shape: (usize, usize),
     require_diagonal: bool,
-    block: usize,
-) -> Result<CsrMatrix, Fc3dError> {
-    let mut values: Vec<f64> = Vec::new();
-    let layout =
-        parse_sparse_block_with::<Vec<usize>>(r, Some(shape), require_diagonal, block, |r, b| {
-            if values.capacity() == 0 {
-                let what = format!("the blocks of {}", r.name);
-                values = r.vec_for(b.1.saturating_mul(block * block), 1, &what)?;
+    sizes: BlockSizes,
+) -> Result<(CsrMatrix, CumulativeSizes), Fc3dError> {
+    let mut triplets: Vec<(usize, usize, f64)> = Vec::new();
+    let layout = parse_sparse_block_with::<Vec<usize>>(
+        r,
+        Some(shape),
+        require_diagonal,
+        sizes,
+        |r, values, place| {
+            if triplets.capacity() == 0 {
+                let what = format!("the entries of {}", r.name);
+                triplets = r.vec_for(
+                    token_count(values.count, token_count(place.rows, place.cols)),
+                    1,
+                    &what,
+                )?;
             }
-            for &v in b.0 {
-                try_push(&mut values, v, "the blocks")?;
+            // Column-major within a block.
+            for (k, &v) in values.block.iter().enumerate() {
+                let (i, j) = (k % place.rows, k / place.rows);
+                try_push(
+                    &mut triplets,
+                    (place.first_row + i, place.first_col + j, v),
+                    "the entries of a sparse-block matrix",
+                )?;
             }
             Ok(())
-        })?;
-    let mut triplets = Vec::new();
-    reserve(&mut triplets, values.len(), "the entries of W")?;
-    let mut k = 0;
-    for row in 0..layout.block_rows {
-        for &col in &layout.col_idx[layout.row_ptr[row]..layout.row_ptr[row + 1]] {
-            // Column-major within a block.
-            for j in 0..block {
-                for i in 0..block {
-                    triplets.push((block * row + i, block * col + j, values[k]));
-                    k += 1;
-                }
-            }
+        },
+    )?;
+    let m = CsrMatrix::from_triplets(shape.0, shape.1, &triplets)
+        .map_err(|e| r.error_at(layout.nbblocks_index, e.to_string()))?;
+    Ok((m, (layout.row_sizes, layout.col_sizes)))
+}
+
+/// The values of one block as read (column-major), and the number of blocks of the matrix.
+pub(super) struct BlockValues<'v> {
+    block: &'v [f64],
+    /// The number of blocks of the matrix.
+    count: usize,
+}
+
+/// Where a block lies: its first row and column and its size.
+#[derive(Debug, Clone, Copy)]
+struct BlockPlace {
+    first_row: usize,
+    first_col: usize,
+    rows: usize,
+    cols: usize,
+}
+
+/// The offset and size of block `k` of cumulative sizes `cumulative` (uniform `b`: `b k`, `b`).
+fn block_span(sizes: BlockSizes, cumulative: &[usize], k: usize) -> (usize, usize) {
+    match sizes {
+        BlockSizes::Uniform(b) => (b * k, b),
+        BlockSizes::Any => {
+            let start = if k == 0 { 0 } else { cumulative[k - 1] };
+            (start, cumulative[k] - start)
         }
     }
-    CsrMatrix::from_triplets(shape.0, shape.1, &triplets)
-        .map_err(|e| r.error_at(layout.nbblocks_index, e.to_string()))
 }
 
 /// The block structure of a sparse-block body.
@@ -217,21 +283,38 @@ struct BlockLayout<I> {
     block_cols: usize,
     row_ptr: I,
     col_idx: I,
+    /// The cumulative row and column block sizes, for [`BlockSizes::Any`] (empty otherwise).
+    row_sizes: Vec<usize>,
+    col_sizes: Vec<usize>,
 }
 
-/// Reads a sparse-block body of `block x block` blocks, handing each block's values
-/// (column-major) and the number of blocks to `on_block` in file order; returns the structure.
+/// Reads a sparse-block body of blocks of the given sizes, handing each block's values
+/// (column-major) and place to `on_block` in file order; returns the structure.
 fn parse_sparse_block_with<I: ReadArray<usize>>(
     r: &mut Reader<'_>,
     shape: Option<(usize, usize)>,
     require_diagonal: bool,
-    block: usize,
-    mut on_block: impl FnMut(&Reader<'_>, (&[f64], usize)) -> Result<(), Fc3dError>,
+    sizes: BlockSizes,
+    mut on_block: impl FnMut(&Reader<'_>, BlockValues<'_>, BlockPlace) -> Result<(), Fc3dError>,
 ) -> Result<BlockLayout<I>, Fc3dError> {
     let name = r.name;
     let (nbblocks_index, nbblocks) = r.usize(&format!("the number of blocks of {name}"))?;
     r.remember(nbblocks_index);
     if nbblocks == 0 {
+        let BlockSizes::Uniform(block) = sizes else {
+            // Blocks of any sizes: without blocks there are no block rows nor columns.
+            let mut row_ptr = I::with_capacity(1, "the block-row pointers")?;
+            row_ptr.push(0, "the block-row pointers")?;
+            return Ok(BlockLayout {
+                nbblocks_index,
+                block_rows: 0,
+                block_cols: 0,
+                row_ptr,
+                col_idx: I::with_capacity(0, "the block columns")?,
+                row_sizes: Vec::new(),
+                col_sizes: Vec::new(),
+            });
+        };
         // Siconos writes a lone 0 for a matrix without blocks and stops there.
         let (rows, cols) = shape.unwrap_or((0, 0));
         if require_diagonal && rows > 0 {
@@ -262,20 +345,34 @@ fn parse_sparse_block_with<I: ReadArray<usize>>(
             block_cols: cols / block,
             row_ptr,
             col_idx: I::with_capacity(0, "the block columns")?,
+            row_sizes: Vec::new(),
+            col_sizes: Vec::new(),
         });
     }
     let (rows_index, block_rows) = r.usize("the number of block rows")?;
     r.remember(rows_index);
     let (cols_index, block_cols) = r.usize("the number of block columns")?;
     r.remember(cols_index);
-    parse_block_sizes(r, block_rows, rows_index, shape.map(|s| s.0), "row", block)?;
+    let (mut row_sizes, mut col_sizes) = (Vec::new(), Vec::new());
+    let rows = shape.map(|s| s.0);
+    parse_block_sizes(
+        r,
+        block_rows,
+        rows_index,
+        rows,
+        "row",
+        sizes,
+        &mut row_sizes,
+    )?;
+    let cols = shape.map(|s| s.1);
     parse_block_sizes(
         r,
         block_cols,
         cols_index,
-        shape.map(|s| s.1),
+        cols,
         "column",
-        block,
+        sizes,
+        &mut col_sizes,
     )?;
     // From here on the matrix is block_rows x block_cols blocks (and block_rows tokens
     // have been read, so allocating per block row is bounded by the text).
@@ -352,9 +449,12 @@ fn parse_sparse_block_with<I: ReadArray<usize>>(
         // The diagonal block of every contact is needed by the solvers: name the row that lacks it.
         for c in 0..block_rows {
             if !col_idx[row_ptr[c]..row_ptr[c + 1]].contains(&c) {
-                let message = format!(
-                    "the diagonal {block}x{block} block of contact {c} is missing from {name}"
-                );
+                let message = match sizes {
+                    BlockSizes::Uniform(b) => {
+                        format!("the diagonal {b}x{b} block of contact {c} is missing from {name}")
+                    }
+                    BlockSizes::Any => format!("the diagonal block {c} is missing from {name}"),
+                };
                 if c >= filled1 {
                     return Err(r.error_at(filled1_index, message));
                 }
@@ -368,15 +468,20 @@ fn parse_sparse_block_with<I: ReadArray<usize>>(
     }
 
     // Tokens of a block: its number and its values.
-    let tokens_per_block = 1 + block * block;
-    r.ensure_remaining(
-        token_count(filled2, tokens_per_block),
-        &format!("the blocks of {name}"),
-    )?;
-    let mut values = [0.0; 9];
-    let values = &mut values[..block * block];
+    let mut tokens = 0usize;
     for row in 0..block_rows {
+        let rows = block_span(sizes, &row_sizes, row).1;
+        for &col in &col_idx[row_ptr[row]..row_ptr[row + 1]] {
+            let cols = block_span(sizes, &col_sizes, col).1;
+            tokens = tokens.saturating_add(token_count(rows, cols).saturating_add(1));
+        }
+    }
+    r.ensure_remaining(tokens, &format!("the blocks of {name}"))?;
+    let mut values: Vec<f64> = Vec::new();
+    for row in 0..block_rows {
+        let (first_row, rows) = block_span(sizes, &row_sizes, row);
         for k in row_ptr[row]..row_ptr[row + 1] {
+            let (first_col, cols) = block_span(sizes, &col_sizes, col_idx[k]);
             let (index, number) = r.usize("a block number")?;
             // Siconos only warns about a wrong number (it stores blocks in file order anyway); a
             // wrong number means the file is corrupt, so it is an error here.
@@ -386,10 +491,26 @@ fn parse_sparse_block_with<I: ReadArray<usize>>(
                     format!("block number {number} where block {k} is expected"),
                 ));
             }
-            for v in values.iter_mut() {
-                *v = r.real("a block value")?.1;
+            // Grown as values arrive: a block's declared size is not bounded by the input of a
+            // stream of unknown length.
+            values.clear();
+            for _ in 0..token_count(rows, cols) {
+                try_push(&mut values, r.real("a block value")?.1, "a block's values")?;
             }
-            on_block(r, (values, filled2))?;
+            let place = BlockPlace {
+                first_row,
+                first_col,
+                rows,
+                cols,
+            };
+            on_block(
+                r,
+                BlockValues {
+                    block: &values,
+                    count: filled2,
+                },
+                place,
+            )?;
         }
     }
     Ok(BlockLayout {
@@ -398,5 +519,7 @@ fn parse_sparse_block_with<I: ReadArray<usize>>(
         block_cols,
         row_ptr,
         col_idx,
+        row_sizes,
+        col_sizes,
     })
 }

@@ -5,8 +5,8 @@
 
 use std::ops::Deref;
 
+use crate::alloc::{reserve, try_push};
 use crate::error::Fc3dError;
-use crate::io::alloc::{reserve, try_push};
 use crate::matrix::{BlockSparseMatrix, Delassus, DenseMatrix};
 
 /// A growable array of plain values that a reader fills in order, allocated fallibly.

@@ -17,8 +17,8 @@ use std::io::Read;
 
 use super::scan::{Bytes, ScanError, MAX_GAP_BYTES, MAX_TOKEN_BYTES};
 use super::store::ReadArray;
+pub(super) use crate::alloc::{reserve, try_push};
 use crate::error::Fc3dError;
-pub(super) use crate::io::alloc::{ensure_headroom, reserve, try_push};
 
 /// The token text reported when the input ends too early.
 pub(super) const END_OF_FILE: &str = "<end of file>";

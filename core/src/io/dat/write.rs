@@ -79,18 +79,27 @@ pub fn write_dat_file<const D: usize>(
     problem: &FrictionProblem<'_, D>,
     path: &Path,
 ) -> Result<(), Fc3dError> {
+    write_path(path, |out| write_dat(problem, out))
+}
+
+/// Creates (or truncates) `path` and writes to it with `write`, buffered; an I/O failure is an
+/// [`Fc3dError::Io`] naming the file.
+pub(super) fn write_path(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<std::fs::File>) -> io::Result<()>,
+) -> Result<(), Fc3dError> {
     let io_error = |e: io::Error| Fc3dError::Io {
         file: path.display().to_string(),
         message: format!("cannot write: {e}"),
     };
     let file = std::fs::File::create(path).map_err(io_error)?;
     let mut out = BufWriter::new(file);
-    write_dat(problem, &mut out).map_err(io_error)?;
+    write(&mut out).map_err(io_error)?;
     out.flush().map_err(io_error)
 }
 
 /// Values separated by spaces on one line, each in the shortest form that reads back exactly.
-fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
+pub(super) fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
     for (k, v) in values.iter().enumerate() {
         if k > 0 {
             out.write_all(b" ")?;
@@ -101,7 +110,10 @@ fn write_reals_line<W: Write>(out: &mut W, values: &[f64]) -> io::Result<()> {
 }
 
 /// Integers separated (and ended) by tabs on one line, as Siconos prints index arrays.
-fn write_usizes_line<W: Write>(out: &mut W, values: impl Iterator<Item = usize>) -> io::Result<()> {
+pub(super) fn write_usizes_line<W: Write>(
+    out: &mut W,
+    values: impl Iterator<Item = usize>,
+) -> io::Result<()> {
     for v in values {
         write!(out, "{v}\t")?;
     }
@@ -119,7 +131,7 @@ fn write_dense<W: Write>(d: &DenseMatrix<'_>, out: &mut W) -> io::Result<()> {
     Ok(())
 }
 
-fn write_triplet_dump<W: Write>(s: &CsrMatrix, out: &mut W) -> io::Result<()> {
+pub(super) fn write_triplet_dump<W: Write>(s: &CsrMatrix, out: &mut W) -> io::Result<()> {
     let (m, n, nnz) = (s.nrows(), s.ncols(), s.nnz());
     writeln!(out, "{STORAGE_SPARSE}\n{m}\n{n}\n{ORIGIN_TRIPLET}")?;
     // Siconos skips this banner line unread; the header after it must keep single spaces because

@@ -1,33 +1,25 @@
-//! Reading `/fclib_global` and reducing it to the local form: M factored once (sparse Cholesky,
-//! else LU), `W = H^T M^-1 H`, `q = H^T M^-1 f + w`.
+//! `/fclib_global`: read into a [`GlobalProblem`] (M and H in compressed rows), reduced to the
+//! local form for [`super::read_fclib_file`] through the problem's own reduction (M factored
+//! block by block, [`crate::matrix::HForm`]), and written as Siconos'
+//! `globalFrictionContact_fclib_write` writes it (M and H as triplets); a global rolling
+//! problem is written as FCLIB's `fclib_write_global_rolling` lays it out
+//! (`/fclib_global_rolling`, with `vectors/mu_r`).
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, Lu};
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, MatMut, Side};
 use hdf5_metno as hdf5;
 
 use super::reader::Reader;
-use super::sparse::SparseEntries;
+use super::write::{floats, ints, replace_file, string_checks};
+use crate::alloc::{bytes_of, ensure_headroom};
 use crate::error::Fc3dError;
-use crate::io::alloc::{bytes_of, ensure_headroom};
-use crate::problem::FrictionProblem;
-
-/// Right-hand sides solved together when reducing a global problem.
-const SOLVE_CHUNK: usize = 32;
-/// Largest relative difference between `M[i][j]` and `M[j][i]` for M to count as symmetric.
-const SYMMETRY_TOLERANCE: f64 = 1e-12;
-/// Largest normwise backward error `|M x - b| / (|M| |x| + |b|)` (infinity norms) accepted from a
-/// solve with M; Cholesky and LU of a non-singular M give about `ndof * 1e-16`.
-const BACKWARD_ERROR_TOLERANCE: f64 = 1e-8;
+use crate::io::info::FclibInfo;
+use crate::matrix::CsrMatrix;
+use crate::problem::{FrictionProblem, GlobalProblem, GlobalRollingProblem};
 
 impl Reader {
-    pub(super) fn read_global(
-        &self,
-        g: &hdf5::Group,
-    ) -> Result<FrictionProblem<'static>, Fc3dError> {
+    /// The global problem of the group `/fclib_global`.
+    pub(super) fn read_global(&self, g: &hdf5::Group) -> Result<GlobalProblem<'static>, Fc3dError> {
         let gp = "/fclib_global";
         self.spacedim(g, gp)?;
         if g.link_exists("G") {
@@ -58,195 +50,177 @@ impl Reader {
         self.check_len(&format!("{vp}/w"), w.len(), h.ncols, "the columns of H")?;
         let mu = self.floats(&v, &vp, "mu")?;
         self.check_len(&format!("{vp}/mu"), mu.len(), nc, "one per contact")?;
-        let (w_entries, q) = reduce_global(ndof, &m.entries, &h, &f, &w)
-            .map_err(|e| self.invalid(format!("reducing the global problem: {e}")))?;
-        self.problem(h.ncols, &w_entries, q, mu)
-    }
-}
-
-/// `(row, column, value)` entries of a sparse matrix.
-type Entries = Vec<(usize, usize, f64)>;
-
-/// A factorization of M.
-pub(super) enum MassFactor {
-    Cholesky(Llt<usize, f64>),
-    Lu(Box<Lu<usize, f64>>),
-}
-
-impl MassFactor {
-    fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-        match self {
-            MassFactor::Cholesky(f) => f.solve_in_place(rhs),
-            MassFactor::Lu(f) => f.solve_in_place(rhs),
+        // `CsrMatrix::from_triplets` allocates without a fallible path: probe first.
+        for (name, rows, entries) in [("M", ndof, &m.entries), ("H", ndof, &h.entries)] {
+            let bytes = bytes_of(rows.saturating_add(1).saturating_add(entries.len() * 3), 8);
+            ensure_headroom(bytes, &format!("the compressed rows of {gp}/{name}"))?;
         }
-    }
-}
-
-/// M (square, `ndof`) with duplicates summed, factored, and what the backward-error check needs.
-pub(super) struct MassSolver {
-    ndof: usize,
-    /// Summed entries `(row, col, value)`.
-    entries: Vec<(usize, usize, f64)>,
-    /// Infinity norm of M (largest absolute row sum).
-    norm_inf: f64,
-    pub(super) factor: MassFactor,
-}
-
-impl MassSolver {
-    pub(super) fn new(ndof: usize, raw: &[(usize, usize, f64)]) -> Result<Self, String> {
-        let mut summed = BTreeMap::<(usize, usize), f64>::new();
-        for &(i, j, v) in raw {
-            *summed.entry((i, j)).or_insert(0.0) += v;
-        }
-        let entries: Vec<(usize, usize, f64)> = summed
-            .iter()
-            .filter(|(_, &v)| v != 0.0)
-            .map(|(&(i, j), &v)| (i, j, v))
-            .collect();
-        let mut row_sums = vec![0.0; ndof];
-        let mut amax = 0.0_f64;
-        for &(i, _, v) in &entries {
-            row_sums[i] += v.abs();
-            amax = amax.max(v.abs());
-        }
-        let norm_inf = row_sums.iter().copied().fold(0.0, f64::max);
-        let symmetric = entries.iter().all(|&(i, j, v)| {
-            let t = summed.get(&(j, i)).copied().unwrap_or(0.0);
-            (v - t).abs() <= SYMMETRY_TOLERANCE * amax
-        });
-        let triplets: Vec<Triplet<usize, usize, f64>> = entries
-            .iter()
-            .map(|&(i, j, v)| Triplet::new(i, j, v))
-            .collect();
-        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(ndof, ndof, &triplets)
-            .map_err(|e| format!("M cannot be stored by faer: {e:?}"))?;
-        let cholesky = if symmetric {
-            mat.sp_cholesky(Side::Lower).ok()
-        } else {
-            None
-        };
-        let factor = match cholesky {
-            Some(llt) => MassFactor::Cholesky(llt),
-            None => MassFactor::Lu(Box::new(
-                mat.sp_lu()
-                    .map_err(|e| format!("M is singular (sparse LU: {e:?})"))?,
-            )),
-        };
-        Ok(MassSolver {
-            ndof,
-            entries,
-            norm_inf,
-            factor,
+        let m = CsrMatrix::from_triplets(ndof, ndof, &m.entries)?;
+        let h = CsrMatrix::from_triplets(ndof, h.ncols, &h.entries)?;
+        GlobalProblem::new(m, h, f, w, mu).map_err(|e| match e {
+            Fc3dError::OutOfMemory { .. } => e,
+            e => self.invalid(format!("{gp}: {e}")),
         })
     }
 
-    /// Solves `M X = B` in place (`x` holds B on entry), checking every column is finite and has
-    /// a small normwise backward error.
-    pub(super) fn solve(&self, x: &mut Mat<f64>) -> Result<(), String> {
-        let b = x.clone();
-        self.factor.solve_in_place(x.as_mut());
-        let k = x.ncols();
-        let mut residual = b.clone();
-        for &(i, j, v) in &self.entries {
-            for c in 0..k {
-                residual[(i, c)] -= v * x[(j, c)];
-            }
-        }
-        for c in 0..k {
-            let xc = x.col_as_slice(c);
-            if let Some(i) = xc.iter().position(|v| !v.is_finite()) {
-                return Err(format!(
-                    "M is singular: solving with it gave x[{i}] = {}",
-                    xc[i]
-                ));
-            }
-            let inf = |s: &[f64]| s.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
-            let r = inf(residual.col_as_slice(c));
-            let scale = self.norm_inf * inf(xc) + inf(b.col_as_slice(c));
-            if r > BACKWARD_ERROR_TOLERANCE * scale {
-                return Err(format!(
-                    "M is numerically singular: a solve with it left a residual {r:e} for a \
-                     scale {scale:e}"
-                ));
-            }
-        }
-        Ok(())
+    /// The local problem of `/fclib_global`: W = H^T M^-1 H (3x3 sparse-block, every diagonal
+    /// block and every block with a non-zero entry), q = H^T M^-1 f + w. A singular M is an
+    /// [`Fc3dError::InvalidStructure`] naming the file.
+    pub(super) fn read_global_reduced(
+        &self,
+        g: &hdf5::Group,
+    ) -> Result<FrictionProblem<'static>, Fc3dError> {
+        let global = self.read_global(g)?;
+        let reduced = global
+            .operator()
+            .and_then(|mut operator| global.reduce(&mut operator));
+        reduced.map_err(|e| match e {
+            Fc3dError::OutOfMemory { .. } => e,
+            e => self.invalid(format!("reducing the global problem: {e}")),
+        })
     }
 }
 
-/// `W = H^T M^-1 H` as `(row, col, value)` entries (exact zeros left out) and
-/// `q = H^T M^-1 f + w`. Errors are messages about M.
-pub(super) fn reduce_global(
-    ndof: usize,
-    m_entries: &[(usize, usize, f64)],
-    h: &SparseEntries,
-    f: &[f64],
-    w: &[f64],
-) -> Result<(Entries, Vec<f64>), String> {
-    let n = h.ncols;
-    // Work below without a fallible path (faer's matrices, per-row lists, a map of M's entries):
-    // x, its copy and the residual of SOLVE_CHUNK columns, the row sums, the lists of H by row
-    // and column, the summed entries of M.
-    let work = bytes_of(ndof, 8 * (3 * SOLVE_CHUNK + 1) + 24)
-        .saturating_add(bytes_of(n, 24 + 8))
-        .saturating_add(bytes_of(h.entries.len(), 2 * 16))
-        .saturating_add(bytes_of(m_entries.len(), 128));
-    ensure_headroom(work, "reducing the global problem").map_err(|e| e.to_string())?;
-    let solver = MassSolver::new(ndof, m_entries)?;
-    debug_assert_eq!(solver.ndof, ndof);
-    let mut h_cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
-    let mut h_rows: Vec<Vec<(usize, f64)>> = vec![Vec::new(); ndof];
-    for &(i, j, v) in &h.entries {
-        if v != 0.0 {
-            h_cols[j].push((i, v));
-            h_rows[i].push((j, v));
-        }
-    }
-    // y = H^T x for a dense x, visiting only the rows of H where x is non-zero.
-    let mut acc = vec![0.0; n];
-    let mut touched = BTreeSet::new();
-    let mut transpose_product = |x: &[f64], out: &mut dyn FnMut(usize, f64)| {
-        touched.clear();
-        for (r, &xr) in x.iter().enumerate() {
-            if xr != 0.0 {
-                for &(c, v) in &h_rows[r] {
-                    acc[c] += v * xr;
-                    touched.insert(c);
-                }
-            }
-        }
-        for &c in touched.iter() {
-            out(c, acc[c]);
-            acc[c] = 0.0;
-        }
+/// Writes `problem` to `path` as an FCLIB global problem, as Siconos'
+/// `globalFrictionContact_fclib_write` does: `/fclib_global` with `spacedim`, M and H as
+/// triplets (their stored entries), `vectors/f` (q), `vectors/w` (b), `vectors/mu`, and the info
+/// group from `info` (no G, no `vectors/b`). The file is replaced, through a temporary file
+/// renamed at the end (see [`super::write_fclib_file`]): on any error `path` is left as it was.
+/// Errors: matrices too large for FCLIB's 32-bit indices or an info string with a NUL byte are
+/// [`Fc3dError::Unsupported`]; a file that cannot be written is an [`Fc3dError::Io`].
+pub fn write_fclib_global_file(
+    problem: &GlobalProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    write_global_group(path, "fclib_global", problem, None, info)
+}
+
+/// Writes a global rolling problem to `path` as FCLIB's `fclib_write_global_rolling` lays it out:
+/// `/fclib_global_rolling` with `spacedim` = 5, M and H as triplets, `vectors/f`, `w`, `mu` and
+/// `mu_r`, and the info group (the same file handling and errors as
+/// [`write_fclib_global_file`]).
+pub fn write_fclib_global_rolling_file(
+    problem: &GlobalRollingProblem<'_>,
+    path: &Path,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    write_global_group(
+        path,
+        "fclib_global_rolling",
+        problem.base(),
+        Some(problem.mu_r()),
+        info,
+    )
+}
+
+/// Writes the group `name` of a global problem (and its rolling coefficients).
+fn write_global_group<const D: usize>(
+    path: &Path,
+    name: &str,
+    problem: &GlobalProblem<'_, D>,
+    mu_r: Option<&[f64]>,
+    info: &FclibInfo,
+) -> Result<(), Fc3dError> {
+    let label = path.display().to_string();
+    let m = Triplets::of(problem.m(), &label, "M")?;
+    let h = Triplets::of(problem.h(), &label, "H")?;
+    string_checks(info, &label)?;
+    let group = Group {
+        name,
+        spacedim: D as i32,
+        q: problem.q(),
+        b: problem.b(),
+        mu: problem.mu(),
+        mu_r,
     };
+    replace_file(path, |file| write_global(file, &group, &m, &h, info))
+}
 
-    let mut w_entries = Vec::new();
-    let mut start = 0;
-    while start < n {
-        let k = SOLVE_CHUNK.min(n - start);
-        let mut x = Mat::<f64>::zeros(ndof, k);
-        for jj in 0..k {
-            for &(r, v) in &h_cols[start + jj] {
-                x[(r, jj)] += v;
-            }
-        }
-        solver.solve(&mut x)?;
-        for jj in 0..k {
-            let j = start + jj;
-            transpose_product(x.col_as_slice(jj), &mut |c, v| {
-                if v != 0.0 {
-                    w_entries.push((c, j, v));
-                }
-            });
-        }
-        start += k;
+/// What a global group holds besides M and H.
+struct Group<'a> {
+    name: &'a str,
+    spacedim: i32,
+    q: &'a [f64],
+    b: &'a [f64],
+    mu: &'a [f64],
+    mu_r: Option<&'a [f64]>,
+}
+
+/// A matrix as FCLIB's triplets (`nz` entries: row `i`, column `p`, value `x`).
+struct Triplets {
+    rows: i32,
+    cols: i32,
+    p: Vec<i32>,
+    i: Vec<i32>,
+    x: Vec<f64>,
+}
+
+impl Triplets {
+    fn of(m: &CsrMatrix, label: &str, name: &str) -> Result<Self, Fc3dError> {
+        let int = |v: usize, what: &str| {
+            i32::try_from(v).map_err(|_| {
+                Fc3dError::Unsupported(format!(
+                    "{label}: {what} of {name} ({v}) does not fit FCLIB's 32-bit int indices"
+                ))
+            })
+        };
+        let (rows, cols) = (int(m.nrows(), "the rows")?, int(m.ncols(), "the columns")?);
+        int(m.nnz(), "the entries")?;
+        let what = format!("the triplets of {name}");
+        let mut p = crate::error::try_vec(m.nnz(), 0, &what)?;
+        let mut i = crate::error::try_vec(m.nnz(), 0, &what)?;
+        let mut x = crate::error::try_vec(m.nnz(), 0.0, &what)?;
+        let mut k = 0;
+        // Rows and columns fit an i32 (checked above).
+        m.for_each_entry(|r, c, v| {
+            i[k] = r as i32;
+            p[k] = c as i32;
+            x[k] = v;
+            k += 1;
+        });
+        Ok(Triplets {
+            rows,
+            cols,
+            p,
+            i,
+            x,
+        })
     }
+}
 
-    let mut y = Mat::<f64>::zeros(ndof, 1);
-    y.col_as_slice_mut(0).copy_from_slice(f);
-    solver.solve(&mut y)?;
-    let mut q = w.to_vec();
-    transpose_product(y.col_as_slice(0), &mut |c, v| q[c] += v);
-    Ok((w_entries, q))
+/// Writes the global group into a new file. Errors are messages naming the object that failed.
+fn write_global(
+    file: &hdf5::File,
+    g: &Group<'_>,
+    m: &Triplets,
+    h: &Triplets,
+    info: &FclibInfo,
+) -> Result<(), String> {
+    let root = format!("/{}", g.name);
+    let at = |what: &str| {
+        let what = format!("{root}/{what}");
+        move |e: hdf5::Error| format!("{what}: {e}")
+    };
+    let global = file.create_group(g.name).map_err(at(""))?;
+    ints(&global, "spacedim", &[g.spacedim]).map_err(at("spacedim"))?;
+    for (name, t) in [("M", m), ("H", h)] {
+        let group = global.create_group(name).map_err(at(name))?;
+        let nz = t.x.len() as i32;
+        for (field, value) in [("nzmax", nz), ("m", t.rows), ("n", t.cols), ("nz", nz)] {
+            ints(&group, field, &[value]).map_err(at(&format!("{name}/{field}")))?;
+        }
+        ints(&group, "p", &t.p).map_err(at(&format!("{name}/p")))?;
+        ints(&group, "i", &t.i).map_err(at(&format!("{name}/i")))?;
+        floats(&group, "x", &t.x).map_err(at(&format!("{name}/x")))?;
+    }
+    let vectors = global.create_group("vectors").map_err(at("vectors"))?;
+    floats(&vectors, "f", g.q).map_err(at("vectors/f"))?;
+    floats(&vectors, "w", g.b).map_err(at("vectors/w"))?;
+    floats(&vectors, "mu", g.mu).map_err(at("vectors/mu"))?;
+    if let Some(mu_r) = g.mu_r {
+        floats(&vectors, "mu_r", mu_r).map_err(at("vectors/mu_r"))?;
+    }
+    let info_group = global.create_group("info").map_err(at("info"))?;
+    super::info_group::write_info(&info_group, info).map_err(|e| format!("{root}/{e}"))
 }

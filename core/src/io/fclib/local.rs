@@ -7,8 +7,8 @@ use super::reader::Reader;
 #[cfg(doc)]
 use super::write_fclib_file;
 use super::{STORAGE_ATTRIBUTE, STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
+use crate::alloc::{reserve, try_collect, try_push};
 use crate::error::{try_vec, Fc3dError};
-use crate::io::alloc::{bytes_of, ensure_headroom, reserve, try_collect, try_push};
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::problem::{FrictionProblem, DIMENSION};
 
@@ -106,10 +106,7 @@ impl Reader {
             STORAGE_SPARSE_BLOCK => {
                 Delassus::SparseBlock(blocks_of(n / DIMENSION, w_entries, false)?)
             }
-            _ => {
-                ensure_headroom(csr_bytes(n, w_entries.len()), "the compressed rows of W")?;
-                Delassus::Sparse(CsrMatrix::from_triplets(n, n, w_entries)?)
-            }
+            _ => Delassus::Sparse(CsrMatrix::from_triplets(n, n, w_entries)?),
         };
         FrictionProblem::new(w, q, mu)
     }
@@ -125,12 +122,6 @@ impl Reader {
         let blocks = blocks_of(n / DIMENSION, w_entries, true)?;
         FrictionProblem::new(Delassus::SparseBlock(blocks), q, mu)
     }
-}
-
-/// Bytes `CsrMatrix::from_triplets` allocates for `n` rows and `nnz` entries (row pointers, and
-/// an order, a column and a value per entry).
-fn csr_bytes(n: usize, nnz: usize) -> usize {
-    bytes_of(n.saturating_add(1).saturating_add(nnz.saturating_mul(3)), 8)
 }
 
 /// The `nc x nc` 3x3-block matrix of `entries` (all within `3 nc`), allocated fallibly: the

@@ -70,11 +70,12 @@
 //!
 //! [`read_fclib_file`] reads `/fclib_local` when present, else reduces `/fclib_global` to the local
 //! (Delassus) form `W = H^T M^-1 H`, `q = H^T M^-1 f + w` (the global problem being
-//! `M v = H r + f`, `u = H^T v + w`). M is factored once with faer's sparse Cholesky when it is
-//! symmetric (to 1e-12 relative) and positive definite, with faer's sparse LU otherwise; every
-//! solve is checked to be finite with a small normwise backward error, so a singular M is an
+//! `M v = H r + f`, `u = H^T v + w`) by the global problem's own reduction
+//! ([`GlobalProblem::reduce`]: M factored once, block by block when it is block diagonal, and
+//! checked with a small normwise backward error), so a singular M is an
 //! [`Fc3dError::InvalidStructure`], never NaNs in W. M must be stored in full (both triangles):
-//! FCLIB has no symmetric-storage flag.
+//! FCLIB has no symmetric-storage flag. [`read_fclib_global_file`] returns the global problem
+//! itself, and [`write_fclib_global_file`] writes one as Siconos does (M and H as triplets).
 //!
 //! Unless the file says otherwise (`fc3d_storage`, above), W is returned in the sparse-block
 //! storage ([`Delassus::SparseBlock`], 3x3 blocks): every block with a non-zero entry plus every
@@ -99,7 +100,7 @@ use std::path::Path;
 
 use crate::error::Fc3dError;
 use crate::io::info::FclibInfo;
-use crate::problem::FrictionProblem;
+use crate::problem::{FrictionProblem, GlobalProblem};
 
 mod global;
 mod info_group;
@@ -112,6 +113,7 @@ mod write;
 
 use reader::open;
 
+pub use global::{write_fclib_global_file, write_fclib_global_rolling_file};
 pub use write::write_fclib_file;
 
 /// The attribute of the W group in which [`write_fclib_file`] records W's storage.
@@ -130,9 +132,21 @@ pub fn read_fclib_file(path: &Path) -> Result<FrictionProblem<'static>, Fc3dErro
     if file.link_exists("fclib_local") {
         reader.read_local(&reader.group(&file, "", "fclib_local")?)
     } else if file.link_exists("fclib_global") {
-        reader.read_global(&reader.group(&file, "", "fclib_global")?)
+        reader.read_global_reduced(&reader.group(&file, "", "fclib_global")?)
     } else {
         Err(reader.not_fclib())
+    }
+}
+
+/// Reads the global problem `/fclib_global` of an FCLIB file (M and H in compressed rows,
+/// duplicates summed; FCLIB's `f` is q, `w` is b). A file without it is an
+/// [`Fc3dError::InvalidStructure`]; other errors as [`read_fclib_file`]'s.
+pub fn read_fclib_global_file(path: &Path) -> Result<GlobalProblem<'static>, Fc3dError> {
+    let (file, reader) = open(path)?;
+    if file.link_exists("fclib_global") {
+        reader.read_global(&reader.group(&file, "", "fclib_global")?)
+    } else {
+        Err(reader.invalid("no /fclib_global group: not an FCLIB global problem file"))
     }
 }
 

@@ -7,8 +7,8 @@ use hdf5_metno as hdf5;
 use hdf5_metno::types::TypeDescriptor;
 
 use super::info_group;
+use crate::alloc::{bytes_of, ensure_headroom};
 use crate::error::Fc3dError;
-use crate::io::alloc::{bytes_of, ensure_headroom};
 use crate::io::info::FclibInfo;
 use crate::problem::DIMENSION;
 

@@ -5,8 +5,8 @@ use hdf5_metno as hdf5;
 use hdf5_metno::types::TypeDescriptor;
 
 use super::reader::Reader;
+use crate::alloc::{reserve, try_collect};
 use crate::error::Fc3dError;
-use crate::io::alloc::{reserve, try_collect};
 
 /// A sparse matrix read from a file: its size and `(row, column, value)` entries (duplicates not
 /// yet summed).

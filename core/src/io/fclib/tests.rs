@@ -2,19 +2,35 @@
 
 use std::collections::BTreeMap;
 
-use faer::Mat;
-
-use super::global::{reduce_global, MassFactor, MassSolver};
 use super::local::blocks_of;
-use super::sparse::SparseEntries;
 use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus};
+use crate::problem::GlobalProblem;
 
-fn h_of(ndof: usize, n: usize, entries: Vec<(usize, usize, f64)>) -> SparseEntries {
-    SparseEntries {
-        nrows: ndof,
-        ncols: n,
-        entries,
-    }
+/// W as `(row, col, value)` entries, and q.
+type Reduced = (Vec<(usize, usize, f64)>, Vec<f64>);
+
+/// The reduced W (as `(row, col, value)`) and q of M (`ndof`), H (`ndof x n`), f and w.
+fn reduce(
+    ndof: usize,
+    m: &[(usize, usize, f64)],
+    h: &[(usize, usize, f64)],
+    f: &[f64],
+    w: &[f64],
+) -> Result<Reduced, String> {
+    let n = w.len();
+    let p = GlobalProblem::<3>::new(
+        CsrMatrix::from_triplets(ndof, ndof, m).unwrap(),
+        CsrMatrix::from_triplets(ndof, n, h).unwrap(),
+        f.to_vec(),
+        w.to_vec(),
+        vec![0.5; n / 3],
+    )
+    .unwrap();
+    let mut operator = p.operator().map_err(|e| e.to_string())?;
+    let local = p.reduce(&mut operator).map_err(|e| e.to_string())?;
+    let mut entries = Vec::new();
+    local.w().for_each_entry(|i, j, v| entries.push((i, j, v)));
+    Ok((entries, local.q().to_vec()))
 }
 
 fn dense(n: usize, entries: &[(usize, usize, f64)]) -> Vec<f64> {
@@ -29,8 +45,8 @@ fn dense(n: usize, entries: &[(usize, usize, f64)]) -> Vec<f64> {
 fn reduction_matches_a_hand_computation() {
     // M = [[2, 1], [1, 2]] (SPD), M^-1 = [[2, -1], [-1, 2]] / 3; H = [[1, 0, 0], [0, 1, 1]].
     let m = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 2.0)];
-    let h = h_of(2, 3, vec![(0, 0, 1.0), (1, 1, 1.0), (1, 2, 1.0)]);
-    let (w, q) = reduce_global(2, &m, &h, &[3.0, 0.0], &[1.0, 2.0, 3.0]).unwrap();
+    let h = [(0, 0, 1.0), (1, 1, 1.0), (1, 2, 1.0)];
+    let (w, q) = reduce(2, &m, &h, &[3.0, 0.0], &[1.0, 2.0, 3.0]).unwrap();
     let wd = dense(3, &w);
     let expected = [2.0, -1.0, -1.0, -1.0, 2.0, 2.0, -1.0, 2.0, 2.0].map(|v| v / 3.0);
     for (a, b) in wd.iter().zip(expected) {
@@ -43,23 +59,21 @@ fn reduction_matches_a_hand_computation() {
 }
 
 #[test]
-fn unsymmetric_mass_uses_lu_and_duplicates_are_summed() {
-    // M = [[2, 1], [0, 4]] given with the 2 split in two triplets.
+fn unsymmetric_mass_and_duplicates_are_summed() {
+    // M = [[2, 1], [0, 4]] given with the 2 split in two triplets; H = I (two rows of one
+    // contact's three columns).
     let m = [(0, 0, 1.0), (0, 0, 1.0), (0, 1, 1.0), (1, 1, 4.0)];
-    let solver = MassSolver::new(2, &m).unwrap();
-    assert!(matches!(solver.factor, MassFactor::Lu(_)));
-    let mut x = Mat::<f64>::zeros(2, 1);
-    x[(0, 0)] = 3.0;
-    x[(1, 0)] = 4.0;
-    solver.solve(&mut x).unwrap();
-    assert!((x[(0, 0)] - 1.0).abs() < 1e-15 && (x[(1, 0)] - 1.0).abs() < 1e-15);
-}
-
-#[test]
-fn indefinite_symmetric_mass_falls_back_to_lu() {
-    let m = [(0, 1, 1.0), (1, 0, 1.0)];
-    let solver = MassSolver::new(2, &m).unwrap();
-    assert!(matches!(solver.factor, MassFactor::Lu(_)));
+    let h = [(0, 0, 1.0), (1, 1, 1.0)];
+    let (w, q) = reduce(2, &m, &h, &[3.0, 4.0], &[0.0; 3]).unwrap();
+    // M^-1 = [[1/2, -1/8], [0, 1/4]]; M^-1 (3, 4) = (1, 1).
+    let wd = dense(3, &w);
+    for (a, b) in wd
+        .iter()
+        .zip([0.5, -0.125, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0, 0.0])
+    {
+        assert!((a - b).abs() < 1e-15, "{wd:?}");
+    }
+    assert_eq!(q, [1.0, 1.0, 0.0]);
 }
 
 /// `blocks_of` gives, bit for bit, what it replaced: compressed rows then
@@ -123,12 +137,12 @@ fn blocks_of_matches_the_map_based_assembly() {
 
 #[test]
 fn singular_mass_is_an_error_not_nans() {
-    let h = h_of(2, 3, vec![(0, 0, 1.0), (1, 1, 1.0)]);
+    let h = [(0, 0, 1.0), (1, 1, 1.0)];
     for m in [
         vec![(0, 0, 1.0)],                                        // structurally singular
         vec![(0, 0, 1.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 1.0)], // numerically singular
     ] {
-        let err = reduce_global(2, &m, &h, &[0.0, 0.0], &[0.0; 3]).unwrap_err();
+        let err = reduce(2, &m, &h, &[0.0, 0.0], &[0.0; 3]).unwrap_err();
         assert!(err.contains("singular"), "{err}");
     }
 }

@@ -8,8 +8,8 @@ use hdf5_metno as hdf5;
 
 use super::info_group::{strings, write_info};
 use super::{STORAGE_ATTRIBUTE, STORAGE_DENSE, STORAGE_SPARSE, STORAGE_SPARSE_BLOCK};
+use crate::alloc::reserve;
 use crate::error::Fc3dError;
-use crate::io::alloc::reserve;
 use crate::io::info::FclibInfo;
 use crate::matrix::Delassus;
 use crate::problem::{FrictionProblem, DIMENSION};
@@ -35,12 +35,14 @@ pub fn write_fclib_file(
     info: &FclibInfo,
 ) -> Result<(), Fc3dError> {
     let label = path.display().to_string();
-    let io_error = |message: String| Fc3dError::Io {
-        file: label.clone(),
-        message,
-    };
     // Everything that can be refused is checked before a file is created.
     let w = CompressedRows::of(problem.w(), &label)?;
+    string_checks(info, &label)?;
+    replace_file(path, |file| write_local(file, problem, &w, info))
+}
+
+/// Refuses info strings a C string cannot hold (a NUL byte).
+pub(super) fn string_checks(info: &FclibInfo, label: &str) -> Result<(), Fc3dError> {
     for (name, value) in strings(info) {
         if value.is_some_and(|v| v.contains('\0')) {
             return Err(Fc3dError::Unsupported(format!(
@@ -49,11 +51,32 @@ pub fn write_fclib_file(
             )));
         }
     }
+    Ok(())
+}
+
+/// Creates an HDF5 file next to `path` under a temporary name, fills it with `fill` (whose
+/// errors are messages naming the object that failed), closes it and renames it over `path`:
+/// on any error `path` is left as it was (no file, or the old file untouched) and the
+/// temporary file is removed. A symbolic link at `path` is replaced, not followed.
+pub(super) fn replace_file(
+    path: &Path,
+    fill: impl FnOnce(&hdf5::File) -> Result<(), String>,
+) -> Result<(), Fc3dError> {
+    let label = path.display().to_string();
+    let io_error = |message: String| Fc3dError::Io {
+        file: label.clone(),
+        message,
+    };
     if path.is_dir() {
         return Err(io_error("is a directory, not a file name".into()));
     }
     let temporary = temporary_path(path).ok_or_else(|| io_error("is not a file name".into()))?;
-    let written = write_file(&temporary, problem, &w, info)
+    let written = hdf5::File::create(&temporary)
+        .map_err(|e| format!("creating the file: {e}"))
+        .and_then(|file| {
+            fill(&file)?;
+            file.close().map_err(|e| format!("closing the file: {e}"))
+        })
         .map_err(|message| io_error(format!("cannot write FCLIB file: {message}")))
         .and_then(|()| {
             std::fs::rename(&temporary, path)
@@ -162,16 +185,14 @@ impl CompressedRows {
     }
 }
 
-/// Writes the whole file at `path` (created or truncated). Errors are messages naming the
-/// object that failed.
-fn write_file(
-    path: &Path,
+/// Writes `/fclib_local` into a new file. Errors are messages naming the object that failed.
+fn write_local(
+    file: &hdf5::File,
     problem: &FrictionProblem<'_>,
     w: &CompressedRows,
     info: &FclibInfo,
 ) -> Result<(), String> {
     let at = |what: &'static str| move |e: hdf5::Error| format!("{what}: {e}");
-    let file = hdf5::File::create(path).map_err(at("creating the file"))?;
     let local = file
         .create_group("fclib_local")
         .map_err(at("/fclib_local"))?;
@@ -207,12 +228,11 @@ fn write_file(
         .map_err(at("/fclib_local/info"))?;
     write_info(&info_group, info).map_err(|e| format!("/fclib_local/{e}"))?;
 
-    drop((info_group, vectors, wg, local));
-    file.close().map_err(at("closing the file"))
+    Ok(())
 }
 
 /// A one-dimensional dataset of C `int`s (`H5LTmake_dataset_int`).
-fn ints(group: &hdf5::Group, name: &str, values: &[i32]) -> hdf5::Result<()> {
+pub(super) fn ints(group: &hdf5::Group, name: &str, values: &[i32]) -> hdf5::Result<()> {
     group
         .new_dataset_builder()
         .with_data(values)
@@ -221,7 +241,7 @@ fn ints(group: &hdf5::Group, name: &str, values: &[i32]) -> hdf5::Result<()> {
 }
 
 /// A one-dimensional dataset of doubles (`H5LTmake_dataset_double`).
-fn floats(group: &hdf5::Group, name: &str, values: &[f64]) -> hdf5::Result<()> {
+pub(super) fn floats(group: &hdf5::Group, name: &str, values: &[f64]) -> hdf5::Result<()> {
     group
         .new_dataset_builder()
         .with_data(values)

@@ -13,6 +13,7 @@ use std::time::Instant;
 
 use super::settings::{AdmmAcceleration, AdmmOptions, AdmmRhoStrategy};
 use crate::contract::{Observer, Run, SolverOutcome};
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::linalg::norm;
 
 /// What an ADMM formulation supplies to [`iterate`].
@@ -59,7 +60,8 @@ struct Vectors {
     w: Vec<f64>,
 }
 
-/// Runs ADMM from `(ẑ, ξ̂) = (z0, xi0)` with the splitting factored for `rho`. `scale` divides
+/// Runs ADMM from `(ẑ, ξ̂) = (z0, xi0)` with the splitting factored for `rho` (its work
+/// arrays allocated fallibly, before the loop). `scale` divides
 /// the dual residual (Siconos' scalar rescaling of the local formulation; 1 otherwise).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn iterate<S: Splitting>(
@@ -71,24 +73,25 @@ pub(crate) fn iterate<S: Splitting>(
     z0: &[f64],
     xi0: &[f64],
     observer: &mut Observer<'_>,
-) -> SolverOutcome {
+) -> Result<SolverOutcome, Fc3dError> {
     let n = splitting.split_size();
+    let what = "the ADMM work arrays";
     let mut v = Vectors {
-        a: vec![0.0; n],
-        z: vec![0.0; n],
-        xi: vec![0.0; n],
-        z_prev: z0.to_vec(),
-        xi_prev: xi0.to_vec(),
-        z_hat: z0.to_vec(),
-        xi_hat: xi0.to_vec(),
-        w: vec![0.0; n],
+        a: try_vec(n, 0.0, what)?,
+        z: try_vec(n, 0.0, what)?,
+        xi: try_vec(n, 0.0, what)?,
+        z_prev: try_copy(z0, what)?,
+        xi_prev: try_copy(xi0, what)?,
+        z_hat: try_copy(z0, what)?,
+        xi_hat: try_copy(xi0, what)?,
+        w: try_vec(n, 0.0, what)?,
     };
     let mut alpha = 1.0_f64;
     let mut combined_prev = f64::INFINITY;
 
     for iteration in 1..=run.max_iter {
         if !splitting.linear_step(rho, &v.z_hat, &v.xi_hat, &mut v.a) {
-            return SolverOutcome::diverged(iteration);
+            return Ok(SolverOutcome::diverged(iteration));
         }
         // z- and dual updates.
         for i in 0..n {
@@ -103,7 +106,7 @@ pub(crate) fn iterate<S: Splitting>(
         let error = splitting.measure(iteration, rho, &v.xi, (primal, dual), observer);
         let converged = error.is_some_and(|e| e <= run.tolerance);
         if let Some(outcome) = run.end_of_iteration(iteration, converged) {
-            return outcome;
+            return Ok(outcome);
         }
 
         // Next extrapolation point.
@@ -173,7 +176,7 @@ pub(crate) fn iterate<S: Splitting>(
             x.iter_mut().for_each(|e| *e /= factor);
         }
     }
-    run.exhausted()
+    Ok(run.exhausted())
 }
 
 /// `max(||a||, ||z||)`: the primal scale of the local formulation.

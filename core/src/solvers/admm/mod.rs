@@ -34,15 +34,16 @@ pub(crate) use engine::{iterate, Splitting};
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{CreationError, FaerError, SparseColMat, Triplet};
 use faer::{Conj, MatMut, Par};
 
 use std::time::Instant;
 
+use crate::alloc::{reserve, try_push};
 use crate::contract::{
     deadline_passed, Family, Fill, IterationEvent, Limits, Observer, SolverOutcome,
 };
-use crate::error::Fc3dError;
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::cone::{modified_velocity, project_on_cone};
 use crate::math::linalg::{bounded, contact_of, distance_sq, norm};
 use crate::math::lu_cost::{checked_lu_cost, LuCost};
@@ -105,17 +106,23 @@ impl ShiftedSystem {
     fn new(w: &Delassus<'_>) -> Result<Self, Fc3dError> {
         let n = w.nrows();
         let mut triplets = Vec::new();
+        let mut stored = Ok(());
         w.for_each_entry(|i, j, v| {
-            if v != 0.0 {
-                triplets.push(Triplet::new(i, j, v));
+            if v != 0.0 && stored.is_ok() {
+                stored = try_push(&mut triplets, Triplet::new(i, j, v), "the ADMM matrix");
             }
         });
+        stored?;
         // Structural diagonal, so that every shift has the same pattern.
+        reserve(&mut triplets, n, "the ADMM matrix")?;
         triplets.extend((0..n).map(|i| Triplet::new(i, i, 0.0)));
-        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
-            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: W + rho I: {e:?}")))?;
+        let matrix =
+            SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets).map_err(|e| {
+                let oom = matches!(e, CreationError::Generic(FaerError::OutOfMemory));
+                faer_failure("ADMM: W + rho I", oom, e)
+            })?;
         let sym = matrix.symbolic();
-        let mut diagonal_positions = vec![0; n];
+        let mut diagonal_positions = try_vec(n, 0, "the ADMM work arrays")?;
         for (j, pos) in diagonal_positions.iter_mut().enumerate() {
             let range = sym.col_ptr()[j]..sym.col_ptr()[j + 1];
             *pos = range
@@ -124,14 +131,14 @@ impl ShiftedSystem {
                 .expect("the diagonal was inserted");
         }
         let symbolic = factorize_symbolic_lu(sym, Default::default())
-            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: symbolic LU: {e:?}")))?;
+            .map_err(|e| faer_failure("ADMM: symbolic LU", e == FaerError::OutOfMemory, e))?;
         let cost = checked_lu_cost(sym, symbolic.col_perm(), "ADMM: LU factors of W + rho I")?;
         let factor_scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
         )
-        .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: LU scratch: {e:?}")))?;
+        .map_err(|e| faer_failure("ADMM: LU scratch", true, e))?;
         let solve_scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
-            .map_err(|e| Fc3dError::InvalidStructure(format!("ADMM: LU scratch: {e:?}")))?;
+            .map_err(|e| faer_failure("ADMM: LU scratch", true, e))?;
         Ok(ShiftedSystem {
             matrix,
             diagonal_positions,
@@ -229,12 +236,25 @@ fn power_iteration(
     lambda
 }
 
+/// A failure of faer building the shifted system: [`Fc3dError::OutOfMemory`] when it could not
+/// allocate, otherwise a structure it refused.
+fn faer_failure(what: &str, out_of_memory: bool, detail: impl std::fmt::Debug) -> Fc3dError {
+    if out_of_memory {
+        Fc3dError::OutOfMemory {
+            what: format!("{what} ({detail:?})"),
+            bytes: 0,
+        }
+    } else {
+        Fc3dError::InvalidStructure(format!("{what}: {detail:?}"))
+    }
+}
+
 /// `||W||_inf`, the largest absolute row sum, when positive and finite.
-fn norm_inf(w: &Delassus<'_>) -> Option<f64> {
-    let mut row_sums = vec![0.0; w.nrows()];
+fn norm_inf(w: &Delassus<'_>) -> Result<Option<f64>, Fc3dError> {
+    let mut row_sums = try_vec(w.nrows(), 0.0, "the ADMM work arrays")?;
     w.for_each_entry(|i, _, v| row_sums[i] += v.abs());
     let norm_inf = row_sums.iter().fold(0.0_f64, |a, &b| a.max(b));
-    (norm_inf > 0.0 && norm_inf.is_finite()).then_some(norm_inf)
+    Ok((norm_inf > 0.0 && norm_inf.is_finite()).then_some(norm_inf))
 }
 
 /// See [`AdmmInitialRho::Eigenvalues`].
@@ -246,18 +266,18 @@ fn initial_rho(
     system: &mut ShiftedSystem,
     work: (&mut [f64], &mut [f64]),
     deadline: Option<Instant>,
-) -> f64 {
+) -> Result<f64, Fc3dError> {
     let (x, y) = work;
-    match options.initial_rho {
+    Ok(match options.initial_rho {
         AdmmInitialRho::Given => options.rho,
-        AdmmInitialRho::NormInf => norm_inf(w).unwrap_or(options.rho),
+        AdmmInitialRho::NormInf => norm_inf(w)?.unwrap_or(options.rho),
         AdmmInitialRho::Eigenvalues => {
             let lambda_max = power_iteration(x, y, deadline, |a, b| {
                 b.iter_mut().for_each(|v| *v = 0.0);
                 w.mul_add(a, b);
             });
             if !(lambda_max > 0.0 && lambda_max.is_finite()) {
-                return options.rho;
+                return Ok(options.rho);
             }
             let floor = EIGENVALUE_RATIO_FLOOR * lambda_max;
             let lambda_min = if system.cost.ends_by(deadline) && system.factor(0.0) {
@@ -275,7 +295,7 @@ fn initial_rho(
             };
             (lambda_max * lambda_min).sqrt()
         }
-    }
+    })
 }
 
 /// What ADMM needs of a problem beyond W and q: the De Saxcé term of its law and the projection
@@ -393,15 +413,15 @@ fn admm_iterations<P: AdmmProblem>(
     }
     let mut system = ShiftedSystem::new(problem.w())?;
 
-    let mut x = vec![0.0; n];
-    let mut scratch = vec![0.0; n];
+    let mut x = try_vec(n, 0.0, "the ADMM work arrays")?;
+    let mut scratch = try_vec(n, 0.0, "the ADMM work arrays")?;
     let mut rho = initial_rho(
         problem.w(),
         options,
         &mut system,
         (&mut x, &mut scratch),
         run.deadline(),
-    );
+    )?;
     if !(rho > 0.0 && rho.is_finite()) {
         rho = 1.0;
     }
@@ -409,7 +429,7 @@ fn admm_iterations<P: AdmmProblem>(
     // rho chosen for W: the same iterates as rho a on (W, q), with the dual residual in the
     // rescaled units (rho ||z - ẑ||, divided by a).
     let scale = if options.scalar_rescaling {
-        norm_inf(problem.w()).unwrap_or(1.0)
+        norm_inf(problem.w())?.unwrap_or(1.0)
     } else {
         1.0
     };
@@ -432,17 +452,17 @@ fn admm_iterations<P: AdmmProblem>(
     // what is measured and returned (z = P_K(x + ξ̂) is the feasible copy; x = z at a fixed
     // point). It starts from the given reaction as x, z and ẑ, with ξ = 0.
     problem.velocity(r, u);
-    let z0 = r.to_vec();
-    let xi0 = vec![0.0; n];
+    let z0 = try_copy(r, "the ADMM work arrays")?;
+    let xi0 = try_vec(n, 0.0, "the ADMM work arrays")?;
     let mut splitting = LocalSplitting {
         problem,
         system,
         x,
-        s: vec![0.0; n],
+        s: try_vec(n, 0.0, "the ADMM work arrays")?,
         r,
         u,
     };
-    Ok(iterate(
+    iterate(
         &mut splitting,
         options,
         &run,
@@ -451,7 +471,7 @@ fn admm_iterations<P: AdmmProblem>(
         &z0,
         &xi0,
         observer,
-    ))
+    )
 }
 
 /// The local formulation's splitting: `r = z`, `z ∈ K`, the linear step

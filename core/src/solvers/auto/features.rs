@@ -1,5 +1,7 @@
 //! The features AUTO's rules read: one pass over W's normal rows and diagonal blocks.
 
+use crate::alloc::reserve;
+use crate::error::Fc3dError;
 use crate::matrix::Delassus;
 use crate::problem::FrictionProblem;
 
@@ -38,10 +40,17 @@ impl ProblemFeatures {
         self.mu_max >= STRONG_MU && self.diagonal_dominance < WEAK_DOMINANCE
     }
 
+    /// The features of `problem`; panics when the diagonal of W cannot be held (see
+    /// [`ProblemFeatures::try_of`]).
     pub fn of(problem: &FrictionProblem<'_>) -> ProblemFeatures {
+        Self::try_of(problem).expect("room for the diagonal of W")
+    }
+
+    /// The features of `problem`, reading W once (its diagonal held, allocated fallibly).
+    pub fn try_of(problem: &FrictionProblem<'_>) -> Result<ProblemFeatures, Fc3dError> {
         let nc = problem.n_contacts();
         let mu = problem.mu();
-        let mut rows = NormalRows::new(nc);
+        let mut rows = NormalRows::new(nc)?;
         let stored_blocks = rows.read(problem.w(), nc);
         let NormalRows {
             w_nn,
@@ -62,7 +71,7 @@ impl ProblemFeatures {
             mu_max = mu_max.max(m);
             frictionless += usize::from(m == 0.0);
         }
-        ProblemFeatures {
+        Ok(ProblemFeatures {
             n_contacts: nc,
             block_density: if nc > 0 {
                 stored_blocks / (nc as f64 * nc as f64)
@@ -76,7 +85,7 @@ impl ProblemFeatures {
             block_asymmetry,
             diagonal_spread,
             singular_contacts,
-        }
+        })
     }
 }
 
@@ -92,14 +101,16 @@ struct NormalRows {
 }
 
 impl NormalRows {
-    fn new(nc: usize) -> Self {
-        NormalRows {
-            w_nn: Vec::with_capacity(nc),
+    fn new(nc: usize) -> Result<Self, Fc3dError> {
+        let mut w_nn = Vec::new();
+        reserve(&mut w_nn, nc, "the diagonal of W")?;
+        Ok(NormalRows {
+            w_nn,
             largest: 0.0,
             smallest: f64::INFINITY,
             diagonal_dominance: f64::INFINITY,
             block_asymmetry: 0.0,
-        }
+        })
     }
 
     /// Contact `c`'s normal row: its diagonal block (row-major) and the sum of `|W_Nj|` outside

@@ -72,7 +72,7 @@ pub(crate) fn auto_with<'a>(
         (Some(plan), _) => (usize::MAX, plan, 0, false),
         (None, Some(c)) if carry.same_pattern => (c.rule, c.plan, c.stage, true),
         (None, kept) => {
-            let (rule, plan) = choose(&ProblemFeatures::of(problem), requested, budget);
+            let (rule, plan) = choose(&ProblemFeatures::try_of(problem)?, requested, budget);
             match kept.filter(|c| c.rule == rule) {
                 Some(c) => (rule, plan, c.stage, true),
                 None => (rule, plan, 0, false),
@@ -92,7 +92,7 @@ pub(crate) fn auto_with<'a>(
     // The initial error is not measured (a product with W, as much as a whole solve of a small
     // problem): the first stage starts from r as given.
     let mut error = f64::INFINITY;
-    let mut best = BestIterate::new(r, error);
+    let mut best = BestIterate::try_new(r, error)?;
     let mut best_error = error;
     let mut total = 0usize;
     let mut out_of_time = false;

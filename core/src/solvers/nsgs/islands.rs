@@ -22,6 +22,7 @@ use super::parallel::{resolve_threads, ContactGraph, Pool, Reactions, SharedSlic
 use super::settings::{Decomposition, NsgsOptions};
 use super::step::{new_reaction, ContactStep};
 use super::sweeper::Sweeper;
+use crate::alloc::{reserve, try_push};
 use crate::contract::SolverOutcome;
 use crate::contract::{deadline_passed, ErrorSchedule, IterationEvent, Limits, Observer};
 use crate::error::{try_vec, Fc3dError};
@@ -133,11 +134,12 @@ pub(crate) fn run_islands(
             let next_unit = (0..colouring.n_colours())
                 .map(|_| AtomicUsize::new(0))
                 .collect();
-            coloured.push(ColouredIsland {
+            let island = ColouredIsland {
                 colouring,
                 next_unit,
                 unit_sums,
-            });
+            };
+            try_push(&mut coloured, island, "the coloured islands")?;
         }
     }
     let threads = match n_coloured {
@@ -166,9 +168,9 @@ pub(crate) fn run_islands(
         sweeps,
         done: sweeps >= run.max_iter,
     };
-    let islands: Vec<Mutex<IslandRun>> = (0..n_islands)
-        .map(|_| Mutex::new(new_run(tol, 0)))
-        .collect();
+    let mut islands: Vec<Mutex<IslandRun>> = Vec::new();
+    reserve(&mut islands, n_islands, "the island runs")?;
+    islands.extend((0..n_islands).map(|_| Mutex::new(new_run(tol, 0))));
     let mut island_tol = tol;
     let mut rounds = 1;
     let timed_out = AtomicBool::new(false);

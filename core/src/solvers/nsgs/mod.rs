@@ -250,7 +250,10 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
     );
     // Under a time budget the run may be cut at any sweep: the best iterate measured is kept
     // (its copy allocated once, here).
-    let mut best = run.deadline().map(|_| BestIterate::new(r, f64::INFINITY));
+    let mut best = match run.deadline() {
+        Some(_) => Some(BestIterate::try_new(r, f64::INFINITY)?),
+        None => None,
+    };
 
     let mut anderson = match options.acceleration {
         Acceleration::None => None,

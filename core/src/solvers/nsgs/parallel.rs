@@ -11,7 +11,8 @@ use std::marker::PhantomData;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex, OnceLock};
 
-use crate::error::{try_vec, Fc3dError};
+use crate::alloc::{try_collect, try_push};
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::matrix::BlockRows;
 
 /// Environment variable a host may set to choose the threads of parallel sweeps.
@@ -190,7 +191,7 @@ impl ContactGraph {
                 for v in rows.coupled(contact(p)).map(unit_of) {
                     if v != unit && reached_by[v] != unit {
                         reached_by[v] = unit;
-                        forward.push(v);
+                        try_push(&mut forward, v, "contact graph")?;
                     }
                 }
             }
@@ -207,7 +208,7 @@ impl ContactGraph {
             ptr[unit + 1] += ptr[unit];
         }
         let mut adjacent = try_vec(ptr[n], 0usize, "contact graph")?;
-        let mut fill = ptr.clone();
+        let mut fill = try_copy(&ptr, "contact graph")?;
         for unit in 0..n {
             for &v in &forward[forward_ptr[unit]..forward_ptr[unit + 1]] {
                 adjacent[fill[unit]] = v;
@@ -245,14 +246,17 @@ impl ContactGraph {
                     taken[k] = c;
                 }
             }
-            let k = (0..n_colours).find(|&k| taken[k] != c).unwrap_or_else(|| {
-                taken.push(NONE);
-                n_colours += 1;
-                n_colours - 1
-            });
+            let k = match (0..n_colours).find(|&k| taken[k] != c) {
+                Some(k) => k,
+                None => {
+                    try_push(&mut taken, NONE, "contact colouring")?;
+                    n_colours += 1;
+                    n_colours - 1
+                }
+            };
             colour[c] = k;
         }
-        let mut start = vec![0usize; n_colours + 1];
+        let mut start = try_vec(n_colours + 1, 0usize, "contact colouring")?;
         for &k in &colour {
             start[k + 1] += 1;
         }
@@ -260,7 +264,7 @@ impl ContactGraph {
             start[k + 1] += start[k];
         }
         let mut order = try_vec(nc, 0usize, "contact colouring")?;
-        let mut fill = start.clone();
+        let mut fill = try_copy(&start, "contact colouring")?;
         for (c, &k) in colour.iter().enumerate() {
             order[fill[k]] = c;
             fill[k] += 1;
@@ -282,31 +286,32 @@ impl ContactGraph {
             }
             let id = sizes.len();
             island[start] = id;
-            stack.push(start);
+            try_push(&mut stack, start, "contact islands")?;
             let mut size = 0;
             while let Some(c) = stack.pop() {
                 size += 1;
                 for &b in self.neighbours(c) {
                     if island[b] == NONE {
                         island[b] = id;
-                        stack.push(b);
+                        try_push(&mut stack, b, "contact islands")?;
                     }
                 }
             }
-            sizes.push((size, start));
+            try_push(&mut sizes, (size, start), "contact islands")?;
         }
-        let mut by_size: Vec<usize> = (0..sizes.len()).collect();
-        by_size.sort_by_key(|&i| (std::cmp::Reverse(sizes[i].0), sizes[i].1));
-        let mut rank = vec![0usize; sizes.len()];
+        let mut by_size = try_collect(0..sizes.len(), "contact islands")?;
+        // First contacts differ: the keys are distinct, so an unstable sort gives one order.
+        by_size.sort_unstable_by_key(|&i| (std::cmp::Reverse(sizes[i].0), sizes[i].1));
+        let mut rank = try_vec(sizes.len(), 0usize, "contact islands")?;
         for (k, &i) in by_size.iter().enumerate() {
             rank[i] = k;
         }
-        let mut start = vec![0usize; sizes.len() + 1];
+        let mut start = try_vec(sizes.len() + 1, 0usize, "contact islands")?;
         for (k, &i) in by_size.iter().enumerate() {
             start[k + 1] = start[k] + sizes[i].0;
         }
         let mut order = try_vec(nc, 0usize, "contact islands")?;
-        let mut fill = start.clone();
+        let mut fill = try_copy(&start, "contact islands")?;
         for c in 0..nc {
             let k = rank[island[c]];
             order[fill[k]] = c;

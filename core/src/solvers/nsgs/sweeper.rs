@@ -9,6 +9,7 @@ use super::coloured::{ColouredPlan, Colouring, Units};
 use super::parallel::{resolve_threads, Pool, SharedSlice};
 use super::settings::{ContactOrder, Decomposition, NsgsOptions};
 use super::step::{new_reaction, ContactStep, LocalStep};
+use crate::alloc::try_collect;
 use crate::contract::ErrorEvaluation;
 use crate::error::{try_vec, Fc3dError};
 use crate::local::LocalSolverOptions;
@@ -93,7 +94,12 @@ struct SweepPlan {
 }
 
 impl SweepPlan {
-    fn new(options: &SweepOptions, nc: usize, dimension: usize, tolerance: f64) -> Self {
+    fn new(
+        options: &SweepOptions,
+        nc: usize,
+        dimension: usize,
+        tolerance: f64,
+    ) -> Result<Self, Fc3dError> {
         let mut plan = SweepPlan {
             relaxation: options.relaxation,
             ..SweepPlan::default()
@@ -101,22 +107,22 @@ impl SweepPlan {
         match options.order {
             ContactOrder::Natural => {}
             ContactOrder::ShuffledOnce { seed } => {
-                plan.order = (0..nc).collect();
+                plan.order = try_collect(0..nc, "the contact order")?;
                 SplitMix64(seed).shuffle(&mut plan.order);
             }
             ContactOrder::ShuffledEachSweep { seed } => {
-                plan.order = (0..nc).collect();
+                plan.order = try_collect(0..nc, "the contact order")?;
                 plan.reshuffle = Some(SplitMix64(seed));
             }
         }
         if let Some(k) = options.freezing.filter(|&k| k > 0) {
             plan.freezing = Some((u32::try_from(k).unwrap_or(u32::MAX), tolerance));
-            plan.frozen = vec![0; nc];
+            plan.frozen = try_vec(nc, 0, "the frozen contacts")?;
         }
         if options.track_solved_velocity {
-            plan.u_solved = vec![0.0; dimension * nc];
+            plan.u_solved = try_vec(dimension * nc, 0.0, "the solved velocities")?;
         }
-        plan
+        Ok(plan)
     }
 }
 
@@ -200,7 +206,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
         options: &SweepOptions,
         tolerance: f64,
     ) -> Result<Self, Fc3dError> {
-        let plan = SweepPlan::new(options, rows.n_contacts(), D, tolerance);
+        let plan = SweepPlan::new(options, rows.n_contacts(), D, tolerance)?;
         let memory = try_vec(rows.n_contacts(), 1.0, "local solver states")?;
         Ok(GaussSeidel {
             worker: step.worker(),

@@ -10,8 +10,9 @@
 //! substitution `r_T = z_1 - mu r_N` uses each column contact's own mu (the two agree when all
 //! contacts share one mu).
 
+use crate::alloc::try_collect;
 use crate::contract::{deadline_passed, Limits, SolverOutcome};
-use crate::error::{try_vec, Fc3dError};
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::problem::FrictionProblem;
 
 /// LCP(M, q̃) in dense row-major form, `M` of size `m x m`.
@@ -121,7 +122,7 @@ pub fn lemke(
         row[rhs] = lcp.q[i];
     }
     // basis[i]: the variable basic in row i (0..m w, m..2m z, 2m z0).
-    let mut basis: Vec<usize> = (0..m).collect();
+    let mut basis = try_collect(0..m, "the Lemke basis")?;
     let mut column = try_vec(m, 0.0, "the Lemke pivot column")?;
 
     // First pivot: z0 enters at the level that makes every w nonnegative; the row of the most
@@ -204,7 +205,7 @@ fn resolve_final_basis(
     let m = lcp.size;
     // Columns of [I, -M] for the basic variables: w_j -> e_j, z_j -> -M e_j.
     let mut a = try_vec(m * m, 0.0, "the Lemke final basis")?;
-    let mut x = lcp.q.clone();
+    let mut x = try_copy(&lcp.q, "the Lemke final basis")?;
     for (k, &b) in basis.iter().enumerate() {
         for i in 0..m {
             a[i * m + k] = if b < m {
@@ -218,7 +219,7 @@ fn resolve_final_basis(
             };
         }
     }
-    if !solve_dense(&mut a, &mut x, m) {
+    if !matches!(solve_dense(&mut a, &mut x, m, None), Elimination::Solved) {
         return Ok(());
     }
     let mut z_new = try_vec(m, 0.0, "the Lemke final basis")?;
@@ -331,48 +332,93 @@ fn lcp_velocity(lcp: &PlanarLcp, z: &[f64], w: &mut [f64]) {
     }
 }
 
-/// The most complementary bases enumeration tries: `2^32` (an LCP of size 32, 10 contacts);
-/// larger problems are refused rather than left to run for years.
-pub const MAX_ENUMERATION_SIZE: usize = 32;
+/// The largest LCP whose every case enumeration visits when neither an iteration limit nor a
+/// time budget bounds it: `2^32` cases (size 32, 10 contacts). A larger problem sets one of the
+/// two (Siconos' default, no iteration limit, would run for years).
+pub const UNBOUNDED_ENUMERATION_SIZE: usize = 32;
 
-/// Enumeration of the complementary bases, in Siconos' order: case `k` (from `seed`, wrapping
-/// around) frees `w_j` where bit `j` of `k` is set and `z_j` elsewhere, solves the square
-/// system, and stops at the first solution with every free variable `>= -tolerance ||q̃||_inf`.
-/// (Siconos compares with `-tolerance` itself; relative to q̃ the test does not accept every
-/// case of a problem whose data are of order 1e-15, as some real 2D problems are.) Returns how
-/// it ended and the cases tried.
+/// The case enumeration tries at `step` (0, 1, ...), in Siconos' order: from `seed` (a seed
+/// past the last case starts at case 0), then one by one, wrapping around after the last of the
+/// `2^m` cases. Case `k` frees `w_j` where bit `j` of `k` is set and `z_j` elsewhere, so the
+/// unknowns past the 64th keep `z` free. (Siconos 4.4 counts the `2^m` cases in 64 bits: from
+/// `m = 64` on the count is 0 and it tries no case at all.)
+fn enumeration_case(m: usize, seed: u64, step: u64) -> u64 {
+    match u32::try_from(m).ok().and_then(|m| 1u64.checked_shl(m)) {
+        Some(cases) => {
+            let first = if seed >= cases { 0 } else { seed };
+            (first + step % cases) % cases
+        }
+        None => seed.wrapping_add(step),
+    }
+}
+
+/// Refuses to enumerate the cases of an LCP of `m` unknowns with neither a limit of cases nor a
+/// deadline when they are more than `2^32` (see [`UNBOUNDED_ENUMERATION_SIZE`]).
+fn check_enumeration_bounds(
+    m: usize,
+    max_cases: usize,
+    deadline: Option<std::time::Instant>,
+) -> Result<(), Fc3dError> {
+    if max_cases == 0 && deadline.is_none() && m > UNBOUNDED_ENUMERATION_SIZE {
+        return Err(Fc3dError::InvalidSetting {
+            setting: "max_iter",
+            value: "0".into(),
+            requirement: "positive (the cases to try), or a time budget set: enumeration \
+                          (Siconos 405) of more than 10 contacts has more than 2^32 cases",
+        });
+    }
+    Ok(())
+}
+
+/// Whether case `case` frees `w_j` (else `z_j`).
+fn frees_w(case: u64, j: usize) -> bool {
+    j < 64 && case >> j & 1 == 1
+}
+
+/// Enumeration of the complementary bases in Siconos' order (see [`enumeration_case`]): each
+/// case solves the square system whose columns are `M`'s `j`-th where `z_j` is free and `-e_j`
+/// where `w_j` is, and the first case whose every free variable is `>= -tolerance ||q̃||_inf`
+/// is the solution. (Siconos compares with `-tolerance` itself; relative to q̃ the test does not
+/// accept every case of a problem whose data are of order 1e-15, as some real 2D problems are.)
+/// At most `max_cases` cases (0: every case, for an LCP of at most
+/// [`UNBOUNDED_ENUMERATION_SIZE`] unknowns or under a `deadline`); the deadline is tested in
+/// every case's elimination too, as a case of a large LCP takes long. Returns how it ended and
+/// the cases tried; unless solved, `z = 0` and `w = q̃`.
 pub fn enumerate(
     lcp: &PlanarLcp,
     tolerance: f64,
     seed: u64,
+    max_cases: usize,
     deadline: Option<std::time::Instant>,
     z: &mut [f64],
     w: &mut [f64],
 ) -> Result<(LcpEnd, usize), Fc3dError> {
     let m = lcp.size;
-    if m > MAX_ENUMERATION_SIZE {
-        return Err(Fc3dError::Unsupported(format!(
-            "enumeration (Siconos 405) of an LCP of size {m} ({} contacts): 2^{m} cases; fc3d \
-             enumerates at most {MAX_ENUMERATION_SIZE} ({} contacts)",
-            m / 3,
-            MAX_ENUMERATION_SIZE / 3
-        )));
-    }
-    let cases: u64 = 1u64 << m;
+    check_enumeration_bounds(m, max_cases, deadline)?;
+    let every_case = u32::try_from(m)
+        .ok()
+        .and_then(|m| 1u64.checked_shl(m))
+        .unwrap_or(u64::MAX);
+    let cases = match max_cases {
+        0 => every_case,
+        k => every_case.min(k as u64),
+    };
     let slack = tolerance * lcp.q.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
     let mut a = try_vec(m * m, 0.0, "the enumeration system")?;
     let mut x = try_vec(m, 0.0, "the enumeration system")?;
+    z.iter_mut().for_each(|v| *v = 0.0);
+    w.copy_from_slice(&lcp.q);
     let mut tried = 0usize;
     for step in 0..cases {
-        if step % 64 == 0 && deadline_passed(deadline) {
+        if deadline_passed(deadline) {
             return Ok((LcpEnd::OutOfTime, tried));
         }
-        let case = seed.wrapping_add(step) % cases;
+        let case = enumeration_case(m, seed, step);
         tried += 1;
         // Columns: M's j-th where z_j is free, -e_j where w_j is; right-hand side -q̃.
         for i in 0..m {
             for j in 0..m {
-                a[i * m + j] = if case >> j & 1 == 0 {
+                a[i * m + j] = if !frees_w(case, j) {
                     lcp.m[i * m + j]
                 } else if i == j {
                     -1.0
@@ -382,36 +428,57 @@ pub fn enumerate(
             }
             x[i] = -lcp.q[i];
         }
-        if !solve_dense(&mut a, &mut x, m) {
-            continue;
+        match solve_dense(&mut a, &mut x, m, deadline) {
+            Elimination::Solved => {}
+            Elimination::Singular => continue,
+            Elimination::OutOfTime => return Ok((LcpEnd::OutOfTime, tried)),
         }
         if x.iter().all(|&v| v >= -slack && v.is_finite()) {
             for j in 0..m {
-                if case >> j & 1 == 0 {
-                    z[j] = x[j];
-                    w[j] = 0.0;
-                } else {
+                if frees_w(case, j) {
                     z[j] = 0.0;
                     w[j] = x[j];
+                } else {
+                    z[j] = x[j];
+                    w[j] = 0.0;
                 }
             }
             return Ok((LcpEnd::Solved, tried));
         }
     }
-    z.iter_mut().for_each(|v| *v = 0.0);
-    w.copy_from_slice(&lcp.q);
-    Ok((LcpEnd::NoSolutionFound, tried))
+    let end = if cases < every_case {
+        LcpEnd::IterationLimit
+    } else {
+        LcpEnd::NoSolutionFound
+    };
+    Ok((end, tried))
+}
+
+/// How a dense elimination ended.
+enum Elimination {
+    Solved,
+    Singular,
+    OutOfTime,
 }
 
 /// Solves `a x = b` in place (`a` row-major `m x m`, overwritten; `b` becomes `x`) by Gaussian
-/// elimination with partial pivoting; false when `a` is singular.
-fn solve_dense(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
+/// elimination with partial pivoting; stops at a zero or non-finite pivot, and when `deadline`
+/// passes (tested once per pivot row).
+fn solve_dense(
+    a: &mut [f64],
+    b: &mut [f64],
+    m: usize,
+    deadline: Option<std::time::Instant>,
+) -> Elimination {
     for k in 0..m {
+        if deadline_passed(deadline) {
+            return Elimination::OutOfTime;
+        }
         let p = (k..m)
             .max_by(|&i, &j| a[i * m + k].abs().total_cmp(&a[j * m + k].abs()))
             .expect("k < m");
         if a[p * m + k] == 0.0 || !a[p * m + k].is_finite() {
-            return false;
+            return Elimination::Singular;
         }
         if p != k {
             for j in 0..m {
@@ -437,7 +504,7 @@ fn solve_dense(a: &mut [f64], b: &mut [f64], m: usize) -> bool {
         }
         b[k] = s / a[k * m + k];
     }
-    true
+    Elimination::Solved
 }
 
 /// Runs Lemke (`enumeration` false) or enumeration on the reformulation of `problem` and writes
@@ -450,16 +517,75 @@ pub(crate) fn solve_by_lcp(
     r: &mut [f64],
     u: &mut [f64],
 ) -> Result<SolverOutcome, Fc3dError> {
+    // The budget counts the reformulation too (a dense matrix of (3 nc)^2 entries); an
+    // enumeration without bounds is refused before it is built.
+    let run = limits.start();
+    if enumeration {
+        check_enumeration_bounds(3 * problem.n_contacts(), run.max_iter, run.deadline())?;
+    }
     let lcp = PlanarLcp::new(problem)?;
     let mut z = try_vec(lcp.size, 0.0, "the LCP unknowns")?;
     let mut w = try_vec(lcp.size, 0.0, "the LCP unknowns")?;
-    let run = limits.start();
     let (end, iterations) = if enumeration {
-        enumerate(&lcp, run.tolerance, seed, run.deadline(), &mut z, &mut w)?
+        enumerate(
+            &lcp,
+            run.tolerance,
+            seed,
+            run.max_iter,
+            run.deadline(),
+            &mut z,
+            &mut w,
+        )?
     } else {
         lemke(&lcp, run.max_iter, run.deadline(), &mut z, &mut w)?
     };
     PlanarLcp::to_contact(&z, &w, r, u);
     // u comes from the LCP, not from W r + q on the host's storage: the caller measures.
     Ok(SolverOutcome::stopped(iterations, end == LcpEnd::OutOfTime))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Siconos' order: from the seed, one by one, wrapping around after the last case; a seed
+    /// past the last case starts at 0; past 64 unknowns the case number does not wrap and the
+    /// higher unknowns keep `z` free.
+    #[test]
+    fn cases_come_in_siconos_order() {
+        let order = |m, seed| {
+            (0..10)
+                .map(|s| enumeration_case(m, seed, s))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(order(3, 0), [0, 1, 2, 3, 4, 5, 6, 7, 0, 1]);
+        assert_eq!(order(3, 6), [6, 7, 0, 1, 2, 3, 4, 5, 6, 7]);
+        assert_eq!(order(3, 9), [0, 1, 2, 3, 4, 5, 6, 7, 0, 1]);
+        assert_eq!(order(2001, 5), [5, 6, 7, 8, 9, 10, 11, 12, 13, 14]);
+        assert!(frees_w(1 << 63, 63) && !frees_w(u64::MAX, 64) && !frees_w(u64::MAX, 2000));
+    }
+
+    /// LCP(M, q) with M = [[2, 1], [1, 2]], q = (-2, 1): z = (1, 0), w = (0, 2), case 2 (w_1
+    /// free), found third; a limit of two cases stops before it, and so does a deadline past.
+    #[test]
+    fn the_first_feasible_case_is_found_within_the_limits() {
+        let lcp = PlanarLcp {
+            size: 2,
+            m: vec![2.0, 1.0, 1.0, 2.0],
+            q: vec![-2.0, 1.0],
+        };
+        let (mut z, mut w) = ([0.0; 2], [0.0; 2]);
+        let got = enumerate(&lcp, 1e-12, 0, 0, None, &mut z, &mut w).unwrap();
+        assert_eq!(got, (LcpEnd::Solved, 3));
+        assert_eq!((z, w), ([1.0, 0.0], [0.0, 2.0]));
+        let got = enumerate(&lcp, 1e-12, 0, 2, None, &mut z, &mut w).unwrap();
+        assert_eq!(got, (LcpEnd::IterationLimit, 2));
+        assert_eq!((z, w), ([0.0, 0.0], [-2.0, 1.0]));
+        let past = std::time::Instant::now();
+        let got = enumerate(&lcp, 1e-12, 0, 0, Some(past), &mut z, &mut w).unwrap();
+        assert_eq!(got, (LcpEnd::OutOfTime, 0));
+        // From seed 3 the order is 3, 0, 1, 2: the solution is the fourth case tried.
+        let got = enumerate(&lcp, 1e-12, 3, 0, None, &mut z, &mut w).unwrap();
+        assert_eq!(got, (LcpEnd::Solved, 4));
+    }
 }

@@ -91,15 +91,17 @@ pub enum PlanarMethod {
     Cpg,
     /// Lexicographic Lemke on the LCP reformulation (Siconos 404).
     Lemke,
-    /// Enumeration of the LCP reformulation's complementary bases (Siconos 405), from case
-    /// `seed` (Siconos' `iparam[9]`, default 0).
+    /// Enumeration of the LCP reformulation's complementary bases (Siconos 405) in Siconos'
+    /// order, from case `seed` (Siconos' `iparam[9]`, default 0), under the iteration limit
+    /// (cases tried) and the time budget.
     Enumeration { seed: u64 },
 }
 
 impl PlanarMethod {
     /// Siconos' default `(tolerance, iteration limit)` of the id: 1e-4 and 1000 for NSGS and
-    /// CPG, 1e-6 and 10000 pivots for Lemke, 1e-6 for enumeration (whose limit, 0 in Siconos,
-    /// is not used: enumeration visits every case until one solves).
+    /// CPG, 1e-6 and 10000 pivots for Lemke, 1e-6 and 0 for enumeration, whose limit counts
+    /// cases (0: every case, which a problem of more than 10 contacts must bound with a limit or
+    /// a time budget).
     pub fn default_limits(&self) -> (f64, usize) {
         match self {
             PlanarMethod::Nsgs(_) | PlanarMethod::Cpg => (1e-4, 1000),

@@ -77,7 +77,7 @@ fn tfp(
     let run = limits.start();
     work.deadline = run.deadline();
     let tol = run.tolerance;
-    let mut outer = OuterLoop::new(run, r);
+    let mut outer = OuterLoop::new(run, r)?;
     let mut error = natural_map_error_by_rows(problem, &work.rows, r, u);
     for iteration in 1..=run.max_iter {
         for (c, radius) in work.radius.iter_mut().enumerate() {

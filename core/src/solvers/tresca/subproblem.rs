@@ -7,7 +7,7 @@ use std::time::Instant;
 use super::local::{solve_disk_problem, solve_local_tresca};
 use super::settings::TrescaInnerSolver;
 use crate::contract::deadline_passed;
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::cone::{project_on_cylinder, project_on_disk};
 use crate::math::linalg::norm;
 use crate::math::step::{L as L_MAX, L_MIN, NU};
@@ -54,11 +54,11 @@ impl<'a> TrescaWorkspace<'a> {
             })
             .fold(0.0_f64, f64::max);
         Ok(TrescaWorkspace {
-            radius: vec![0.0; rows.n_contacts()],
+            radius: try_vec(rows.n_contacts(), 0.0, "the Tresca work arrays")?,
             rows,
-            u: vec![0.0; n],
-            trial: vec![0.0; n],
-            u_trial: vec![0.0; n],
+            u: try_vec(n, 0.0, "the Tresca work arrays")?,
+            trial: try_vec(n, 0.0, "the Tresca work arrays")?,
+            u_trial: try_vec(n, 0.0, "the Tresca work arrays")?,
             rho: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
             rho0: if max_diag > 0.0 { 1.0 / max_diag } else { 1.0 },
             deadline: None,

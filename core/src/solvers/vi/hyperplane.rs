@@ -5,7 +5,7 @@
 
 use super::{evaluate, project_step, stopping_error, StepSize, ViOptions};
 use crate::contract::{ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome};
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::{bounded, distance_sq, dot, norm};
 use crate::problem::FrictionProblem;
 
@@ -34,12 +34,12 @@ pub(super) fn run(
 
     // Work vectors, allocated once: F(r), the prediction r̄ and its velocity, r - r̄, the velocity
     // v at the accepted search point and the next iterate.
-    let mut f = vec![0.0; n];
-    let mut prediction = vec![0.0; n];
-    let mut prediction_u = vec![0.0; n];
-    let mut direction = vec![0.0; n];
-    let mut v = vec![0.0; n];
-    let mut next = vec![0.0; n];
+    let mut f = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut prediction = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut prediction_u = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut direction = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut v = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut next = try_vec(n, 0.0, "the VI work arrays")?;
 
     evaluate(problem, r, u, &mut f);
     for iteration in 1..=run.max_iter {

@@ -8,7 +8,7 @@ use super::{
 use crate::contract::{
     ErrorEvaluation, ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome,
 };
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::{bounded, distance_sq, norm};
 use crate::measure::cheap_error;
 
@@ -69,12 +69,12 @@ pub(crate) fn run(
 
     // Work vectors, allocated once: F at the current iterate, the trial (prediction) and its
     // velocity and F, and the extragradient's corrected iterate.
-    let mut f = vec![0.0; n];
-    let mut trial = vec![0.0; n];
-    let mut trial_u = vec![0.0; map.velocity_size()];
-    let mut trial_f = vec![0.0; n];
+    let mut f = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut trial = try_vec(n, 0.0, "the VI work arrays")?;
+    let mut trial_u = try_vec(map.velocity_size(), 0.0, "the VI work arrays")?;
+    let mut trial_f = try_vec(n, 0.0, "the VI work arrays")?;
     let mut corrected = match iteration_kind {
-        ViIteration::ExtraGradient => vec![0.0; n],
+        ViIteration::ExtraGradient => try_vec(n, 0.0, "the VI work arrays")?,
         _ => Vec::new(),
     };
 

@@ -1,6 +1,7 @@
-//! Fallible allocation for the readers and writers: every size here comes from a file or a
-//! stream, so a failure is an [`Fc3dError::OutOfMemory`] naming what was being read, never an
-//! abort (see also `crate::error::try_vec`).
+//! Fallible allocation for memory whose size comes from the input (a file, a stream, a host's
+//! matrix): the readers and writers and the conversions between storages of W. A failure is an
+//! [`Fc3dError::OutOfMemory`] naming what was being built, never an abort (see also
+//! `crate::error::try_vec` and `try_copy`).
 
 use crate::error::Fc3dError;
 
@@ -27,8 +28,19 @@ pub(crate) fn try_push<T>(v: &mut Vec<T>, value: T, what: &str) -> Result<(), Fc
     Ok(())
 }
 
+/// Appends `values`, growing `v` fallibly (amortized doubling).
+pub(crate) fn try_extend<T: Clone>(
+    v: &mut Vec<T>,
+    values: &[T],
+    what: &str,
+) -> Result<(), Fc3dError> {
+    v.try_reserve(values.len())
+        .map_err(|_| out_of_memory::<T>(what, v.len().saturating_add(values.len())))?;
+    v.extend_from_slice(values);
+    Ok(())
+}
+
 /// The items of `items` (whose length is known) in a vector allocated fallibly.
-#[cfg_attr(not(feature = "fclib"), allow(dead_code))]
 pub(crate) fn try_collect<T>(
     items: impl ExactSizeIterator<Item = T>,
     what: &str,
@@ -40,9 +52,10 @@ pub(crate) fn try_collect<T>(
 }
 
 /// Fails with [`Fc3dError::OutOfMemory`] unless `bytes` can be allocated now: a probe before
-/// code that allocates that much without a fallible path (`CsrMatrix::from_triplets`, faer's
-/// dense matrices, the hdf5 crate's reads), for sizes that come from the input, so that an
-/// address-space limit gives an error rather than an abort. The probe is released at once.
+/// code that allocates that much without a fallible path (faer's dense matrices, the hdf5
+/// crate's reads), for sizes that come from the input, so that an address-space limit gives an
+/// error rather than an abort. The probe is released at once.
+#[cfg_attr(not(feature = "fclib"), allow(dead_code))]
 pub(crate) fn ensure_headroom(bytes: usize, what: &str) -> Result<(), Fc3dError> {
     let mut probe: Vec<u8> = Vec::new();
     probe
