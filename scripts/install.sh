@@ -13,11 +13,12 @@
 #   lib/cmake/fc3d/fc3dConfig*.cmake             find_package(fc3d): fc3d::fc3d, fc3d::native,
 #                                                fc3d::fc3d_static, fc3d_SICONOS_INCLUDE_DIR
 #   share/fc3d/fortran/fc3d.f90                  the Fortran module (source)
+#   share/doc/fc3d/                              README.md, LICENSE, CHANGELOG.md, docs/
 # and, when MPI's compiler wrapper is found (`mpicc`, or $FC3D_MPICC; apt-get install openmpi-bin
 # libopenmpi-dev), the distributed solve, so that hosts without MPI never link libmpi:
 #   include/fc3d_mpi.h, lib/libfc3d_mpi.so.X.Y.Z (+ links), lib/pkgconfig/fc3d-mpi.pc,
-#   lib/cmake/fc3d/fc3d-mpiTargets.cmake          (fc3d::mpi; --no-mpi skips it)
-#   share/doc/fc3d/                              README.md, LICENSE, CHANGELOG.md, docs/
+#   lib/cmake/fc3d/fc3d-mpiTargets.cmake, share/fc3d/fortran/fc3d_mpi.f90
+#                                                (fc3d::mpi, the Fortran module; --no-mpi skips it)
 # --features fclib builds the FCLIB (.hdf5) readers and writers in (needs libhdf5-dev).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,7 +30,7 @@ while [ $# -gt 0 ]; do
     --libdir) libdir=$2; shift ;;
     --features) features=$2; shift ;;
     --no-mpi) mpi=no ;;
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -96,6 +97,8 @@ substitute capi/packaging/fc3dConfig.cmake.in > "$lib/cmake/fc3d/fc3dConfig.cmak
 substitute capi/packaging/fc3dConfigVersion.cmake.in > "$lib/cmake/fc3d/fc3dConfigVersion.cmake"
 if [ "$mpi" = yes ]; then
   install -m 644 mpi/include/fc3d_mpi.h "$inc/"
+  install -d "$prefix/share/fc3d/fortran"
+  install -m 644 fortran/fc3d_mpi.f90 "$prefix/share/fc3d/fortran/"
   install -m 755 target/native/release/libfc3d_mpi.so "$lib/libfc3d_mpi.so.$version"
   ln -sf "libfc3d_mpi.so.$version" "$lib/libfc3d_mpi.so.$major"
   ln -sf "libfc3d_mpi.so.$major" "$lib/libfc3d_mpi.so"
@@ -109,6 +112,7 @@ if [ "$mpi" = yes ]; then
       -e "s|@MPI_LIBRARY_NAMES@|$(cmake_list "$mpi_libs" -l)|g" > "$lib/cmake/fc3d/fc3d-mpiTargets.cmake"
 else
   rm -f "$inc/fc3d_mpi.h" "$lib"/libfc3d_mpi.so* "$lib/pkgconfig/fc3d-mpi.pc" \
+    "$prefix/share/fc3d/fortran/fc3d_mpi.f90" \
     "$lib/cmake/fc3d/fc3d-mpiTargets.cmake"
 fi
 [ ! -f fortran/fc3d.f90 ] || install -m 644 fortran/fc3d.f90 "$prefix/share/fc3d/fortran/"

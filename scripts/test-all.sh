@@ -110,6 +110,14 @@ mpirun --oversubscribe -np 3 ./mpi_host "$DATA/Capsules-i101-404.dat" 1e-6 500
 cmake -S mpi -B mpi-build -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build mpi-build >/dev/null
 mpirun --oversubscribe -np 2 ./mpi-build/mpi_host "$DATA/NESpheres_30_1.dat" 1e-8 200
+# The Fortran module of the distributed solve (the INTEGER communicator): same line on 1 and 3 ranks.
+mpifort -Wall -Werror -fcheck=all -J mpi "$PREFIX/share/fc3d/fortran/fc3d.f90" \
+  "$PREFIX/share/fc3d/fortran/fc3d_mpi.f90" "$ROOT/fortran/mpi_example.f90" \
+  $(pkg-config --libs fc3d-mpi) -o mpi_example_f
+one=$(mpirun --oversubscribe -np 1 ./mpi_example_f)
+three=$(mpirun --oversubscribe -np 3 ./mpi_example_f)
+echo "Fortran: np 1 [$one] np 3 [$three]"
+[ "$one" = "$three" ] || { echo "the Fortran example differs between 1 and 3 ranks"; exit 1; }
 
 echo "== Fortran module (installed source) and example"
 bash "$ROOT/scripts/test-fortran.sh" "$PREFIX"

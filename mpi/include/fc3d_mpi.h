@@ -45,6 +45,8 @@ typedef struct Fc3dMpiStats {
   double seconds_setup;       /* the last set-up */
   double seconds_compute;     /* the last solve's sweeps and error measures on this rank */
   double seconds_wait;        /* the last solve's waits in MPI (halo messages, reductions) */
+  double cpu_seconds_compute; /* CPU seconds of that compute (less than its wall time when
+                                 other processes share the core) */
 } Fc3dMpiStats;
 
 #ifdef __cplusplus

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* The host's communicator `*host` duplicated into a communicator of fc3d's own (its messages
  * never match the host's); -1 for MPI_COMM_NULL, -2 when MPI is not initialised. */
@@ -116,3 +117,10 @@ void fc3d_mpi_shim_world(MPI_Comm *out) { *out = MPI_COMM_WORLD; }
 int fc3d_mpi_shim_finalize(void) { return MPI_Finalize(); }
 
 double fc3d_mpi_shim_wtime(void) { return MPI_Wtime(); }
+
+/* CPU seconds of the calling thread: the work a rank did, whatever else shares its core. */
+double fc3d_mpi_shim_thread_cpu_seconds(void) {
+  struct timespec t;
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) != 0) return 0.0;
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}

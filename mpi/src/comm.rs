@@ -51,6 +51,12 @@ pub fn guarded<T>(f: impl FnOnce() -> CResult<T>) -> CResult<T> {
     }
 }
 
+/// CPU seconds of the calling thread.
+pub fn thread_cpu_seconds() -> f64 {
+    // SAFETY: no arguments; reads a clock.
+    unsafe { ffi::fc3d_mpi_shim_thread_cpu_seconds() }
+}
+
 /// Reduction operators of [`Comm::allreduce`].
 #[derive(Debug, Clone, Copy)]
 pub enum Op {

@@ -57,4 +57,5 @@ extern "C" {
     pub fn fc3d_mpi_shim_init() -> c_int;
     pub fn fc3d_mpi_shim_world(out: *mut MpiComm);
     pub fn fc3d_mpi_shim_finalize() -> c_int;
+    pub fn fc3d_mpi_shim_thread_cpu_seconds() -> f64;
 }

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use crate::comm::{Comm, Requests};
+use crate::comm::{thread_cpu_seconds, Comm, Requests};
 use crate::layout::Layout;
 use fc3d::CResult;
 
@@ -25,8 +25,9 @@ pub struct Halo {
     receive_buffer: Vec<f64>,
     send_buffer: Vec<f64>,
     requests: Requests,
-    /// Seconds spent waiting for messages since the last [`Halo::take_wait`].
-    waited: f64,
+    /// Wall and CPU seconds spent waiting for messages since the last [`Halo::take_wait`] (MPI
+    /// polls while it waits: CPU time too).
+    waited: (f64, f64),
 }
 
 impl Halo {
@@ -60,7 +61,7 @@ impl Halo {
             receive_buffer: vec![0.0; receive_len],
             send_buffer: vec![0.0; send_len],
             requests,
-            waited: 0.0,
+            waited: (0.0, 0.0),
         })
     }
 
@@ -87,8 +88,8 @@ impl Halo {
         self.receive_buffer.len() / 3
     }
 
-    /// Seconds waited since the last call.
-    pub fn take_wait(&mut self) -> f64 {
+    /// Wall and CPU seconds waited since the last call.
+    pub fn take_wait(&mut self) -> (f64, f64) {
         std::mem::take(&mut self.waited)
     }
 
@@ -129,9 +130,10 @@ impl Halo {
     /// Waits for colour `colour`'s receives and writes the ghosts' reactions into `r`.
     pub fn wait_colour(&mut self, colour: usize, r: &mut [f64]) -> CResult<()> {
         let range = self.receive_first[colour]..self.receive_first[colour + 1];
-        let start = Instant::now();
+        let (start, cpu) = (Instant::now(), thread_cpu_seconds());
         self.requests.wait(range.clone())?;
-        self.waited += start.elapsed().as_secs_f64();
+        self.waited.0 += start.elapsed().as_secs_f64();
+        self.waited.1 += thread_cpu_seconds() - cpu;
         for s in &self.receives[range] {
             let values = &self.receive_buffer[s.offset..s.offset + 3 * s.contacts.len()];
             for (v, &c) in values.chunks_exact(3).zip(&s.contacts) {
@@ -144,9 +146,10 @@ impl Halo {
     /// Waits until every send of the sweep has left its buffer.
     pub fn wait_sends(&mut self) -> CResult<()> {
         let n = self.receives.len();
-        let start = Instant::now();
+        let (start, cpu) = (Instant::now(), thread_cpu_seconds());
         self.requests.wait(n..n + self.sends.len())?;
-        self.waited += start.elapsed().as_secs_f64();
+        self.waited.0 += start.elapsed().as_secs_f64();
+        self.waited.1 += thread_cpu_seconds() - cpu;
         Ok(())
     }
 

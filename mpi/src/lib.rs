@@ -77,6 +77,8 @@ pub struct Fc3dMpiStats {
     pub seconds_setup: f64,
     pub seconds_compute: f64,
     pub seconds_wait: f64,
+    /// CPU seconds of that compute (below its wall time when other processes share the core).
+    pub cpu_seconds_compute: f64,
 }
 
 fn mode_of(mode: c_int) -> CResult<Mode> {
@@ -357,6 +359,7 @@ pub fn statistics_of(s: &DistributedSolver) -> Fc3dMpiStats {
         seconds_setup: st.seconds_setup,
         seconds_compute: st.seconds_compute,
         seconds_wait: st.seconds_wait,
+        cpu_seconds_compute: st.cpu_seconds_compute,
         ..Default::default()
     };
     if let Some((layout, halo)) = s.layout() {

@@ -10,7 +10,7 @@
 
 use std::time::Instant;
 
-use crate::comm::{Comm, Op};
+use crate::comm::{thread_cpu_seconds, Comm, Op};
 use crate::exact::ExactSum;
 use crate::halo::Halo;
 use crate::input::{fingerprint, LocalRows, RunSettings};
@@ -42,6 +42,8 @@ pub struct Statistics {
     pub seconds_setup: f64,
     pub seconds_compute: f64,
     pub seconds_wait: f64,
+    /// CPU seconds of the compute part (below its wall time when the core is shared).
+    pub cpu_seconds_compute: f64,
 }
 
 /// A communicator, a sweep mode and the set-up kept from one solve to the next.
@@ -133,10 +135,12 @@ impl DistributedSolver {
             halo,
             values,
             compute: 0.0,
+            compute_cpu: 0.0,
             wait: 0.0,
         };
         let outcome = run.iterate(settings, start)?;
-        let (compute, wait) = (run.compute, run.wait + run.halo.take_wait());
+        let (compute, compute_cpu) = (run.compute, run.compute_cpu);
+        let wait = run.wait + run.halo.take_wait().0;
         let values = run.values;
         let seconds = comm.max_f64(start.elapsed().as_secs_f64())?;
         for (k, &i) in layout.known_of_host.iter().enumerate() {
@@ -147,6 +151,7 @@ impl DistributedSolver {
         self.statistics.sweeps = outcome.iterations as u64;
         self.statistics.seconds_compute = compute;
         self.statistics.seconds_wait = wait;
+        self.statistics.cpu_seconds_compute = compute_cpu;
         Ok(Outcome { seconds, ..outcome })
     }
 }
@@ -189,6 +194,7 @@ struct Run<'s> {
     halo: &'s mut Halo,
     values: Values,
     compute: f64,
+    compute_cpu: f64,
     wait: f64,
 }
 
@@ -222,10 +228,11 @@ impl Run<'_> {
         let mut iterations = 0;
         let mut final_error = None;
         for iteration in 1..=limits.max_iter {
-            let t = Instant::now();
+            let (t, cpu) = (Instant::now(), thread_cpu_seconds());
             let sums = self.sweep(&step, &mut worker, &mut memory, nsgs.relaxation)?;
-            let waited = self.halo.take_wait();
+            let (waited, waited_cpu) = self.halo.take_wait();
             self.compute += t.elapsed().as_secs_f64() - waited;
+            self.compute_cpu += thread_cpu_seconds() - cpu - waited_cpu;
             self.wait += waited;
             iterations = iteration;
             let out_of_time = deadline.is_some_and(|d| Instant::now() >= d);
@@ -383,7 +390,7 @@ impl Run<'_> {
     /// The relative natural-map error of the current r over all ranks (collective), with
     /// `u = W r + q` left in `values.u` for this rank's contacts.
     fn measure(&mut self) -> CResult<f64> {
-        let t = Instant::now();
+        let (t, cpu) = (Instant::now(), thread_cpu_seconds());
         let v = &mut self.values;
         let mut sums = [
             ExactSum::default(),
@@ -400,6 +407,7 @@ impl Run<'_> {
         }
         let computed = Instant::now();
         self.compute += (computed - t).as_secs_f64();
+        self.compute_cpu += thread_cpu_seconds() - cpu;
         ExactSum::reduce_all(self.comm, &mut sums, &mut [])?;
         self.wait += computed.elapsed().as_secs_f64();
         let scale = v

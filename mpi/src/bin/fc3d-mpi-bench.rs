@@ -28,7 +28,8 @@ mod bench {
     use std::time::Instant;
 
     use fc3d::Fc3dSettings;
-    use fc3d_mpi::comm::{Comm, Op};
+    use fc3d_core::{Delassus, FrictionProblem, Method, SolverConfig};
+    use fc3d_mpi::comm::{thread_cpu_seconds, Comm, Op};
     use fc3d_mpi::ffi::{self, MpiComm};
     use fc3d_mpi::input::{run_settings, LocalRows, RunSettings};
     use fc3d_mpi::layout::Mode;
@@ -68,6 +69,7 @@ mod bench {
         limit: f64,
         mode: Mode,
         header: bool,
+        core: bool,
     }
 
     fn parse() -> Args {
@@ -78,6 +80,7 @@ mod bench {
             limit: 60.0,
             mode: Mode::Reproducible,
             header: false,
+            core: false,
         };
         let mut it = std::env::args().skip(1);
         while let Some(a) = it.next() {
@@ -103,6 +106,7 @@ mod bench {
                     }
                 }
                 "--header" => args.header = true,
+                "--core" => args.core = true,
                 _ if args.problem.is_empty() => args.problem = a,
                 _ => panic!("unknown argument {a}"),
             }
@@ -136,7 +140,7 @@ mod bench {
         let whole = WholeProblem::load(&args.problem).expect("a problem");
         let n = whole.n_contacts();
         let rows = RankRows::of(&whole, &Partition::Ranges.contacts_of(n, rank, size));
-        drop(whole);
+        let core = (args.core && size == 1).then(|| core_sweep(whole, args.sweeps));
         let generated = comm.max_f64(start.elapsed().as_secs_f64()).unwrap();
         let zero = vec![0.0; 3 * rows.n_local()];
         let local = LocalRows {
@@ -157,15 +161,16 @@ mod bench {
                 let outcome = solver.solve(&local, s, &mut r, &mut u).expect("a solve");
                 (outcome, solver.statistics)
             };
-        // Sweeps only: a tolerance no sweep reaches.
-        let (_, set_up) = solve(&settings(1e-300, 1, None), &mut solver);
-        let (once, one) = solve(&settings(1e-300, 1, None), &mut solver);
-        let (many, more) = solve(&settings(1e-300, args.sweeps + 1, None), &mut solver);
+        // Sweeps only: a tolerance these few sweeps do not reach.
+        let (_, set_up) = solve(&settings(1e-16, 1, None), &mut solver);
+        let (once, one) = solve(&settings(1e-16, 1, None), &mut solver);
+        let (many, more) = solve(&settings(1e-16, args.sweeps + 1, None), &mut solver);
         let k = args.sweeps as f64;
         let max = |v: f64| comm.max_f64(v).unwrap();
         let sweep_ms = 1e3 * (many.seconds - once.seconds) / k;
         let compute_ms = 1e3 * max((more.seconds_compute - one.seconds_compute) / k);
         let wait_ms = 1e3 * max((more.seconds_wait - one.seconds_wait) / k);
+        let cpu_ms = 1e3 * max((more.cpu_seconds_compute - one.cpu_seconds_compute) / k);
         let stats = fc3d_mpi::statistics_of(&solver);
         let mut sums = [stats.messages_per_sweep, stats.bytes_per_sweep];
         comm.allreduce(&mut sums, Op::Sum).unwrap();
@@ -176,7 +181,7 @@ mod bench {
 
         let mut to_tolerance = Vec::new();
         for &t in &args.tolerances {
-            let (o, _) = solve(&settings(t, i64::MAX / 2, Some(args.limit)), &mut solver);
+            let (o, _) = solve(&settings(t, 1_000_000_000, Some(args.limit)), &mut solver);
             to_tolerance.push(if o.info == 0 {
                 format!("{:.2},{}", o.seconds, o.iterations)
             } else {
@@ -185,7 +190,7 @@ mod bench {
         }
         if rank == 0 {
             if args.header {
-                let mut h = "contacts,ranks,mode,colours,generate_s,setup_s,sweep_ms,compute_ms,wait_ms,messages_per_sweep,bytes_per_sweep,max_ghosts,max_boundary,max_neighbours,colour_balance".to_string();
+                let mut h = "contacts,ranks,mode,colours,generate_s,setup_s,sweep_ms,compute_ms,compute_cpu_ms,wait_ms,messages_per_sweep,bytes_per_sweep,max_ghosts,max_boundary,max_neighbours,colour_balance".to_string();
                 for t in &args.tolerances {
                     h.push_str(&format!(",to_{t:e}_s,to_{t:e}_sweeps"));
                 }
@@ -197,15 +202,40 @@ mod bench {
                 "reproducible"
             };
             let mut line = format!(
-                "{n},{size},{mode},{},{generated:.2},{setup_s:.3},{sweep_ms:.2},{compute_ms:.2},{wait_ms:.2},{},{},{},{},{},{balance:.4}",
+                "{n},{size},{mode},{},{generated:.2},{setup_s:.3},{sweep_ms:.2},{compute_ms:.2},{cpu_ms:.2},{wait_ms:.2},{},{},{},{},{},{balance:.4}",
                 stats.colours, sums[0], sums[1], maxima[0], maxima[1], maxima[2]
             );
             for t in &to_tolerance {
                 line.push(',');
                 line.push_str(t);
             }
+            if let Some((wall, cpu)) = core {
+                line.push_str(&format!(",core {wall:.2} ms ({cpu:.2} ms CPU)"));
+            }
             println!("{line}");
         }
+    }
+
+    /// The core's one-process NSGS (natural order, the same settings) on the whole problem:
+    /// wall and CPU milliseconds per sweep, as (K + 1 sweeps - 1 sweep) / K.
+    fn core_sweep(whole: WholeProblem, sweeps: i64) -> (f64, f64) {
+        let nsgs = settings(1e-16, 1, None).nsgs;
+        let problem = FrictionProblem::new(Delassus::SparseBlock(whole.w), whole.q, whole.mu)
+            .expect("a problem");
+        let n3 = 3 * problem.n_contacts();
+        let time = |k: i64| {
+            let config = SolverConfig::new(Method::Nsgs(nsgs))
+                .with_tolerance(1e-16)
+                .with_max_iter(k as usize);
+            let (mut r, mut u) = (vec![0.0; n3], vec![0.0; n3]);
+            let (t, cpu) = (Instant::now(), thread_cpu_seconds());
+            fc3d_core::solve(&problem, &config, &mut r, &mut u).expect("a core solve");
+            (t.elapsed().as_secs_f64(), thread_cpu_seconds() - cpu)
+        };
+        let (one, one_cpu) = time(1);
+        let (many, many_cpu) = time(sweeps + 1);
+        let k = sweeps as f64;
+        (1e3 * (many - one) / k, 1e3 * (many_cpu - one_cpu) / k)
     }
 
     /// Sum over colours of the busiest rank's contacts of that colour, over `n / ranks`.
