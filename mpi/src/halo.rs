@@ -6,6 +6,7 @@ use std::time::Instant;
 use crate::comm::{thread_cpu_seconds, Comm, Requests};
 use crate::layout::Layout;
 use fc3d::CResult;
+use fc3d_core::error::try_vec;
 
 /// One message: its peer, its colour (the tag), where its values sit in the buffer, and the
 /// known indices of the contacts it carries.
@@ -58,8 +59,8 @@ impl Halo {
             sends,
             receive_first,
             send_first,
-            receive_buffer: vec![0.0; receive_len],
-            send_buffer: vec![0.0; send_len],
+            receive_buffer: try_vec(receive_len, 0.0, "the ghosts' reactions")?,
+            send_buffer: try_vec(send_len, 0.0, "the boundary reactions")?,
             requests,
             waited: (0.0, 0.0),
         })

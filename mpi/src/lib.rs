@@ -27,6 +27,7 @@ use std::ptr::null_mut;
 
 use comm::{guarded, Comm};
 use fc3d::{ffi_guard, CError, CResult, Fc3dResult, Fc3dSettings, FC3D_ERR_INVALID_OPTION};
+use fc3d_core::error::try_vec;
 use ffi::{MpiComm, MpiFint};
 use layout::Mode;
 use solver::DistributedSolver;
@@ -135,12 +136,14 @@ unsafe fn solve_with(
         if result.is_null() {
             return Err(CError::new(fc3d::FC3D_ERR_NULL_POINTER, "result is NULL"));
         }
-        Ok((rows, settings))
+        // The results are written only at the end: their copies, allocated fallibly now so that
+        // a failure is agreed on like bad input.
+        let n3 = 3 * rows.n_local();
+        let outputs = (try_vec(n3, 0.0, "r")?, try_vec(n3, 0.0, "u")?);
+        Ok((rows, settings, outputs))
     });
-    let (rows, settings) = solver.comm.agree(checked)?;
+    let (rows, settings, (mut r_out, mut u_out)) = solver.comm.agree(checked)?;
     let n3 = 3 * rows.n_local();
-    let mut r_out = vec![0.0; n3];
-    let mut u_out = vec![0.0; n3];
     let outcome = solver.solve(&rows, &settings, &mut r_out, &mut u_out)?;
     if n3 > 0 {
         std::ptr::copy_nonoverlapping(r_out.as_ptr(), r, n3);

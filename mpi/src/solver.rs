@@ -17,6 +17,7 @@ use crate::input::{fingerprint, LocalRows, RunSettings};
 use crate::layout::{Layout, Mode};
 use fc3d::{CError, CResult, FC3D_ERR_INTERNAL, FC3D_ERR_INVALID_OPTION};
 use fc3d_core::contract::ErrorSchedule;
+use fc3d_core::error::{try_copy, try_vec};
 use fc3d_core::local::AnyLocalSolver;
 use fc3d_core::math::linalg::{block_vec_add, contact_of, distance_sq_d};
 use fc3d_core::matrix::BlockRows;
@@ -61,6 +62,8 @@ struct Values {
     mu: Vec<f64>,
     r: Vec<f64>,
     u: Vec<f64>,
+    /// Each contact's step state across sweeps (1 before its first visit).
+    memory: Vec<f64>,
     /// `||q||^2` over all ranks.
     q_norm_sq: f64,
 }
@@ -159,20 +162,26 @@ impl DistributedSolver {
 /// The known contacts' blocks, q, mu and warm start (ghosts: zero blocks, their r received).
 fn values_of(layout: &Layout, rows: &LocalRows) -> CResult<Values> {
     let n = layout.n_known();
-    let blocks: Vec<[f64; 9]> = layout
-        .block_source
-        .iter()
-        .map(|&b| {
-            let mut block = [0.0; 9];
-            if b != usize::MAX {
-                block.copy_from_slice(&rows.blocks[9 * b..9 * b + 9]);
-            }
-            block
-        })
-        .collect();
-    let w = BlockSparseMatrix::new(n, n, layout.row_ptr.clone(), layout.cols.clone(), blocks)?;
+    // Input-sized: allocated fallibly (an out-of-memory error is agreed on by the caller).
+    let mut blocks = try_vec(layout.block_source.len(), [0.0; 9], "blocks")?;
+    for (block, &b) in blocks.iter_mut().zip(&layout.block_source) {
+        if b != usize::MAX {
+            block.copy_from_slice(&rows.blocks[9 * b..9 * b + 9]);
+        }
+    }
+    let w = BlockSparseMatrix::new(
+        n,
+        n,
+        try_copy(&layout.row_ptr, "row pointers")?,
+        try_copy(&layout.cols, "column indices")?,
+        blocks,
+    )?;
     let rows_view = BlockRows::from_block_sparse(&w)?;
-    let (mut q, mut mu, mut r) = (vec![0.0; 3 * n], vec![0.0; n], vec![0.0; 3 * n]);
+    let (mut q, mut mu, mut r) = (
+        try_vec(3 * n, 0.0, "q")?,
+        try_vec(n, 0.0, "mu")?,
+        try_vec(3 * n, 0.0, "r")?,
+    );
     for (k, &i) in layout.known_of_host.iter().enumerate() {
         q[3 * i..3 * i + 3].copy_from_slice(&rows.q[3 * k..3 * k + 3]);
         r[3 * i..3 * i + 3].copy_from_slice(&rows.r[3 * k..3 * k + 3]);
@@ -183,7 +192,8 @@ fn values_of(layout: &Layout, rows: &LocalRows) -> CResult<Values> {
         q,
         mu,
         r,
-        u: vec![0.0; 3 * n],
+        u: try_vec(3 * n, 0.0, "u")?,
+        memory: try_vec(n, 1.0, "the contacts' step state")?,
         q_norm_sq: 0.0,
     })
 }
@@ -216,7 +226,7 @@ impl Run<'_> {
         let deadline = limits.time_budget.and_then(|b| start.checked_add(b));
         step.set_deadline(deadline);
         let mut worker = step.worker();
-        let mut memory = vec![1.0; self.layout.n_known()];
+        let mut memory = std::mem::take(&mut self.values.memory);
         let mut schedule = ErrorSchedule::new(
             nsgs.error_evaluation,
             limits.tolerance,
