@@ -24,6 +24,9 @@
 #                      written next to it with the extension .txt)
 #   --check / --no-check   exit non-zero when the libraries disagree (default: on with --quick)
 #
+# Environment: FC3D_COMPARE_LIB=<path>: test that libfc3d.so (e.g. an earlier commit's build)
+# instead of the tree's.
+#
 # CSV columns: problem, solver, tol, library, info, iterations, error_self, error_by_other, seconds,
 # reps, error_self_rescored. info is the driver's return code, or timeout / crash:<signal> / failed.
 # error_self is the library's own dparam[1]; error_by_other the other library's fc3d_compute_error
@@ -47,7 +50,7 @@ while [ $# -gt 0 ]; do
     --out) out=$2; shift ;;
     --check) check=1 ;;
     --no-check) check=0 ;;
-    -h|--help) sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift

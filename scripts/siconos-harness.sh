@@ -21,8 +21,9 @@ BUILD=$(mktemp -d)
 trap 'rm -rf "$BUILD"' EXIT
 trap 'exit 130' INT TERM
 # A private copy of libfc3d.so: a rebuild of target/release during a long run must not change
-# the library under test halfway.
-cp target/release/libfc3d.so "$BUILD/libfc3d.so.0"
+# the library under test halfway. FC3D_COMPARE_LIB names another build to test (an earlier
+# commit's libfc3d.so, for a before/after comparison).
+cp "${FC3D_COMPARE_LIB:-target/release/libfc3d.so}" "$BUILD/libfc3d.so.0"
 ln -s libfc3d.so.0 "$BUILD/libfc3d.so"
 cp "target/release/$report" "$BUILD/"
 CFLAGS=(-std=c99 -O2 -Wall -Wextra -Werror)

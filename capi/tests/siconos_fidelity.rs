@@ -60,8 +60,9 @@ unsafe fn local(o: *mut SolverOptions) -> *mut SolverOptions {
 }
 
 /// Siconos' suite case NSN_COLLECTION_3 #0: NSN_AC at 1e-3 in 1500 iterations on BoxesStack1.
-/// Siconos 4.4 reaches 9.9e-4 in 1399 iterations; fc3d's Siconos variant converges, fc3d's own
-/// line search (the fc3d variant) stalls at 5.7e-2.
+/// Siconos 4.4 reaches 9.9e-4 in 1399 iterations; both fc3d variants reach 8.9e-4 in 12: the
+/// Newton matrix of this hyperstatic stack is singular, and fc3d takes a regularised step there
+/// (docs/newton.md). Before it did, fc3d's own line search (the fc3d variant) stalled at 5.7e-2.
 #[test]
 fn nsn_ac_follows_siconos_on_boxes_stack() {
     let tune = |variant: c_int| {
@@ -74,10 +75,14 @@ fn nsn_ac_follows_siconos_on_boxes_stack() {
     let file = "BoxesStack1-i100000-32.hdf5.dat";
     let siconos = solve(file, 504, None, tune(FC3D_VARIANT_SICONOS));
     assert_eq!(siconos.info, 0, "error {}", siconos.error);
-    assert!(siconos.error < 1e-3 && siconos.iterations < 1500);
+    assert!(siconos.error < 1e-3 && siconos.iterations <= 20);
     let own = solve(file, 504, None, tune(FC3D_VARIANT_FC3D));
-    assert_eq!(own.info, 1);
-    assert!(own.error > 1e-2, "{}", own.error);
+    eprintln!(
+        "Siconos variant: {} iterations, {:e}; fc3d variant: {} iterations, {:e}",
+        siconos.iterations, siconos.error, own.iterations, own.error
+    );
+    assert_eq!(own.info, 0, "error {}", own.error);
+    assert!(own.error < 1e-3 && own.iterations <= 20);
 }
 
 /// Siconos' suite case NSGS_COLLECTION_3 #19 (NSGS + 551 on RockPile at 1e-3 in 1000 sweeps,

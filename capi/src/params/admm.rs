@@ -24,7 +24,12 @@ const DPARAM_BALANCING_TAU: usize = 5;
 const DPARAM_BALANCING_PHI: usize = 6;
 
 pub(super) fn read(p: &Params<'_>) -> CResult<AdmmOptions> {
-    let a = read_iteration(p)?;
+    let mut a = read_iteration(p)?;
+    a.scalar_rescaling = match p.iparam[IPARAM_RESCALING] {
+        0 => false,
+        1 => true,
+        other => return Err(invalid(format!("ADMM: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none, 1 scalar; Siconos' ADMM ignores the balancing values)"))),
+    };
     p.require(IPARAM_UPDATE_S, 0, "De Saxcé term update (0 = yes)")?;
     Ok(a)
 }
@@ -42,7 +47,7 @@ pub(super) fn read_update_s(p: &Params<'_>) -> CResult<bool> {
 }
 
 /// The slots of the iteration shared by the local (523) and global (613) ADMM: all but the
-/// De Saxcé term update.
+/// rescaling (of W for 523, of the global problem for 613) and the De Saxcé term update.
 pub(super) fn read_iteration(p: &Params<'_>) -> CResult<AdmmOptions> {
     let mut a = AdmmOptions {
         rho: p.dparam[DPARAM_RHO],
@@ -72,11 +77,6 @@ pub(super) fn read_iteration(p: &Params<'_>) -> CResult<AdmmOptions> {
         0 | 1 | 2 | 4 => {}
         other => return Err(invalid(format!("ADMM: symmetry (iparam[12]) = {other} is not implemented in fc3d (W is never symmetrized; 0, 1, 2, 4 accepted)"))),
     }
-    a.scalar_rescaling = match p.iparam[IPARAM_RESCALING] {
-        0 => false,
-        1 => true,
-        other => return Err(invalid(format!("ADMM: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none, 1 scalar; Siconos' ADMM ignores the balancing values)"))),
-    };
     p.require(IPARAM_GET_PROBLEM_INFO, 0, "problem info printing")?;
     p.require(IPARAM_FULL_H, 0, "full H")?;
     Ok(a)

@@ -10,8 +10,9 @@
 //! iparam[0], iparam[9] rho strategy, iparam[10] acceleration, dparam[3..6]); 613 (ADMM) the
 //! slots of 523 and iparam[15] (De Saxcé update: 0 yes, 1 no, the convex relaxation),
 //! iparam[8] the error frequency; 615 (IPM) iparam[11] Nesterov-Todd, iparam[15] UPDATE_S,
-//! dparam[7..11]. A rescaling (iparam[3]) other than 613's scalar one is refused (Siconos balances
-//! 607's and 613's problems; fc3d's solvers do not). 601 and the GAMS ids are refused with
+//! dparam[7..11]. 607 and 613 read the rescaling of the problem in iparam[3] (Siconos' scalar and
+//! balancing rescalings, exact reformulations in fc3d, the error measured on the host's
+//! problem); the other direct ids refuse one. 601 and the GAMS ids are refused with
 //! Siconos' own reason.
 
 use std::os::raw::{c_double, c_int};
@@ -26,7 +27,7 @@ use crate::types::SolverOptions;
 use crate::{CError, CResult, FC3D_ERR_UNSUPPORTED_SOLVER};
 use fc3d_core::global::{
     GlobalAclmOptions, GlobalAdmmOptions, GlobalConfig, GlobalMethod, GlobalNewtonOptions,
-    GlobalReport, GlobalRollingConfig, IpmOptions, JacobiOptions,
+    GlobalReport, GlobalRescaling, GlobalRollingConfig, IpmOptions, JacobiOptions,
 };
 use fc3d_core::{AdmmAcceleration, AdmmRhoStrategy, NsnFormulation, Rescaling};
 
@@ -81,24 +82,38 @@ unsafe fn global_method(o: &SolverOptions, id: c_int) -> CResult<GlobalMethod> {
     })
 }
 
-/// The options of a direct global solver, its rescaling (iparam[3]) checked: none (0), or for
-/// 613 scalar (1).
+/// The options of a direct global solver. Its rescaling (iparam[3]) is read by
+/// [`rescaling`] for 607 and 613, the ids Siconos rescales; for the others it must be 0.
 unsafe fn global_params(o: &SolverOptions) -> CResult<Params<'_>> {
     let what = solver_name(o.solverId).to_string_lossy();
     let p = Params::of(o, &format!("{what} options"))?;
-    let scalar_allowed = o.solverId == 613;
-    match p.iparam[IPARAM_RESCALING] {
-        0 => {}
-        1 if scalar_allowed => {}
-        other => {
-            return Err(invalid(format!(
-                "{what}: rescaling (iparam[3]) = {other} is not implemented in fc3d (0 none{}; \
-                 Siconos' balancing of M and H, 2-4, is not)",
-                if scalar_allowed { ", 1 scalar" } else { "" }
-            )))
-        }
+    if !matches!(o.solverId, 607 | 613) && p.iparam[IPARAM_RESCALING] != 0 {
+        return Err(invalid(format!(
+            "{what}: rescaling (iparam[3]) = {} is not read by Siconos for this id; fc3d \
+             rescales 607 and 613 only (0 none)",
+            p.iparam[IPARAM_RESCALING]
+        )));
     }
     Ok(p)
+}
+
+/// 607's and 613's rescaling (iparam[3]): 0 none, 1 scalar, 2 balancing of M, 3 (Siconos'
+/// balancing of M and H, which Siconos 4.4 does not implement: no rescaling, as there), 4
+/// balancing of `[[M, H], [H^T, 0]]`.
+fn rescaling(p: &Params<'_>, what: &str) -> CResult<GlobalRescaling> {
+    Ok(match p.iparam[IPARAM_RESCALING] {
+        0 | 3 => GlobalRescaling::None,
+        1 => GlobalRescaling::Scalar,
+        2 => GlobalRescaling::BalancingM,
+        4 => GlobalRescaling::BalancingMhht,
+        other => {
+            return Err(invalid(format!(
+                "{what}: rescaling (iparam[3]) = {other} is not 0 (none), 1 (scalar), 2 \
+                 (balancing M), 3 (balancing M and H: none in Siconos 4.4) or 4 (balancing \
+                 [[M, H], [H^T, 0]])"
+            )))
+        }
+    })
 }
 
 /// Every `iparam[8]` iterations (0: every one, as Siconos reads it).
@@ -139,6 +154,7 @@ unsafe fn newton(o: &SolverOptions) -> CResult<GlobalNewtonOptions> {
         line_search,
         line_search_max_iter: p.count(12, "GFC3D_NSN_AC: line-search trials (iparam[12])")?,
         error_frequency: error_frequency(&p)?,
+        rescaling: rescaling(&p, "GFC3D_NSN_AC")?,
     })
 }
 
@@ -210,6 +226,7 @@ unsafe fn global_admm(o: &SolverOptions) -> CResult<GlobalAdmmOptions> {
         admm: admm::read_iteration(&p)?,
         update_s: admm::read_update_s(&p)?,
         error_frequency: error_frequency(&p)?,
+        rescaling: rescaling(&p, "GFC3D ADMM")?,
     })
 }
 

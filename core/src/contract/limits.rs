@@ -139,11 +139,6 @@ impl BestIterate {
         })
     }
 
-    /// [`BestIterate::try_new`], panicking when the copy cannot be allocated.
-    pub fn new(r: &[f64], error: f64) -> Self {
-        Self::try_new(r, error).expect("room for the best iterate")
-    }
-
     /// Keeps `r` if its error is below the best so far.
     pub fn offer(&mut self, r: &[f64], error: f64) {
         if error < self.error {

@@ -18,6 +18,7 @@ use crate::problem::GlobalProblem;
 use crate::solvers::admm::{AdmmOptions, AdmmRhoStrategy};
 
 use super::admm::{GlobalAdmm, GlobalAdmmOptions};
+use super::rescaling::GlobalRescaling;
 
 /// Settings of ACLMFP (612), Siconos 4.4's defaults.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,6 +77,7 @@ pub(super) fn run(
         admm: options.inner,
         update_s: false,
         error_frequency: 1,
+        rescaling: GlobalRescaling::None,
     };
     let mut admm = GlobalAdmm::new(problem, operator, &options.inner)?;
     let mut work = ErrorWork::new(problem.ndof());

@@ -23,6 +23,8 @@ use crate::math::sparse_lu::SparseLu;
 use crate::matrix::{transpose_mul_add, HForm};
 use crate::measure::{global_error_with, ContactLaw, ErrorWork};
 use crate::problem::GlobalProblem;
+
+use super::rescaling::GlobalRescaling;
 use crate::solvers::admm::{iterate, AdmmInitialRho, AdmmOptions, Splitting};
 
 /// Settings of the global ADMM (613), Siconos 4.4's defaults.
@@ -38,6 +40,8 @@ pub struct GlobalAdmmOptions {
     /// The error is measured at least every this many iterations (Siconos' `iparam[8]`, 50;
     /// >= 1), and whenever the ADMM residuals pass their test.
     pub error_frequency: usize,
+    /// The rescaling of the problem before the run (Siconos' `iparam[3]`; default none).
+    pub rescaling: GlobalRescaling,
 }
 
 impl Default for GlobalAdmmOptions {
@@ -50,6 +54,7 @@ impl Default for GlobalAdmmOptions {
             },
             update_s: true,
             error_frequency: 50,
+            rescaling: GlobalRescaling::None,
         }
     }
 }

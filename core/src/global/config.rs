@@ -10,6 +10,7 @@ use super::admm::GlobalAdmmOptions;
 use super::ipm::IpmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
+use super::rescaling::GlobalRescaling;
 use crate::solvers::vi::{ViOptions, ViSolver};
 
 /// A global solver.
@@ -74,6 +75,30 @@ impl GlobalMethod {
             GlobalMethod::Admm(_) => 613,
             GlobalMethod::Aclm(_) => 612,
             GlobalMethod::Ipm(_) => 615,
+        }
+    }
+
+    /// The rescaling the method runs on (Siconos reads one for 607 and 613 only).
+    pub fn rescaling(&self) -> GlobalRescaling {
+        match self {
+            GlobalMethod::Newton(o) => o.rescaling,
+            GlobalMethod::Admm(o) => o.rescaling,
+            _ => GlobalRescaling::None,
+        }
+    }
+
+    /// The same method on the problem as given.
+    pub fn without_rescaling(self) -> GlobalMethod {
+        match self {
+            GlobalMethod::Newton(o) => GlobalMethod::Newton(GlobalNewtonOptions {
+                rescaling: GlobalRescaling::None,
+                ..o
+            }),
+            GlobalMethod::Admm(o) => GlobalMethod::Admm(GlobalAdmmOptions {
+                rescaling: GlobalRescaling::None,
+                ..o
+            }),
+            other => other,
         }
     }
 

@@ -17,6 +17,7 @@ mod config;
 mod ipm;
 mod jacobi;
 mod newton;
+mod rescaling;
 mod solve;
 mod vi;
 
@@ -30,4 +31,5 @@ pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRolli
 pub use ipm::IpmOptions;
 pub use jacobi::JacobiOptions;
 pub use newton::GlobalNewtonOptions;
+pub use rescaling::GlobalRescaling;
 pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};

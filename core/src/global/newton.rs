@@ -19,6 +19,8 @@ use crate::math::sparse_lu::SparseLu;
 use crate::matrix::{transpose_mul_add, HForm};
 use crate::measure::{global_error_with, ContactLaw, ErrorWork};
 use crate::problem::GlobalProblem;
+
+use super::rescaling::GlobalRescaling;
 use crate::solvers::nsn::jacobian::{residual, ContactData};
 use crate::solvers::nsn::linesearch::siconos_goldstein_price;
 use crate::solvers::nsn::NsnFormulation;
@@ -40,6 +42,8 @@ pub struct GlobalNewtonOptions {
     pub line_search_max_iter: usize,
     /// The global error is measured every this many iterations (`iparam[8]`, 1 = every one).
     pub error_frequency: usize,
+    /// The rescaling of the problem before the run (Siconos' `iparam[3]`; default none).
+    pub rescaling: GlobalRescaling,
 }
 
 impl Default for GlobalNewtonOptions {
@@ -50,6 +54,7 @@ impl Default for GlobalNewtonOptions {
             line_search: true,
             line_search_max_iter: 1000,
             error_frequency: 1,
+            rescaling: GlobalRescaling::None,
         }
     }
 }

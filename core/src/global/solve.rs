@@ -5,10 +5,11 @@
 use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
+use super::rescaling::{GlobalRescaling, Scaling};
 use super::{aclm, admm, ipm, jacobi, newton, vi};
 use crate::config::SolverConfig;
 use crate::contract::{Limits, Observer, SolveReport, SolveStatus, SolverOutcome};
-use crate::error::{check_finite, Fc3dError};
+use crate::error::{check_finite, try_vec, Fc3dError};
 use crate::matrix::HForm;
 use crate::measure::{global_error, global_rolling_error, ContactLaw};
 use crate::problem::{GlobalProblem, GlobalRollingProblem};
@@ -93,6 +94,9 @@ pub fn solve_global_with_observer(
             config.tolerance,
         ));
     }
+    if config.method.rescaling() != GlobalRescaling::None {
+        return solve_rescaled(problem, config, &mut operator, r, u, v, observer);
+    }
     let limits = config.limits();
     let outcome = match &config.method {
         GlobalMethod::Reduced(method) => {
@@ -173,6 +177,63 @@ pub fn solve_global_with_observer(
         u,
         v,
     ))
+}
+
+/// Solves the rescaled problem ([`GlobalRescaling`]) from the rescaled `(r, u, v)` and maps
+/// its result back; the error and the status are those of the original problem (Siconos
+/// reports the rescaled problem's), which is solved again with a lower tolerance while the
+/// rescaled one converged and the original one is above the tolerance.
+fn solve_rescaled(
+    problem: &GlobalProblem<'_>,
+    config: &GlobalConfig,
+    operator: &mut HForm,
+    r: &mut [f64],
+    u: &mut [f64],
+    v: &mut [f64],
+    observer: &mut Observer<'_>,
+) -> Result<GlobalReport, Fc3dError> {
+    let scaling = Scaling::of(problem, config.method.rescaling())?;
+    let rescaled = scaling.apply(problem)?;
+    let method = config.method.without_rescaling();
+    let mut rs = try_vec(problem.size(), 0.0, "the rescaled reaction")?;
+    let mut us = try_vec(problem.size(), 0.0, "the rescaled velocity")?;
+    let mut vs = try_vec(problem.ndof(), 0.0, "the rescaled global velocity")?;
+    tightening(
+        config.tolerance,
+        config.max_iter,
+        config.time_budget,
+        r,
+        u,
+        &mut (operator, v),
+        |(_, v), limits, r, u| {
+            scaling.to_rescaled((r, u, v), (&mut rs, &mut us, &mut vs));
+            let round_config = GlobalConfig {
+                tolerance: limits.0,
+                max_iter: limits.1,
+                time_budget: limits.2,
+                method,
+            };
+            let report = solve_global_with_observer(
+                &rescaled,
+                &round_config,
+                &mut rs,
+                &mut us,
+                &mut vs,
+                observer,
+            )?;
+            scaling.to_original((&rs, &us, &vs), (r, u, v));
+            Ok(Round {
+                status: report.status,
+                iterations: report.iterations,
+                own_error: report.error,
+                local: report.local,
+            })
+        },
+        |(operator, v), r, u| {
+            operator.global_velocity(problem.q(), r, v);
+            global_error(problem, ContactLaw::Coulomb, r, u, v)
+        },
+    )
 }
 
 /// The status of a run by the error it stopped on, in its own measure.

@@ -20,6 +20,15 @@ impl CsrMatrix {
         Ok(m)
     }
 
+    /// Replaces every stored entry `a_ij` by `f(i, j, a_ij)` (same structure).
+    pub fn scale_entries(&mut self, f: impl Fn(usize, usize, f64) -> f64) {
+        for i in 0..self.nrows {
+            for k in self.row_ptr[i]..self.row_ptr[i + 1] {
+                self.values[k] = f(i, self.col_idx[k], self.values[k]);
+            }
+        }
+    }
+
     /// A copy, allocated fallibly.
     pub fn try_clone(&self) -> Result<CsrMatrix, Fc3dError> {
         Ok(CsrMatrix {

@@ -26,10 +26,12 @@ mod boxes;
 mod builtin;
 mod global_form;
 mod granular;
+pub mod towers;
 mod world;
 pub use boxes::box_piles;
 pub use builtin::{default_scenes, Scene};
 pub use granular::{sphere_piles, PileSpec};
+pub use towers::{box_towers, TowerMotion, TowerSpec};
 
 /// The bodies a generated scene is made of.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

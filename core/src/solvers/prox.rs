@@ -280,7 +280,7 @@ impl ProxState {
         let options = self.options;
         let internal_max_iter = options.internal_max_iter();
         let mut error = natural_map_error(problem, r, u);
-        let mut best = BestIterate::new(r, error);
+        let mut best = BestIterate::try_new(r, error)?;
         if error <= run.tolerance {
             return Ok(SolverOutcome::stopped(0, false));
         }

@@ -34,7 +34,10 @@ pub(crate) fn residual(
 
 /// Alart-Curnier (60)-(61) or, with `jean_moreau`, (58)-(59):
 /// `F_N = r_N - (r_N - rho_N u_N)_+`, `F_T = r_T - P_D(radius)(r_T - rho_T u_T)` with radius
-/// `mu (r_N - rho_N u_N)_+` (AC) or `mu (r_N)_+` (JM). (The paper's (61) prints rho_N in the
+/// `mu (r_N - rho_N u_N)_+` (AC) or `mu r_N` (JM, Christensen and Pang's form as Siconos'
+/// `computeAlartCurnierJeanMoreau` writes it: not clamped at 0, so F stays linear in r_N where
+/// an iterate has r_N < 0; clamping it stalls the global Newton, 607, on Spheres-i099-356-679:
+/// 498 iterations to 1e-5 against 30). (The paper's (61) prints rho_N in the
 /// tangential part; rho_T is meant.)
 fn alart_curnier(r: &Vec3, u: &Vec3, d: &ContactData, jean_moreau: bool) -> (Vec3, Mat3, Mat3) {
     let (mu, rn, rt) = (d.mu, d.rho_n, d.rho_t);
@@ -50,13 +53,15 @@ fn alart_curnier(r: &Vec3, u: &Vec3, d: &ContactData, jean_moreau: bool) -> (Vec
         a[0][0] = 1.0;
     }
     let (radius, radius_active) = if jean_moreau {
-        (mu * r[0].max(0.0), r[0] > 0.0)
+        (mu * r[0], true)
     } else {
         (mu * s_n.max(0.0), s_n > 0.0)
     };
     let v = [r[1] - rt * u[1], r[2] - rt * u[2]];
     let nv = norm2(v[0], v[1]);
-    if nv <= radius {
+    // Jean-Moreau's radius may be negative (r_N < 0 between iterates): a zero v_T then has no
+    // direction, and Siconos takes the stick branch below 1e-20.
+    if nv <= radius || (jean_moreau && nv < 1e-20) {
         // Stick: r_T - v_T = rho_T u_T.
         f[1] = rt * u[1];
         f[2] = rt * u[2];

@@ -3,11 +3,14 @@
 //! with `J = A + B W` assembled on W's fixed block pattern and solved with faer's sparse LU
 //! (symbolic factorization reused), globalised by a line search on `||F||^2 / 2`.
 //!
-//! A failed factorization or a non-finite step is retried with a growing diagonal shift, then
-//! replaced by the fixed-point direction `-F` (for the natural map `r - F(r)` is the projected
-//! step); a step is only taken if its merit is finite, so r stays finite. A run that does not
-//! converge returns the best iterate it measured.
+//! The direction is the plain Newton one where J is regular; where it is numerically singular
+//! (hyperstatic contacts: a box on 4 points), or cannot be factored, a regularised Newton step
+//! (see `direction`); when no regularised matrix can be factored either, the fixed-point
+//! direction `-F` (for the natural map `r - F(r)` is the projected step). A step is only taken
+//! if its merit is finite, so r stays finite. A run that does not converge returns the best
+//! iterate it measured.
 
+mod direction;
 pub(crate) mod jacobian;
 pub(crate) mod linesearch;
 mod settings;
@@ -43,12 +46,8 @@ use crate::math::linalg::{norm, Mat3, Vec3};
 use crate::matrix::BlockSparseMatrix;
 use crate::measure::{absolute_natural_map_residual, relative_scale};
 use crate::problem::FrictionProblem;
+use direction::{Direction, Jacobian, NewtonLinearSolver, Step};
 use jacobian::{residual, ContactData};
-use sparse::NewtonMatrix;
-
-/// Diagonal shifts tried, relative to the largest diagonal entry of W, when the Newton matrix
-/// cannot be factored or gives a non-finite step.
-const REGULARIZATION_SHIFTS: [f64; 4] = [1e-12, 1e-9, 1e-6, 1e-3];
 
 /// How a [`NewtonSolver::run`] ended.
 pub(crate) struct RunOutcome {
@@ -57,6 +56,9 @@ pub(crate) struct RunOutcome {
     pub out_of_time: bool,
     /// Relative natural-map error of the returned r (for the problem that was solved).
     pub error: f64,
+    /// Iterations whose direction came from the regularised Newton matrix (J numerically
+    /// singular).
+    pub regularized: usize,
 }
 
 /// Everything a Newton solve needs, allocated once: W's block copy, the Newton matrix with its
@@ -65,16 +67,14 @@ pub(crate) struct RunOutcome {
 pub(crate) struct NewtonSolver {
     options: NsnOptions,
     w: BlockSparseMatrix<'static>,
-    matrix: NewtonMatrix,
+    linear: NewtonLinearSolver,
     data: Vec<ContactData>,
     a: Vec<Mat3>,
     b: Vec<Mat3>,
     f: Vec<f64>,
-    d: Vec<f64>,
-    wd: Vec<f64>,
+    /// The direction of the current iteration and its images under W and J.
+    step: Step,
     best_r: Vec<f64>,
-    /// max_c max_i |W_cc[i][i]|: the scale of the regularization shifts.
-    diagonal_scale: f64,
     /// Duration of the last Newton iteration of any [`NewtonSolver::run`] of this solve: the
     /// estimate that gates the next one, also the first one of the next run (the proximal point
     /// method runs one per proximal step). Before the first iteration, the factorization's
@@ -98,24 +98,22 @@ impl NewtonSolver {
     ) -> Result<(Self, bool), Fc3dError> {
         options.validate()?;
         let w = problem.w().to_block_sparse()?;
-        let diagonal_scale = diagonal_scale_of(&w);
         if let Some(mut kept) = previous {
             if kept.w.row_ptr() == w.row_ptr() && kept.w.col_idx() == w.col_idx() {
                 kept.options = *options;
                 kept.w = w;
-                kept.diagonal_scale = diagonal_scale;
-                kept.last_iteration_time = kept.matrix.cost().duration();
+                kept.last_iteration_time = kept.linear.matrix().cost().duration();
                 return Ok((kept, true));
             }
         }
-        let matrix = NewtonMatrix::new(&w)?;
-        let predicted = matrix.cost().duration();
+        let linear = NewtonLinearSolver::new(&w)?;
+        let predicted = linear.matrix().cost().duration();
         let n = problem.size();
         let nc = problem.n_contacts();
         let solver = NewtonSolver {
             options: *options,
             w,
-            matrix,
+            linear,
             data: vec![
                 ContactData {
                     mu: 0.0,
@@ -127,10 +125,8 @@ impl NewtonSolver {
             a: vec![[[0.0; 3]; 3]; nc],
             b: vec![[[0.0; 3]; 3]; nc],
             f: vec![0.0; n],
-            d: vec![0.0; n],
-            wd: vec![0.0; n],
+            step: Step::new(n),
             best_r: vec![0.0; n],
-            diagonal_scale,
             last_iteration_time: predicted,
         };
         Ok((solver, false))
@@ -138,7 +134,7 @@ impl NewtonSolver {
 
     /// The fill of the Newton matrix's factorization (the first one that succeeded).
     pub fn fill(&self) -> Option<crate::contract::Fill> {
-        self.matrix.factor_fill()
+        self.linear.matrix().factor_fill()
     }
 
     /// `u <- (W + shift I) r + q`.
@@ -200,6 +196,7 @@ impl NewtonSolver {
             absolute_natural_map_residual(r, u, mu) / relative_scale(norm_q, r, u)
         };
 
+        self.linear.start_run();
         self.velocity(q, shift, r, u);
         let mut merit = self.evaluate(r, u);
         let mut error = error_of(r, u);
@@ -211,6 +208,7 @@ impl NewtonSolver {
             converged: error <= run.tolerance,
             out_of_time: false,
             error,
+            regularized: 0,
         };
         if outcome.converged {
             return outcome;
@@ -225,67 +223,30 @@ impl NewtonSolver {
                 break;
             }
             let iteration_start = Instant::now();
-            // Newton direction J d = -F, regularised if needed, else the fixed-point direction.
-            let mut found = false;
-            for shift_try in std::iter::once(0.0).chain(REGULARIZATION_SHIFTS) {
-                if shift_try != 0.0 && run.out_of_time() {
-                    break;
-                }
-                self.matrix.fill(
-                    &self.w,
-                    &self.a,
-                    &self.b,
+            // Newton direction J d = -F, regularised if J is numerically singular, else the
+            // fixed-point direction.
+            let (data, step) = (&self.data, &mut self.step);
+            let direction = self.linear.direction(
+                &Jacobian {
+                    w: &self.w,
+                    a: &self.a,
+                    b: &self.b,
                     shift,
-                    shift_try * self.diagonal_scale,
-                );
-                self.d
-                    .iter_mut()
-                    .zip(&self.f)
-                    .for_each(|(di, fi)| *di = -fi);
-                if self.matrix.solve(&mut self.d) {
-                    found = true;
-                    break;
-                }
+                },
+                &self.f,
+                error,
+                step,
+                &|| run.out_of_time(),
+                &mut |d, wd| merit_along(form, data, r, u, d, wd, 1.0),
+            );
+            if matches!(direction, Direction::Regularized { .. }) {
+                outcome.regularized += 1;
             }
-            if !found {
-                self.d
-                    .iter_mut()
-                    .zip(&self.f)
-                    .for_each(|(di, fi)| *di = -fi);
-            }
-            self.wd.iter_mut().for_each(|v| *v = 0.0);
-            self.w.mul_add(&self.d, &mut self.wd);
-            if shift != 0.0 {
-                let d = &self.d;
-                self.wd
-                    .iter_mut()
-                    .zip(d)
-                    .for_each(|(w, di)| *w += shift * di);
-            }
-            // q'(0) = F . J d with J d = A d + B W d, contact by contact.
-            let mut slope = 0.0;
-            for c in 0..self.data.len() {
-                let jd = add3m(
-                    &self.a[c],
-                    &take3(&self.d, c),
-                    &self.b[c],
-                    &take3(&self.wd, c),
-                );
-                let fc = take3(&self.f, c);
-                slope += fc[0] * jd[0] + fc[1] * jd[1] + fc[2] * jd[2];
-            }
+            // q'(0) = F . J d.
+            let slope: f64 = self.f.iter().zip(&step.jd).map(|(f, jd)| f * jd).sum();
             let reference = history.iter().copied().fold(merit, f64::max);
-            let (data, d, wd) = (&self.data, &self.d, &self.wd);
-            let mut trial_merit = |t: f64| {
-                let mut sum = 0.0;
-                for (c, dc) in data.iter().enumerate() {
-                    let rc = axpy(t, &take3(d, c), &take3(r, c));
-                    let uc = axpy(t, &take3(wd, c), &take3(u, c));
-                    let (f, _, _) = residual(form, &rc, &uc, dc);
-                    sum += f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-                }
-                0.5 * sum
-            };
+            let (d, wd) = (&step.d, &step.wd);
+            let mut trial_merit = |t: f64| merit_along(form, data, r, u, d, wd, t);
             let step = match (self.options.variant, self.options.line_search) {
                 (AlgorithmVariant::Siconos, NsnLineSearch::GoldsteinPrice) => {
                     linesearch::siconos_goldstein_price(
@@ -318,7 +279,7 @@ impl NewtonSolver {
                 break;
             };
             r.iter_mut()
-                .zip(&self.d)
+                .zip(&self.step.d)
                 .for_each(|(ri, di)| *ri += step.t * di);
             self.velocity(q, shift, r, u);
             merit = self.evaluate(r, u);
@@ -354,20 +315,24 @@ impl NewtonSolver {
     }
 }
 
-/// max_c max_i |W_cc[i][i]|, or 1 for a zero diagonal: the scale of the regularization shifts.
-fn diagonal_scale_of(w: &BlockSparseMatrix) -> f64 {
-    let mut scale = 0.0_f64;
-    for c in 0..w.n_block_rows() {
-        let blk = w.diagonal_block(c).unwrap_or([[0.0; 3]; 3]);
-        for (i, row) in blk.iter().enumerate() {
-            scale = scale.max(row[i].abs());
-        }
+/// The merit `||F||^2 / 2` at `(r + t d, u + t wd)`.
+fn merit_along(
+    form: NsnFormulation,
+    data: &[ContactData],
+    r: &[f64],
+    u: &[f64],
+    d: &[f64],
+    wd: &[f64],
+    t: f64,
+) -> f64 {
+    let mut sum = 0.0;
+    for (c, dc) in data.iter().enumerate() {
+        let rc = axpy(t, &take3(d, c), &take3(r, c));
+        let uc = axpy(t, &take3(wd, c), &take3(u, c));
+        let (f, _, _) = residual(form, &rc, &uc, dc);
+        sum += f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
     }
-    if scale > 0.0 {
-        scale
-    } else {
-        1.0
-    }
+    0.5 * sum
 }
 
 #[inline]
@@ -378,21 +343,6 @@ fn take3(x: &[f64], c: usize) -> Vec3 {
 #[inline]
 fn axpy(t: f64, x: &Vec3, y: &Vec3) -> Vec3 {
     [y[0] + t * x[0], y[1] + t * x[1], y[2] + t * x[2]]
-}
-
-/// `a x + b y`.
-#[inline]
-fn add3m(a: &Mat3, x: &Vec3, b: &Mat3, y: &Vec3) -> Vec3 {
-    let mut out = [0.0; 3];
-    for i in 0..3 {
-        out[i] = a[i][0] * x[0]
-            + a[i][1] * x[1]
-            + a[i][2] * x[2]
-            + b[i][0] * y[0]
-            + b[i][1] * y[1]
-            + b[i][2] * y[2];
-    }
-    out
 }
 
 impl Family for NsnOptions {
@@ -466,6 +416,48 @@ pub(crate) fn nsn_on(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The regularised direction is taken only where J is numerically singular: never on a
+    /// Rover problem (whose iterates are Siconos' own, 5 iterations for 504), at most iterations
+    /// on a tower of two boxes on 4 points each (whose sticking contacts make J singular).
+    #[test]
+    fn only_singular_jacobians_take_the_regularized_direction() {
+        let rover = crate::io::dat::read_dat_file(std::path::Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../shared/data/siconos/Rover4609.dat"
+        )))
+        .unwrap();
+        let tower = crate::scenes::box_towers(&crate::scenes::TowerSpec {
+            towers: 1,
+            height: 2,
+            motion: crate::scenes::TowerMotion::Settling,
+            seed: 3,
+        })
+        .unwrap();
+        let options = NsnOptions::new(NsnFormulation::AlartCurnier);
+        let limits = Limits {
+            tolerance: 1e-8,
+            max_iter: 100,
+            time_budget: None,
+        };
+        let mut outcomes = Vec::new();
+        for p in [&rover, &tower] {
+            let n = p.size();
+            let mut solver = NewtonSolver::new(p, &options).unwrap();
+            let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+            let run = limits.start();
+            let o = solver.run(p.q(), p.mu(), 0.0, &run, &mut r, &mut u, &mut |_| {});
+            assert!(o.converged);
+            outcomes.push((o.iterations, o.regularized));
+        }
+        assert_eq!(outcomes[0], (5, 0));
+        let (iterations, regularized) = outcomes[1];
+        assert!(iterations <= 15, "{iterations}");
+        assert!(
+            2 * regularized >= iterations,
+            "{regularized} of {iterations}"
+        );
+    }
 
     /// The duration of the last Newton step is kept across runs (the proximal point method runs
     /// one per proximal step): once the solver has an estimate, a run whose deadline has passed

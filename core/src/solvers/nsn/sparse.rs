@@ -4,14 +4,13 @@
 //! iteration refills the values through a slot map and refactors numerically.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-#[cfg(test)]
-use faer::sparse::linalg::lu::LuRef;
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
+use crate::alloc::reserve;
 use crate::contract::Fill;
-use crate::error::Fc3dError;
+use crate::error::{try_copy, try_vec, Fc3dError};
 use crate::math::linalg::Mat3;
 use crate::math::lu_cost::{checked_lu_cost, LuCost};
 use crate::math::lu_fill::lu_factor_nnz;
@@ -35,6 +34,8 @@ pub(crate) struct NewtonMatrix {
     factor_nnz: Option<usize>,
     /// The predicted cost of one factorization (from the symbolic analysis).
     cost: LuCost,
+    /// Whether `numeric` holds the factors of the current values.
+    factored: bool,
 }
 
 impl NewtonMatrix {
@@ -45,16 +46,17 @@ impl NewtonMatrix {
         let (row_ptr, col_idx) = (w.row_ptr(), w.col_idx());
         let n_blocks = col_idx.len();
         // Transpose the block structure: blocks of each block column, in increasing block row.
-        let mut col_count = vec![0usize; nc + 1];
+        let what = "NSN: the pattern of the Newton matrix";
+        let mut col_count = try_vec(nc + 1, 0usize, what)?;
         for &b in col_idx {
             col_count[b + 1] += 1;
         }
         for b in 0..nc {
             col_count[b + 1] += col_count[b];
         }
-        let mut next = col_count.clone();
-        let mut by_column = vec![(0usize, 0usize); n_blocks]; // (block row, block index)
-        let mut diagonal_block = vec![usize::MAX; nc];
+        let mut next = try_copy(&col_count, what)?;
+        let mut by_column = try_vec(n_blocks, (0usize, 0usize), what)?; // (block row, block index)
+        let mut diagonal_block = try_vec(nc, usize::MAX, what)?;
         for c in 0..nc {
             for (k, &b) in col_idx
                 .iter()
@@ -72,9 +74,17 @@ impl NewtonMatrix {
         if let Some(c) = diagonal_block.iter().position(|&k| k == usize::MAX) {
             return Err(Fc3dError::MissingDiagonalBlock { contact: c });
         }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        let mut row_idx = Vec::with_capacity(9 * n_blocks);
-        let mut slots = vec![0usize; 9 * n_blocks];
+        let entries = n_blocks
+            .checked_mul(9)
+            .ok_or_else(|| Fc3dError::OutOfMemory {
+                what: what.to_string(),
+                bytes: usize::MAX,
+            })?;
+        let mut col_ptr = try_vec(0, 0usize, what)?;
+        reserve(&mut col_ptr, n + 1, what)?;
+        let mut row_idx = try_vec(0, 0usize, what)?;
+        reserve(&mut row_idx, entries, what)?;
+        let mut slots = try_vec(entries, 0usize, what)?;
         col_ptr.push(0);
         for b in 0..nc {
             let blocks = &by_column[col_count[b]..col_count[b + 1]];
@@ -104,26 +114,19 @@ impl NewtonMatrix {
             pattern,
             slots,
             diagonal_block,
-            values: vec![0.0; nnz],
+            values: try_vec(nnz, 0.0, "NSN: the values of the Newton matrix")?,
             symbolic,
             numeric: NumericLu::new(),
             workspace,
             factor_nnz: None,
             cost,
+            factored: false,
         })
     }
 
     #[allow(clippy::needless_range_loop)] // i, j index rows and columns of three arrays at once
-    /// Fills `J = A + B (W + w_shift I) + regularization I` (A, B: one 3x3 block per contact,
-    /// row-major).
-    pub fn fill(
-        &mut self,
-        w: &BlockSparseMatrix,
-        a: &[Mat3],
-        b: &[Mat3],
-        w_shift: f64,
-        regularization: f64,
-    ) {
+    /// Fills `J = A + B (W + w_shift I)` (A, B: one 3x3 block per contact, row-major).
+    pub fn fill(&mut self, w: &BlockSparseMatrix, a: &[Mat3], b: &[Mat3], w_shift: f64) {
         let (row_ptr, col_idx) = (w.row_ptr(), w.col_idx());
         for c in 0..self.diagonal_block.len() {
             let bc = &b[c];
@@ -143,9 +146,30 @@ impl NewtonMatrix {
                             self.values[self.slots[9 * k + 3 * i + j]] +=
                                 a[c][i][j] + w_shift * bc[i][j];
                         }
-                        self.values[self.slots[9 * k + 4 * i]] += regularization;
                     }
                 }
+            }
+        }
+    }
+
+    /// Adds `lambda D` to the filled J, D diagonal with, for contact c, the largest magnitude
+    /// of J's diagonal block `J_cc` (at least 1e-12 times the largest over the contacts): the
+    /// regularisation is relative to each contact's own rows, whose scales differ by orders
+    /// (rho W for a sticking contact, the identity for a separating one).
+    pub fn regularize(&mut self, lambda: f64) {
+        let block_scale = |m: &Self, k: usize| {
+            (0..9).fold(0.0_f64, |s, e| s.max(m.values[m.slots[9 * k + e]].abs()))
+        };
+        let largest = self
+            .diagonal_block
+            .iter()
+            .fold(0.0_f64, |s, &k| s.max(block_scale(self, k)));
+        let floor = if largest > 0.0 { 1e-12 * largest } else { 1.0 };
+        for c in 0..self.diagonal_block.len() {
+            let k = self.diagonal_block[c];
+            let shift = lambda * block_scale(self, k).max(floor);
+            for i in 0..3 {
+                self.values[self.slots[9 * k + 4 * i]] += shift;
             }
         }
     }
@@ -163,10 +187,10 @@ impl NewtonMatrix {
         })
     }
 
-    /// Factors the current values and solves `J x = rhs` in place. Returns false (rhs then
-    /// unspecified) when the factorization fails or the solution is not finite.
-    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
-        debug_assert_eq!(rhs.len(), self.n);
+    /// Factors the current values. False when the factorization fails (a non-finite entry, a
+    /// structurally singular pattern); there are then no factors to solve with.
+    pub fn factor(&mut self) -> bool {
+        self.factored = false;
         if !self.values.iter().all(|v| v.is_finite()) {
             return false;
         }
@@ -182,23 +206,41 @@ impl NewtonMatrix {
             Ok(lu) => lu,
             Err(_) => return false,
         };
-        let n = self.n;
         if self.factor_nnz.is_none() {
             self.factor_nnz = lu_factor_nnz(
-                n,
+                self.n,
                 self.pattern.col_ptr(),
                 self.pattern.row_idx(),
                 lu.row_perm().arrays().1,
                 lu.col_perm().arrays().0,
             );
         }
+        self.factored = true;
+        true
+    }
+
+    /// Solves `J x = rhs` in place with the factors of the last successful
+    /// [`NewtonMatrix::factor`]. False (rhs then unspecified) when there are none or the
+    /// solution is not finite.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> bool {
+        debug_assert_eq!(rhs.len(), self.n);
+        if !self.factored {
+            return false;
+        }
+        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
         lu.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, n, 1),
+            MatMut::from_column_major_slice_mut(rhs, self.n, 1),
             Par::Seq,
             MemStack::new(&mut self.workspace),
         );
         rhs.iter().all(|v| v.is_finite())
+    }
+
+    /// Factors the current values and solves `J x = rhs` in place.
+    #[cfg(test)]
+    pub fn solve(&mut self, rhs: &mut [f64]) -> bool {
+        self.factor() && self.solve_in_place(rhs)
     }
 }
 
@@ -217,8 +259,8 @@ mod tests {
         let mut m = NewtonMatrix::new(&w).unwrap();
         let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         let zero = [[0.0; 3]; 3];
-        // J = 0 + I W + 0.5 I.
-        m.fill(&w, &[zero, zero], &[id, id], 0.25, 0.25);
+        // J = 0 + I (W + 0.5 I).
+        m.fill(&w, &[zero, zero], &[id, id], 0.5);
         let x = [1.0, -2.0, 0.5, 3.0, 0.25, -1.0];
         let mut rhs = vec![0.0; 6];
         let dw = crate::matrix::Delassus::SparseBlock(w.clone());
@@ -231,10 +273,29 @@ mod tests {
             assert!((rhs[i] - x[i]).abs() < 1e-12, "{rhs:?}");
         }
         // Refill with other values on the same pattern and solve again.
-        m.fill(&w, &[id, id], &[zero, zero], 0.0, 0.0);
+        m.fill(&w, &[id, id], &[zero, zero], 0.0);
         let mut rhs2 = x.to_vec();
         assert!(m.solve(&mut rhs2));
         assert_eq!(rhs2, x.to_vec());
+    }
+
+    /// The regularisation of each contact is relative to its own diagonal block of J.
+    #[test]
+    fn regularization_follows_each_contacts_scale() {
+        let d0 = [4.0, 0.0, 0.0, 0.0, 3.0, 0.0, 0.0, 0.0, 2.0];
+        let d1 = [0.5, 0.0, 0.0, 0.0, 0.25, 0.0, 0.0, 0.0, 0.125];
+        let w = BlockSparseMatrix::new(2, 2, vec![0, 1, 2], vec![0, 1], vec![d0, d1]).unwrap();
+        let mut m = NewtonMatrix::new(&w).unwrap();
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let zero = [[0.0; 3]; 3];
+        m.fill(&w, &[zero, zero], &[id, id], 0.0);
+        m.regularize(0.5);
+        // J = diag(4, 3, 2, 0.5, 0.25, 0.125) + 0.5 diag(4, 4, 4, 0.5, 0.5, 0.5).
+        let mut x = vec![6.0, 5.0, 4.0, 0.75, 0.5, 0.375];
+        assert!(m.solve(&mut x));
+        for v in x {
+            assert!((v - 1.0).abs() < 1e-15, "{v}");
+        }
     }
 
     #[test]
@@ -243,7 +304,7 @@ mod tests {
         let w = BlockSparseMatrix::new(1, 1, vec![0, 1], vec![0], vec![d0]).unwrap();
         let mut m = NewtonMatrix::new(&w).unwrap();
         let zero = [[0.0; 3]; 3];
-        m.fill(&w, &[zero], &[zero], 0.0, 0.0);
+        m.fill(&w, &[zero], &[zero], 0.0);
         let mut rhs = vec![1.0, 1.0, 1.0];
         assert!(!m.solve(&mut rhs));
     }
@@ -254,6 +315,7 @@ mod tests {
     /// nonzero factor entries are as many as counted structurally, and a block-diagonal W
     /// (isolated contacts) has no fill at all: 9 entries a contact in J, L and U.
     #[test]
+    #[allow(clippy::needless_range_loop)] // a dense elimination by row and column indices
     fn reported_fill_is_that_of_the_factors() {
         use crate::scenes::{box_piles, sphere_piles, PileSpec};
         let spec = PileSpec {
@@ -279,7 +341,8 @@ mod tests {
                 [[0.5, x, 0.1], [0.2, 1.0, 0.0], [x, 0.3, 0.8]]
             })
             .collect();
-        m.fill(&w, &a, &b, 0.0, 1e-3);
+        m.fill(&w, &a, &b, 0.0);
+        m.regularize(1e-3);
         let mut rhs = vec![1.0; 3 * nc];
         assert!(m.solve(&mut rhs));
         let fill = m.factor_fill().unwrap();
@@ -342,7 +405,7 @@ mod tests {
         let w = isolated.w().to_block_sparse().unwrap();
         assert_eq!(w.n_blocks(), 6);
         let mut m = NewtonMatrix::new(&w).unwrap();
-        m.fill(&w, &a[..6], &b[..6], 0.0, 0.0);
+        m.fill(&w, &a[..6], &b[..6], 0.0);
         let mut rhs = vec![1.0; 18];
         assert!(m.solve(&mut rhs));
         let fill = m.factor_fill().unwrap();
