@@ -2,7 +2,10 @@
 """fc3d-mpi's communication model (docs/mpi.md): per-sweep efficiency of the reproducible mode on
 P nodes of n contacts each, from what bench/results/mpi-scaling.csv measured on this machine.
 
-    python3 scripts/mpi-model.py [bench/results/mpi-scaling.csv] [--nodes 64]
+    python3 scripts/mpi-model.py [bench/results/mpi-scaling.csv] [--nodes 64] [--svg FILE]
+
+--svg also draws the measured sweeps (docs/mpi-scaling.svg): per pile size, the wall time of a
+sweep on 1 and 2 ranks split into CPU compute, compute time spent descheduled, and MPI wait.
 
 A sweep on one node of a P-node run costs
 
@@ -47,13 +50,16 @@ def expected_max_normal(p):
 
 
 def main():
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    args = [a for a in sys.argv[1:] if a.endswith(".csv")]
     path = args[0] if args else "bench/results/mpi-scaling.csv"
     nodes = 64
     if "--nodes" in sys.argv:
         nodes = int(sys.argv[sys.argv.index("--nodes") + 1])
     rows = [r for r in csv.DictReader(l for l in open(path) if not l.startswith("#"))
             if r["mode"] == "reproducible"]
+    if "--svg" in sys.argv:
+        ones = {r["contacts"] for r in rows if r["ranks"] == "1"}
+        svg([r for r in rows if r["contacts"] in ones], sys.argv[sys.argv.index("--svg") + 1])
     one = max((r for r in rows if r["ranks"] == "1"), key=lambda r: int(r["contacts"]))
     n1 = int(one["contacts"])
     t_c = float(one["compute_cpu_ms"]) * 1e-3 / n1
@@ -80,6 +86,46 @@ def main():
             print(f"| {name} | {n} | {1e3 * compute:.1f} | {b:.3f} | {1e3 * exchanges:.3f} | "
                   f"{ghosts:.0f} | {1e3 * transfer:.2f} | {1e3 * reduce:.3f} | "
                   f"{100 * compute / total:.1f}% |")
+
+
+def svg(rows, path):
+    """Stacked bars of the measured sweeps, each size's bars scaled to its tallest one (the
+    labels give the wall milliseconds)."""
+    sizes = sorted({int(r["contacts"]) for r in rows if r["ranks"] == "1"})
+    width, height, left, bottom, bar = 640, 330, 60, 270, 60
+    parts = [("compute_cpu_ms", "#2b6cb0", "CPU compute"),
+             (None, "#90cdf4", "compute while descheduled"),
+             ("wait_ms", "#e53e3e", "MPI wait")]
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" '
+           'font-family="sans-serif" font-size="12">',
+           f'<text x="{left}" y="18" font-size="14">One sweep of the reproducible mode, '
+           '1 and 2 ranks (2 shared cores, load 5-10)</text>']
+    scale = bottom - 45  # each size's tallest bar
+    for g, n in enumerate(sizes):
+        group = [r for r in rows if int(r["contacts"]) == n]
+        ref = max(max(float(r["compute_ms"]), float(r["compute_cpu_ms"])) + float(r["wait_ms"])
+                  for r in group)
+        for b, r in enumerate(group):
+            x = left + g * 190 + b * (bar + 10)
+            y = bottom
+            cpu, compute, wait = (float(r[k]) for k in ("compute_cpu_ms", "compute_ms", "wait_ms"))
+            for (key, colour, _), v in zip(parts, (cpu, max(compute - cpu, 0), wait)):
+                h = v / ref * scale
+                y -= h
+                out.append(f'<rect x="{x}" y="{y:.1f}" width="{bar}" height="{h:.1f}" '
+                           f'fill="{colour}"/>')
+            out.append(f'<text x="{x + bar / 2}" y="{y - 4:.1f}" text-anchor="middle">'
+                       f'{float(r["sweep_ms"]):.0f} ms</text>')
+            out.append(f'<text x="{x + bar / 2}" y="{bottom + 14}" text-anchor="middle">'
+                       f'np {r["ranks"]}</text>')
+        out.append(f'<text x="{left + g * 190 + bar + 5}" y="{bottom + 30}" '
+                   f'text-anchor="middle">{n} contacts</text>')
+    for i, (_, colour, label) in enumerate(parts):
+        out.append(f'<rect x="{left + i * 190}" y="{height - 14}" width="10" height="10" '
+                   f'fill="{colour}"/><text x="{left + i * 190 + 14}" y="{height - 5}">'
+                   f'{label}</text>')
+    out.append("</svg>")
+    open(path, "w").write("\n".join(out) + "\n")
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@
 //! number of ranks.
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 
 use crate::comm::{guarded, Comm, Op};
 use crate::input::LocalRows;
@@ -34,6 +35,31 @@ pub fn mix(x: u64) -> u64 {
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
 }
+
+/// Hashes contact ids by [`mix`]: the set-up's maps are keyed by id and looked up for every
+/// block, and the default SipHash cost most of a large set-up. No map is iterated, so the
+/// hasher cannot change a result.
+#[derive(Default)]
+pub struct IdHasher(u64);
+
+impl Hasher for IdHasher {
+    fn finish(&self) -> u64 {
+        mix(self.0)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = self.0.rotate_left(8) ^ u64::from(b);
+        }
+    }
+
+    fn write_i64(&mut self, id: i64) {
+        self.0 = id as u64;
+    }
+}
+
+/// A map keyed by contact id.
+type IdMap<V> = HashMap<i64, V, BuildHasherDefault<IdHasher>>;
 
 /// The rank keeping the directory entry of contact `id`.
 fn directory_rank(id: i64, size: usize) -> usize {
@@ -120,8 +146,8 @@ impl Layout {
             lists[directory_rank(id, size)].push(id);
         }
         let registered = comm.exchange(&lists)?;
-        let directory = comm.agree(guarded(|| -> Step<HashMap<i64, usize>> {
-            let mut owner = HashMap::new();
+        let directory = comm.agree(guarded(|| -> Step<IdMap<usize>> {
+            let mut owner = IdMap::default();
             for (p, ids) in registered.iter().enumerate() {
                 for &id in ids {
                     if let Some(first) = owner.insert(id, p) {
@@ -136,7 +162,7 @@ impl Layout {
         }))?;
 
         // 2. The owner of every column id this rank does not own.
-        let own: HashMap<i64, usize> = rows
+        let own: IdMap<usize> = rows
             .ids
             .iter()
             .enumerate()
@@ -165,8 +191,8 @@ impl Layout {
             .collect();
         drop(directory);
         let answered = comm.exchange(&answers)?;
-        let owner_of = comm.agree(guarded(|| -> Step<HashMap<i64, usize>> {
-            let mut owner_of = HashMap::with_capacity(foreign.len());
+        let owner_of = comm.agree(guarded(|| -> Step<IdMap<usize>> {
+            let mut owner_of = IdMap::with_capacity_and_hasher(foreign.len(), Default::default());
             for (p, ids) in queries.iter().enumerate() {
                 for (&id, &o) in ids.iter().zip(&answered[p]) {
                     if o < 0 {
@@ -223,7 +249,7 @@ impl Layout {
         // 4. Colours.
         let (colour, ghost_colour, colouring_rounds) = match mode {
             Mode::Reproducible => colour_graph(comm, rows.ids, &own, &neighbours)?,
-            Mode::Fast => (vec![0usize; n], HashMap::new(), 0),
+            Mode::Fast => (vec![0usize; n], IdMap::default(), 0),
         };
         let mut counts = [
             colour.iter().map(|&c| c as i64 + 1).max().unwrap_or(0),
@@ -254,7 +280,7 @@ impl Layout {
         let mut ghosts = foreign.clone();
         ghosts.sort_unstable_by_key(|id| (ghost_colour_of(id), *id));
         known_ids.extend(ghosts);
-        let index: HashMap<i64, usize> = known_ids
+        let index: IdMap<usize> = known_ids
             .iter()
             .enumerate()
             .map(|(k, &id)| (id, k))
@@ -344,15 +370,15 @@ impl Layout {
 fn colour_graph(
     comm: &Comm,
     ids: &[i64],
-    own: &HashMap<i64, usize>,
+    own: &IdMap<usize>,
     neighbours: &[Vec<(i64, usize)>],
-) -> CResult<(Vec<usize>, HashMap<i64, usize>, usize)> {
+) -> CResult<(Vec<usize>, IdMap<usize>, usize)> {
     const NONE: usize = usize::MAX;
     let n = ids.len();
     let size = comm.size();
     let me = comm.rank();
     let mut colour = vec![NONE; n];
-    let mut ghost_colour: HashMap<i64, usize> = HashMap::new();
+    let mut ghost_colour: IdMap<usize> = IdMap::default();
     // The ranks that must hear of each contact's colour.
     let listeners: Vec<Vec<usize>> = neighbours
         .iter()
