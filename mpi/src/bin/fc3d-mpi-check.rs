@@ -133,36 +133,51 @@ mod check {
             info: -1000,
             ..Default::default()
         };
+        // An empty array goes as NULL, as a C host with no contact would pass it.
+        fn or_null<T>(v: &[T]) -> *const T {
+            if v.is_empty() {
+                std::ptr::null()
+            } else {
+                v.as_ptr()
+            }
+        }
+        fn or_null_mut<T>(v: &mut [T]) -> *mut T {
+            if v.is_empty() {
+                std::ptr::null_mut()
+            } else {
+                v.as_mut_ptr()
+            }
+        }
         // SAFETY: arrays of the sizes given.
         let code = unsafe {
             match solver {
                 None => fc3d_mpi_solve_blocks(
                     world.comm,
                     n as i64,
-                    rows.ids.as_ptr(),
+                    or_null(&rows.ids),
                     rows.cols.len() as i64,
                     rows.row_ptr.as_ptr(),
-                    rows.cols.as_ptr(),
-                    rows.blocks.as_ptr(),
-                    rows.q.as_ptr(),
-                    rows.mu.as_ptr(),
-                    r.as_mut_ptr(),
-                    u.as_mut_ptr(),
+                    or_null(&rows.cols),
+                    or_null(&rows.blocks),
+                    or_null(&rows.q),
+                    or_null(&rows.mu),
+                    or_null_mut(&mut r),
+                    or_null_mut(&mut u),
                     s,
                     &mut result,
                 ),
                 Some(solver) => fc3d_mpi_solver_solve(
                     solver,
                     n as i64,
-                    rows.ids.as_ptr(),
+                    or_null(&rows.ids),
                     rows.cols.len() as i64,
                     rows.row_ptr.as_ptr(),
-                    rows.cols.as_ptr(),
-                    rows.blocks.as_ptr(),
-                    rows.q.as_ptr(),
-                    rows.mu.as_ptr(),
-                    r.as_mut_ptr(),
-                    u.as_mut_ptr(),
+                    or_null(&rows.cols),
+                    or_null(&rows.blocks),
+                    or_null(&rows.q),
+                    or_null(&rows.mu),
+                    or_null_mut(&mut r),
+                    or_null_mut(&mut u),
                     s,
                     &mut result,
                 ),
