@@ -5,8 +5,10 @@
 use std::ffi::{c_int, c_void};
 
 use crate::ffi::{self, MpiComm};
-use crate::FC3D_MPI_ERR_COMMUNICATION;
 use fc3d::{CError, CResult, FC3D_ERR_INTERNAL, FC3D_ERR_INVALID_SIZE};
+
+/// An MPI call failed, or the communicator is unusable (MPI_COMM_NULL, MPI not initialised).
+pub const FC3D_MPI_ERR_COMMUNICATION: c_int = -20;
 
 /// Bytes of an error message carried to every rank (longer ones are cut).
 const MESSAGE_BYTES: usize = 1024;

@@ -32,8 +32,7 @@ use ffi::{MpiComm, MpiFint};
 use layout::Mode;
 use solver::DistributedSolver;
 
-/// An MPI call failed, or the communicator is unusable (MPI_COMM_NULL, MPI not initialised).
-pub const FC3D_MPI_ERR_COMMUNICATION: c_int = -20;
+pub use comm::FC3D_MPI_ERR_COMMUNICATION;
 /// The reproducible sweep (default): the same bits for any number of ranks and any partition.
 pub const FC3D_MPI_REPRODUCIBLE: c_int = 0;
 /// Gauss-Seidel inside each rank, Jacobi across ranks: one exchange per sweep, results depend
