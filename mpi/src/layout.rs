@@ -433,6 +433,8 @@ fn colour_graph(
                 news[p].push(c as i64);
             }
         }
+        // The next round visits the contacts still uncoloured only.
+        order.retain(|&k| colour[k] == NONE);
         rounds += 1;
         let heard = comm.exchange(&news)?;
         for pairs in &heard {
