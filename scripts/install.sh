@@ -14,17 +14,23 @@
 #                                                fc3d::fc3d_static, fc3d_SICONOS_INCLUDE_DIR
 #   share/fc3d/fortran/fc3d.f90                  the Fortran module (source)
 #   share/doc/fc3d/                              README.md, LICENSE, CHANGELOG.md, docs/
+# and, when MPI's compiler wrapper is found (`mpicc`, or $FC3D_MPICC; apt-get install openmpi-bin
+# libopenmpi-dev), the distributed solve, so that hosts without MPI never link libmpi:
+#   include/fc3d_mpi.h, lib/libfc3d_mpi.so.X.Y.Z (+ links), lib/pkgconfig/fc3d-mpi.pc,
+#   lib/cmake/fc3d/fc3d-mpiTargets.cmake, share/fc3d/fortran/fc3d_mpi.f90
+#                                                (fc3d::mpi, the Fortran module; --no-mpi skips it)
 # --features fclib builds the FCLIB (.hdf5) readers and writers in (needs libhdf5-dev).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-prefix="" libdir=lib features=""
+prefix="" libdir=lib features="" mpi=auto
 while [ $# -gt 0 ]; do
   case "$1" in
     --prefix) prefix=$2; shift ;;
     --libdir) libdir=$2; shift ;;
     --features) features=$2; shift ;;
-    -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --no-mpi) mpi=no ;;
+    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -43,6 +49,24 @@ echo "== building fc3d $version (release)"
 cargo build --release -p fc3d "${feature_args[@]}"
 # The native-only library in its own target directory, so both builds are kept.
 cargo build --release -p fc3d --no-default-features "${feature_args[@]}" --target-dir target/native
+mpicc=${FC3D_MPICC:-mpicc}
+if [ "$mpi" = auto ] && command -v "$mpicc" >/dev/null; then
+  echo "== building fc3d-mpi $version (release; MPI from $mpicc)"
+  # Beside the native-only library: fc3d-mpi carries the same native entry, so the core and the
+  # C layer built above are reused.
+  mpi_features=()
+  [ -z "$features" ] || mpi_features=(--features "$(echo "$features" | sed -E 's/([^, ]+)/fc3d\/\1/g')")
+  FC3D_REQUIRE_MPI=1 cargo build --release -p fc3d-mpi --lib "${mpi_features[@]}" \
+    --target-dir target/native
+  mpi=yes
+  # MPI's own flags for pkg-config (Open MPI's --showme, else MPICH's -compile_info/-link_info).
+  mpi_cflags=$("$mpicc" --showme:compile 2>/dev/null ||
+    "$mpicc" -compile_info | tr ' ' '\n' | grep -E '^-(I|D)' | tr '\n' ' ')
+  mpi_libs=$("$mpicc" --showme:link 2>/dev/null ||
+    "$mpicc" -link_info | tr ' ' '\n' | grep -E '^-(L|l|Wl)' | tr '\n' ' ')
+elif [ "$mpi" = auto ]; then
+  echo "== $mpicc not found: libfc3d_mpi not built (apt-get install openmpi-bin libopenmpi-dev)"
+fi
 private_libs=$(cargo rustc --release -p fc3d --lib --crate-type staticlib "${feature_args[@]}" -- \
   --print native-static-libs 2>&1 | sed -n 's/.*native-static-libs: //p' | tail -1)
 [ -n "$private_libs" ] || private_libs="-lgcc_s -lutil -lrt -lpthread -lm -ldl -lc"
@@ -71,6 +95,26 @@ substitute capi/packaging/fc3d.pc.in > "$lib/pkgconfig/fc3d.pc"
 substitute capi/packaging/fc3d-native.pc.in > "$lib/pkgconfig/fc3d-native.pc"
 substitute capi/packaging/fc3dConfig.cmake.in > "$lib/cmake/fc3d/fc3dConfig.cmake"
 substitute capi/packaging/fc3dConfigVersion.cmake.in > "$lib/cmake/fc3d/fc3dConfigVersion.cmake"
+if [ "$mpi" = yes ]; then
+  install -m 644 mpi/include/fc3d_mpi.h "$inc/"
+  install -d "$prefix/share/fc3d/fortran"
+  install -m 644 fortran/fc3d_mpi.f90 "$prefix/share/fc3d/fortran/"
+  install -m 755 target/native/release/libfc3d_mpi.so "$lib/libfc3d_mpi.so.$version"
+  ln -sf "libfc3d_mpi.so.$version" "$lib/libfc3d_mpi.so.$major"
+  ln -sf "libfc3d_mpi.so.$major" "$lib/libfc3d_mpi.so"
+  substitute mpi/packaging/fc3d-mpi.pc.in | sed -e "s|@MPI_CFLAGS@|$mpi_cflags|g" \
+    -e "s|@MPI_LIBS@|$mpi_libs|g" > "$lib/pkgconfig/fc3d-mpi.pc"
+  # For CMake: -I, -L and -l of those flags as ;-lists.
+  cmake_list() { for f in $1; do case $f in "$2"*) printf '%s;' "${f#"$2"}" ;; esac; done | sed 's/;$//'; }
+  substitute mpi/packaging/fc3d-mpiTargets.cmake.in |
+    sed -e "s|@MPI_INCLUDE_DIRS@|$(cmake_list "$mpi_cflags" -I)|g" \
+      -e "s|@MPI_LIBRARY_DIRS@|$(cmake_list "$mpi_libs" -L)|g" \
+      -e "s|@MPI_LIBRARY_NAMES@|$(cmake_list "$mpi_libs" -l)|g" > "$lib/cmake/fc3d/fc3d-mpiTargets.cmake"
+else
+  rm -f "$inc/fc3d_mpi.h" "$lib"/libfc3d_mpi.so* "$lib/pkgconfig/fc3d-mpi.pc" \
+    "$prefix/share/fc3d/fortran/fc3d_mpi.f90" \
+    "$lib/cmake/fc3d/fc3d-mpiTargets.cmake"
+fi
 [ ! -f fortran/fc3d.f90 ] || install -m 644 fortran/fc3d.f90 "$prefix/share/fc3d/fortran/"
 install -m 644 README.md LICENSE CHANGELOG.md "$prefix/share/doc/fc3d/"
 install -d "$prefix/share/doc/fc3d/docs"

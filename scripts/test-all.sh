@@ -4,10 +4,12 @@
 #     (compiled with the cc crate against capi/include/), including all shared Siconos problems.
 #  2. scripts/install.sh into a temporary prefix, then hosts built from outside the source tree
 #     against what was installed: a C host with pkg-config (shared and static library, and the
-#     native-only library), the Siconos-style hosts with only the include path and the link flag
-#     changed, a C++ host with CMake's find_package(fc3d), one program linking Siconos and fc3d's
-#     native library side by side, the Fortran module and the Python package; the README's
-#     quickstarts and in-tree example as written (scripts/test-readme.sh).
+#     native-only library), a C host of the distributed solve (libfc3d_mpi) with mpicc and
+#     pkg-config fc3d-mpi and with CMake's fc3d::mpi under mpirun, the Siconos-style hosts with
+#     only the include path and the link flag changed, a C++ host with CMake's
+#     find_package(fc3d), one program linking Siconos and fc3d's native library side by side, the
+#     Fortran module and the Python package; the README's quickstarts and in-tree example as
+#     written (scripts/test-readme.sh).
 #  3. The C checks linked against the installed libfc3d.so and run under valgrind.
 #  4. Siconos compatibility: struct layouts and enum values compared with the installed Siconos
 #     4.4 headers, one unmodified Siconos host program built against both libraries, whose
@@ -31,6 +33,8 @@ command -v pkg-config >/dev/null || packages+=(pkg-config)
 command -v ctags >/dev/null || packages+=(universal-ctags)
 command -v xz >/dev/null || packages+=(xz-utils)
 [ -f /usr/include/hdf5/serial/hdf5.h ] || packages+=(libhdf5-dev)
+# fc3d-mpi (libfc3d_mpi) and its tests under mpirun.
+command -v mpicc >/dev/null && command -v mpirun >/dev/null || packages+=(openmpi-bin libopenmpi-dev)
 if [ ${#packages[@]} -gt 0 ]; then
   echo "== installing ${packages[*]}"
   SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
@@ -42,6 +46,10 @@ echo "== cargo test --workspace --features fc3d-core/fclib"
 # capi-tests' siconos_surface compares the constants and solver_options_create with the
 # installed Siconos: here a missing prerequisite is a failure, not a skip.
 export FC3D_REQUIRE_SICONOS=1
+# fc3d-mpi builds empty without MPI and its mpirun tests skip: here both are failures.
+export FC3D_REQUIRE_MPI=1
+# Open MPI runs as root (CI machines) only when told.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cargo test --workspace --features fc3d-core/fclib
 echo "== FCLIB tests without the fclib feature (.hdf5 refused with a clear error by the core, the C ABI and fc3d convert)"
 cargo test -p fc3d-core -p fc3d -p fc3d-cli --test fclib --test convert
@@ -87,6 +95,29 @@ echo "== C++ host with CMake find_package(fc3d)"
 cmake -S cmake -B cmake-build -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build cmake-build >/dev/null
 ./cmake-build/host && ./cmake-build/host_static && ./cmake-build/siconos_style
+
+echo "== C host of the distributed solve: mpicc + pkg-config fc3d-mpi, CMake fc3d::mpi; mpirun -np 1..4"
+cp -r "$ROOT/examples-mpi" mpi
+test -f "$PREFIX/include/fc3d_mpi.h" || { echo "scripts/install.sh did not install libfc3d_mpi"; exit 1; }
+mpicc "${CFLAGS[@]}" $(pkg-config --cflags fc3d-mpi) mpi/mpi_host.c $(pkg-config --libs fc3d-mpi) -lm -o mpi_host
+for l in libfc3d.so libfc3d_native.so; do
+  if readelf -d "$PREFIX/lib/$l" | grep -q 'NEEDED.*libmpi'; then echo "$l links libmpi"; exit 1; fi
+done
+for np in 1 2 3 4; do
+  mpirun --oversubscribe -np $np ./mpi_host "$DATA/Rover1040.dat" 1e-10 200
+done
+mpirun --oversubscribe -np 3 ./mpi_host "$DATA/Capsules-i101-404.dat" 1e-6 500
+cmake -S mpi -B mpi-build -DCMAKE_PREFIX_PATH="$PREFIX" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build mpi-build >/dev/null
+mpirun --oversubscribe -np 2 ./mpi-build/mpi_host "$DATA/NESpheres_30_1.dat" 1e-8 200
+# The Fortran module of the distributed solve (the INTEGER communicator): same line on 1 and 3 ranks.
+mpifort -Wall -Werror -fcheck=all -J mpi "$PREFIX/share/fc3d/fortran/fc3d.f90" \
+  "$PREFIX/share/fc3d/fortran/fc3d_mpi.f90" "$ROOT/fortran/mpi_example.f90" \
+  $(pkg-config --libs fc3d-mpi) -o mpi_example_f
+one=$(mpirun --oversubscribe -np 1 ./mpi_example_f)
+three=$(mpirun --oversubscribe -np 3 ./mpi_example_f)
+echo "Fortran: np 1 [$one] np 3 [$three]"
+[ "$one" = "$three" ] || { echo "the Fortran example differs between 1 and 3 ranks"; exit 1; }
 
 echo "== Fortran module (installed source) and example"
 bash "$ROOT/scripts/test-fortran.sh" "$PREFIX"

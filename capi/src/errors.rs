@@ -17,7 +17,7 @@ thread_local! {
 
 /// A rejected call: return code and message.
 #[derive(Debug, Clone)]
-pub(crate) struct CError {
+pub struct CError {
     pub code: c_int,
     pub message: String,
 }
@@ -55,7 +55,7 @@ impl From<Fc3dError> for CError {
     }
 }
 
-pub(crate) type CResult<T> = Result<T, CError>;
+pub type CResult<T> = Result<T, CError>;
 
 /// Records `e` as the calling thread's last error (printed when verbose) and returns its code.
 pub(crate) fn record(function: &str, e: CError) -> c_int {
@@ -74,7 +74,7 @@ pub(crate) fn verbose() -> i32 {
 
 /// Runs `body` with panics caught. `Err` and panics are recorded as the last error and mapped
 /// to `on_error(code)`.
-pub(crate) fn ffi_guard<T>(
+pub fn ffi_guard<T>(
     function: &str,
     on_error: impl FnOnce(c_int) -> T,
     body: impl FnOnce() -> CResult<T>,

@@ -48,9 +48,11 @@ use std::os::raw::c_int;
 use std::sync::atomic::Ordering;
 
 pub use codes::*;
+pub(crate) use errors::verbose;
 pub use errors::{fc3d_clear_last_error, fc3d_last_error_code, fc3d_last_error_message};
-pub(crate) use errors::{ffi_guard, verbose, CError, CResult};
-pub use native::{fc3d_version, Fc3dProblem, Fc3dResult, Fc3dSettings};
+// For libraries built on this one (fc3d-mpi): the same panic boundary, errors and settings.
+pub use errors::{ffi_guard, CError, CResult};
+pub use native::{fc3d_version, settings_config, Fc3dProblem, Fc3dResult, Fc3dSettings};
 pub use option_tree::{
     FC3D_OPTIONS_MAX_DEPTH, FC3D_OPTIONS_MAX_INTERNAL_SOLVERS, FC3D_OPTIONS_MAX_PARAM_SIZE,
 };

@@ -20,6 +20,8 @@ mod problem;
 use std::ffi::c_char;
 use std::os::raw::{c_double, c_int};
 
+pub use solve::settings_config;
+
 use crate::ffi_guard;
 use crate::types::SolverOptions;
 use fc3d_core::{CsrMatrix, FrictionProblem};

@@ -11,7 +11,9 @@ use crate::options::create_options;
 use crate::params::config_from_c;
 use crate::{ffi_guard, verbose, CError, CResult, FC3D_ERR_INVALID_SIZE};
 use fc3d_core::error::{try_copy, try_vec};
-use fc3d_core::{solve, BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix, FrictionProblem};
+use fc3d_core::{
+    solve, BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix, FrictionProblem, SolverConfig,
+};
 
 fn count(v: i64, what: &str) -> CResult<usize> {
     usize::try_from(v)
@@ -53,14 +55,7 @@ pub(super) unsafe fn solve_into(
     let n = problem.size();
     let r_in = c_slice(r as *const c_double, n, "r")?;
     c_slice(u as *const c_double, n, "u")?;
-    let config = if settings.is_null() {
-        let o = create_options(500)?;
-        let c = config_from_c(&*o);
-        release_options(o);
-        c?
-    } else {
-        config_from_c(&*(*settings).options)?
-    };
+    let config = settings_config(settings)?;
     let mut rr = try_copy(r_in, "r")?;
     let mut uu = try_vec(n, 0.0, "u")?;
     let start = Instant::now();
@@ -88,6 +83,22 @@ pub(super) unsafe fn solve_into(
         crate::driver::print_fill(&report);
     }
     Ok(report.status.info_code())
+}
+
+/// The configuration `settings` describe (NULL: NSGS with Siconos' defaults), checked; for the
+/// solves here and for libraries built on this one (fc3d-mpi).
+///
+/// # Safety
+/// `settings` is NULL or made by `fc3d_settings_new` and not yet freed.
+pub unsafe fn settings_config(settings: *const Fc3dSettings) -> CResult<SolverConfig> {
+    if settings.is_null() {
+        let o = create_options(500)?;
+        let c = config_from_c(&*o);
+        release_options(o);
+        c
+    } else {
+        config_from_c(&*(*settings).options)
+    }
 }
 
 unsafe fn problem_from(

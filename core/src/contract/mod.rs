@@ -20,7 +20,7 @@ pub use outer::InnerTolerance;
 pub(crate) use outer::OuterLoop;
 pub use report::{Fill, SolveReport, SolveStatus};
 pub use schedule::ErrorEvaluation;
-pub(crate) use schedule::{ErrorSchedule, Measure};
+pub use schedule::{ErrorSchedule, Measure, Test};
 pub use stages::{Stage, StageEnd, StageKind, StageLog, MAX_STAGES};
 
 /// Progress of an iterative solver, handed to an observer after every iteration.

@@ -25,7 +25,7 @@ pub enum ErrorEvaluation {
 
 /// What [`ErrorSchedule::test`] asks its caller to measure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Measure {
+pub enum Measure {
     /// The relative natural-map error of the current `r`.
     NaturalMap,
     /// Dumont's criterion (37) of the current `r`.
@@ -34,7 +34,7 @@ pub(crate) enum Measure {
 
 /// The result of one test.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Test {
+pub struct Test {
     /// The error tested (cheap, full or Dumont's, as scheduled); the last tested one when this
     /// iteration was not a test.
     pub error: f64,
@@ -53,7 +53,7 @@ pub(crate) struct Test {
 /// The error-evaluation schedule of a run: which error is measured, how often, and the cheap
 /// tolerance that [`ErrorEvaluation::LightWithFullFinal`] tightens.
 #[derive(Debug, Clone)]
-pub(crate) struct ErrorSchedule {
+pub struct ErrorSchedule {
     evaluation: ErrorEvaluation,
     tolerance: f64,
     light_tolerance: f64,

@@ -18,7 +18,7 @@ mod sweeper;
 pub(crate) use coloured::Colouring;
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
 pub use settings::{Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
-pub use step::{ContactStep, LocalStep};
+pub use step::{update_contact, ContactStep, LocalStep};
 pub use sweeper::{GaussSeidel, SweepOptions, Sweeper};
 
 use crate::contract::{

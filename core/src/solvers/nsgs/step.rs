@@ -67,7 +67,8 @@ pub struct LocalStep {
 }
 
 impl LocalStep {
-    pub(super) fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
+    /// The step of `options`' local solver for the contacts of `rows`.
+    pub fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
         let nc = rows.n_contacts();
         let mut rho = Vec::new();
         rho.try_reserve_exact(nc)
@@ -141,6 +142,26 @@ impl ContactStep<3> for LocalStep {
     fn set_deadline(&mut self, deadline: Option<Instant>) {
         self.deadline = deadline;
     }
+}
+
+/// The new reaction of contact `c` of `rows` against the reactions `r` (not written): the
+/// one-contact update of every Gauss-Seidel sweep (frictionless shortcut, local solve,
+/// relaxation), for sweeps driven outside the core (fc3d-mpi's distributed sweep). `memory` is
+/// the contact's step state (1 before its first visit).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn update_contact<const D: usize, S: ContactStep<D>>(
+    rows: &BlockRows<D>,
+    step: &S,
+    worker: &mut S::Worker,
+    relaxation: Option<f64>,
+    c: usize,
+    q: &[f64],
+    mu: &[f64],
+    r: &[f64],
+    memory: &mut f64,
+) -> [f64; D] {
+    new_reaction(rows, step, worker, relaxation, c, q, mu, r, memory, false).0
 }
 
 /// The new reaction of contact `c` against the reactions `r` (not written), its old reaction,
