@@ -250,7 +250,10 @@ fn every_shared_global_problem_through_the_native_entry() {
 fn triplets(a: &CsrMatrix) -> (Vec<i64>, Vec<i64>, Vec<f64>) {
     let mut rows = Vec::new();
     for i in 0..a.nrows() {
-        rows.extend(std::iter::repeat(i as i64).take(a.row_ptr()[i + 1] - a.row_ptr()[i]));
+        rows.extend(std::iter::repeat_n(
+            i as i64,
+            a.row_ptr()[i + 1] - a.row_ptr()[i],
+        ));
     }
     let cols = a.col_idx().iter().map(|&c| c as i64).collect();
     (rows, cols, a.values().to_vec())

@@ -14,7 +14,7 @@ use fc3d_core::{Fc3dError, FrictionProblem};
 pub(crate) enum AnyProblem {
     Local(FrictionProblem<'static>),
     /// With the storages its file gave M and H (sparse for FCLIB and generated scenes).
-    Global(GlobalProblem<'static>, GlobalStorage),
+    Global(Box<GlobalProblem<'static>>, GlobalStorage),
 }
 
 impl AnyProblem {
@@ -137,13 +137,14 @@ pub(crate) fn read_any_problem(path: &Path, detect_global: bool) -> Result<AnyPr
         return read_problem(path).map(AnyProblem::Local);
     }
     let global = if is_fclib(path) {
-        fc3d_core::io::read_fclib_global_file(path).map(|p| AnyProblem::Global(p, sparse_storage()))
+        fc3d_core::io::read_fclib_global_file(path)
+            .map(|p| AnyProblem::Global(Box::new(p), sparse_storage()))
     } else {
         match read_global_dat_file(path) {
             Ok(GlobalDat {
                 problem: GlobalDatProblem::Spatial(p),
                 storage,
-            }) => Ok(AnyProblem::Global(p, storage)),
+            }) => Ok(AnyProblem::Global(Box::new(p), storage)),
             Ok(_) => {
                 return Err(Fc3dError::Unsupported(format!(
                     "{}: a global problem of dimension 2 (gfc2d): fc3d solves dimension 3",
