@@ -1,5 +1,6 @@
 /* A host of fc3d's native entry (fc3d.h, or fc3d_native.h for the library without Siconos names):
- * one sliding contact in dense and block-sparse storage, then, when a path is given, a problem
+ * one sliding contact in dense and block-sparse storage and in the global form (M, H), then, when a
+ * path is given, a problem
  * read from a Siconos .dat file and solved with NSGS and NSN_AC. Exits non-zero on any wrong
  * answer. Built from outside the source tree by the test suite:
  *
@@ -77,6 +78,25 @@ int main(int argc, char** argv) {
   double rg[3] = {0, 0, 0}, ug[3];
   CHECK(fc3d_solve_dense(1, W, q, mu, rg, ug, g, &res) == 0, "NSGS still usable");
   fc3d_settings_free(g);
+
+  /* The same contact in the global form: a body of mass 2 (M = 2 I), H = I, q = M (-1, 2, 0),
+     b = 0: r = (2, -1, 0), u = v = (0, 1.5, 0), M v = q + H r. 607 (Newton on (v, u, r)) and the
+     default (NULL: 600, NSGS on the reduced problem). */
+  int64_t ptr3[4] = {0, 1, 2, 3}, idx3[3] = {0, 1, 2};
+  double m3[3] = {2, 2, 2}, h3[3] = {1, 1, 1}, qg[3] = {-2, 4, 0}, bg[3] = {0, 0, 0};
+  Fc3dSettings* gs = fc3d_settings_new(607);
+  CHECK(gs != NULL && fc3d_settings_set_tolerance(gs, 1e-10) == 0, "settings of 607");
+  for (int k = 0; k < 2; k++) {
+    double rv[3] = {0, 0, 0}, uv[3], vv[3];
+    info = fc3d_solve_global_csr(3, 1, 3, ptr3, idx3, m3, 3, ptr3, idx3, h3, qg, bg, mu, rv, uv, vv,
+                                 k == 0 ? gs : NULL, &res);
+    CHECK(info == 0 && fabs(rv[0] - 2) < 1e-8 && fabs(rv[1] + 1) < 1e-8 && fabs(vv[1] - 1.5) < 1e-8,
+          "global solve %d: info %d, r = (%g, %g, %g)", k, info, rv[0], rv[1], rv[2]);
+    CHECK(fabs(2 * vv[1] - qg[1] - rv[1]) < 1e-12 && fabs(uv[1] - vv[1]) < 1e-12, "M v = q + H r");
+  }
+  CHECK(fc3d_solve_dense(1, W, q, mu, rg, ug, gs, &res) == FC3D_ERR_UNSUPPORTED_SOLVER,
+        "a global id is refused by a local solve");
+  fc3d_settings_free(gs);
 
   if (argc > 1) {
     Fc3dProblem* p = fc3d_problem_read(argv[1]);

@@ -3,7 +3,7 @@
 ! solved in dense, CSR, COO and block storage by NSGS and NSN_AC (which must agree and satisfy
 ! the Coulomb law checked here independently), rejected input, and, for every path given, a
 ! Siconos .dat problem read with fc3d_problem_read and solved with NSGS (500) and NSN_AC (504) to
-! 1e-8. Any wrong answer stops with `error stop` (non-zero exit status). Built from outside the
+! 1e-8, and a global problem (M, H) solved by fc3d_solve_global with three global ids. Any wrong answer stops with `error stop` (non-zero exit status). Built from outside the
 ! source tree by scripts/test-fortran.sh:
 !
 !   export PKG_CONFIG_PATH=PREFIX/lib/pkgconfig LD_LIBRARY_PATH=PREFIX/lib
@@ -27,6 +27,7 @@ program fc3d_example
   call every_solver()
   call coupled_contacts()
   call rejected_input()
+  call global_contact()
 
   n_args = command_argument_count()
   do k = 1, n_args
@@ -487,5 +488,40 @@ contains
     err = sqrt(err)
     if (scale > 0) err = err / scale
   end function natural_map_error
+
+  ! The global form of a sliding contact: a body of mass 2 (M = 2 I), H = I, q = M (-1, 2, 0),
+  ! b = 0, mu = 0.5: r = (2, -1, 0), u = v = (0, 1.5, 0), and M v = q + H r.
+  subroutine global_contact()
+    integer(c_int64_t), parameter :: ptr(4) = [0_c_int64_t, 1_c_int64_t, 2_c_int64_t, 3_c_int64_t]
+    integer(c_int64_t), parameter :: idx(3) = [0_c_int64_t, 1_c_int64_t, 2_c_int64_t]
+    real(c_double), parameter :: m(3) = [2d0, 2d0, 2d0], h(3) = [1d0, 1d0, 1d0]
+    real(c_double), parameter :: q(3) = [-2d0, 4d0, 0d0], b(3) = 0d0, mu(1) = 0.5d0
+    real(c_double), parameter :: r_want(3) = [2d0, -1d0, 0d0], v_want(3) = [0d0, 1.5d0, 0d0]
+    integer, parameter :: solvers(3) = [FC3D_GFC3D_NSGS_WR, FC3D_GFC3D_NSGS, FC3D_GFC3D_NSN_AC]
+    real(c_double) :: r(3), u(3), v(3)
+    type(fc3d_result) :: res
+    character(len=:), allocatable :: msg
+    integer :: info, k
+    do k = 1, size(solvers)
+      r = 0
+      call fc3d_solve_global(ptr, idx, m, ptr, idx, h, q, b, mu, r, u, v, info, &
+          solver=solvers(k), tolerance=1d-10, max_iter=1000, result=res, errmsg=msg)
+      call check(info == FC3D_OK .and. res%info == FC3D_OK .and. res%error <= 1d-10, &
+          'global solve converges: ' // msg)
+      call check(maxval(abs(r - r_want)) < 1d-6 .and. maxval(abs(v - v_want)) < 1d-6 .and. &
+          maxval(abs(u - v_want)) < 1d-6, 'global solve: known r, u, v')
+      call check(maxval(abs(m * v - q - h * r)) < 1d-12, 'global solve: M v = q + H r')
+    end do
+    call fc3d_solve_global(ptr, idx, m, ptr, idx, h, q, b, mu, r, u, v, info, errmsg=msg)
+    call check(info == FC3D_OK, 'global solve with the default solver (600)')
+    r = -7
+    call fc3d_solve_global(ptr, idx, m, ptr, idx, h, q, b, mu, r, u, v, info, solver=FC3D_NSGS, &
+        errmsg=msg)
+    call check(info == FC3D_ERR_UNSUPPORTED_SOLVER .and. index(msg, 'global') > 0 .and. &
+        all(r == -7), 'a local id is refused by the global solve, nothing written')
+    call fc3d_solve_global(ptr, idx, m, ptr, idx, h, q, b, mu, r, u, v(1:2), info, errmsg=msg)
+    call check(info == FC3D_ERR_INVALID_SIZE, 'global solve: wrong size of v')
+    print '(a)', 'global contact: solved by 600, 605, 607; refusals checked'
+  end subroutine global_contact
 
 end program fc3d_example

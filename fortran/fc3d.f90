@@ -30,6 +30,11 @@
 !        w in compressed rows, 0-based integer(c_int64_t) indices (as fc3d_problem_get gives);
 !    call fc3d_solve(problem, r, u, info, ...)
 !        a problem read by fc3d_problem_read.
+!    call fc3d_solve_global(m_row_ptr, m_col_idx, m_values, h_row_ptr, h_col_idx, h_values,
+!                           q, b, mu, r, u, v, info [, solver, ...])
+!        the global problem M v = q + H r, u = H^T v + b (Siconos' gfc3d_driver): M (n x n) and
+!        H (n x 3nc) in compressed rows, 0-based; v (n) receives the global velocity; solver a
+!        global id (FC3D_GFC3D_*, default FC3D_GFC3D_NSGS_WR = 600).
 !    r holds the initial reaction and receives the result, u receives W r + q. info is 0
 !    (converged), 1 (iteration limit), 2 (time budget spent), 3 (SOCLCP: relaxed solution not
 !    Coulomb), or a negative FC3D_ERR_* code, in which case r and u are unchanged and errmsg (if
@@ -91,12 +96,20 @@ module fc3d
   integer(c_int), parameter, public :: FC3D_ONECONTACT_PROJECTION_ON_CONE = 552
   integer(c_int), parameter, public :: FC3D_ONECONTACT_PROJECTION_ON_CONE_WITH_LOCAL_ITERATION = 553
   integer(c_int), parameter, public :: FC3D_ONECONTACT_NSN_GP_HYBRID = 565
+  ! Global solvers (Siconos' SICONOS_GLOBAL_FRICTION_3D_<NAME>), for fc3d_solve_global.
+  integer(c_int), parameter, public :: FC3D_GFC3D_NSGS_WR = 600, FC3D_GFC3D_PROX_WR = 602
+  integer(c_int), parameter, public :: FC3D_GFC3D_DSFP_WR = 603, FC3D_GFC3D_TFP_WR = 604
+  integer(c_int), parameter, public :: FC3D_GFC3D_NSGS = 605, FC3D_GFC3D_NSN_AC_WR = 606
+  integer(c_int), parameter, public :: FC3D_GFC3D_NSN_AC = 607, FC3D_GFC3D_VI_FPP = 610
+  integer(c_int), parameter, public :: FC3D_GFC3D_VI_EG = 611, FC3D_GFC3D_ACLMFP = 612
+  integer(c_int), parameter, public :: FC3D_GFC3D_ADMM = 613, FC3D_GFC3D_ADMM_WR = 614
+  integer(c_int), parameter, public :: FC3D_GFC3D_IPM = 615
 
   ! -- What a solve reports (struct Fc3dResult: int, int64_t, double, double).
   type, bind(C), public :: fc3d_result
     integer(c_int) :: info = 0            ! 0 converged, 1 iteration limit, 2 time budget, 3 relaxed
     integer(c_int64_t) :: iterations = 0  ! iterations (sweeps, Newton steps, ...) done
-    real(c_double) :: error = 0           ! natural-map error of the returned (r, u)
+    real(c_double) :: error = 0           ! natural-map (global: Siconos' global) error
     real(c_double) :: seconds = 0         ! wall-clock time of the solve
   end type fc3d_result
 
@@ -108,11 +121,12 @@ module fc3d
   public :: fc3d_settings_set_iparam, fc3d_settings_set_dparam
   public :: fc3d_settings_set_local_iparam, fc3d_settings_set_local_dparam, fc3d_settings_set_c
   public :: fc3d_solve_dense, fc3d_solve_csr, fc3d_solve_coo, fc3d_solve_blocks
+  public :: fc3d_solve_global_csr, fc3d_solve_global_coo, fc3d_solve_global_blocks
   public :: fc3d_problem_read_c, fc3d_problem_free, fc3d_problem_contacts, fc3d_problem_nnz
   public :: fc3d_problem_get, fc3d_problem_solve, fc3d_solver_count, fc3d_solver_at
   ! -- The Fortran wrappers.
   public :: fc3d_version, fc3d_last_error_message, fc3d_settings_set, fc3d_problem_read
-  public :: fc3d_solve
+  public :: fc3d_solve, fc3d_solve_global
 
   interface
     ! const char *fc3d_last_error_message(void);
@@ -310,6 +324,55 @@ module fc3d
       integer(c_int) :: code
     end function fc3d_solve_blocks
 
+    ! int fc3d_solve_global_csr(int64_t ndof, int64_t n_contacts, int64_t m_nnz,
+    !     const int64_t *m_row_ptr, const int64_t *m_col_idx, const double *m_values,
+    !     int64_t h_nnz, const int64_t *h_row_ptr, const int64_t *h_col_idx,
+    !     const double *h_values, const double *q, const double *b, const double *mu, double *r,
+    !     double *u, double *v, const struct Fc3dSettings *settings, struct Fc3dResult *result);
+    ! (fc3d_solve_global_coo: the same with (rows, cols, values) triplets for M and H.)
+    function fc3d_solve_global_csr(ndof, n_contacts, m_nnz, m_row_ptr, m_col_idx, m_values, &
+        h_nnz, h_row_ptr, h_col_idx, h_values, q, b, mu, r, u, v, settings, result) &
+        bind(C, name="fc3d_solve_global_csr") result(code)
+      import :: c_int64_t, c_double, c_ptr, c_int, fc3d_result
+      integer(c_int64_t), value :: ndof, n_contacts, m_nnz, h_nnz
+      integer(c_int64_t), intent(in) :: m_row_ptr(*), m_col_idx(*), h_row_ptr(*), h_col_idx(*)
+      real(c_double), intent(in) :: m_values(*), h_values(*), q(*), b(*), mu(*)
+      real(c_double), intent(inout) :: r(*), u(*), v(*)
+      type(c_ptr), value :: settings
+      type(fc3d_result), intent(inout) :: result
+      integer(c_int) :: code
+    end function fc3d_solve_global_csr
+
+    function fc3d_solve_global_coo(ndof, n_contacts, m_nnz, m_rows, m_cols, m_values, &
+        h_nnz, h_rows, h_cols, h_values, q, b, mu, r, u, v, settings, result) &
+        bind(C, name="fc3d_solve_global_coo") result(code)
+      import :: c_int64_t, c_double, c_ptr, c_int, fc3d_result
+      integer(c_int64_t), value :: ndof, n_contacts, m_nnz, h_nnz
+      integer(c_int64_t), intent(in) :: m_rows(*), m_cols(*), h_rows(*), h_cols(*)
+      real(c_double), intent(in) :: m_values(*), h_values(*), q(*), b(*), mu(*)
+      real(c_double), intent(inout) :: r(*), u(*), v(*)
+      type(c_ptr), value :: settings
+      type(fc3d_result), intent(inout) :: result
+      integer(c_int) :: code
+    end function fc3d_solve_global_coo
+
+    ! int fc3d_solve_global_blocks(int64_t n_blocks, int64_t block_size, const double *m_blocks,
+    !     int64_t n_contacts, int64_t h_nnz, const int64_t *h_row_ptr, const int64_t *h_col_idx,
+    !     const double *h_values, const double *q, ..., struct Fc3dResult *result);
+    ! (m_blocks: n_blocks dense diagonal blocks of M, each column-major, e.g. m(6,6,n_bodies))
+    function fc3d_solve_global_blocks(n_blocks, block_size, m_blocks, n_contacts, h_nnz, &
+        h_row_ptr, h_col_idx, h_values, q, b, mu, r, u, v, settings, result) &
+        bind(C, name="fc3d_solve_global_blocks") result(code)
+      import :: c_int64_t, c_double, c_ptr, c_int, fc3d_result
+      integer(c_int64_t), value :: n_blocks, block_size, n_contacts, h_nnz
+      integer(c_int64_t), intent(in) :: h_row_ptr(*), h_col_idx(*)
+      real(c_double), intent(in) :: m_blocks(*), h_values(*), q(*), b(*), mu(*)
+      real(c_double), intent(inout) :: r(*), u(*), v(*)
+      type(c_ptr), value :: settings
+      type(fc3d_result), intent(inout) :: result
+      integer(c_int) :: code
+    end function fc3d_solve_global_blocks
+
     ! struct Fc3dProblem *fc3d_problem_read(const char *path);
     ! (path NUL-terminated: use the wrapper fc3d_problem_read)
     function fc3d_problem_read_c(path) bind(C, name="fc3d_problem_read") result(problem)
@@ -450,9 +513,9 @@ contains
   ! The settings a wrapper solves with: the caller's, or new ones made from the options (owned:
   ! freed by finish). info < 0 and message on failure.
   subroutine prepare(settings, solver, tolerance, max_iter, time_budget, local_solver, handle, &
-      owned, info, message)
+      owned, info, message, default_solver)
     type(c_ptr), intent(in), optional :: settings
-    integer, intent(in), optional :: solver, max_iter, local_solver
+    integer, intent(in), optional :: solver, max_iter, local_solver, default_solver
     real(c_double), intent(in), optional :: tolerance, time_budget
     type(c_ptr), intent(out) :: handle
     logical, intent(out) :: owned
@@ -475,6 +538,7 @@ contains
       return
     end if
     id = FC3D_NSGS
+    if (present(default_solver)) id = int(default_solver, c_int)
     if (present(solver)) id = int(solver, c_int)
     handle = fc3d_settings_new(id)
     if (.not. c_associated(handle)) then
@@ -659,5 +723,61 @@ contains
     if (present(errmsg)) errmsg = message
     if (code >= 0 .and. present(result)) result = res
   end subroutine solve_problem
+
+  !> call fc3d_solve_global(m_row_ptr, m_col_idx, m_values, h_row_ptr, h_col_idx, h_values, q,
+  !> b, mu, r, u, v, info, ...): M (n x n, n = size(q)) and H (n x 3nc) in compressed rows
+  !> (row_ptr(n + 1), 0-based col_idx); b(3nc), mu(nc), r and u (3nc), v (n). Options as
+  !> fc3d_solve's; the solver a global id (default FC3D_GFC3D_NSGS_WR), local_solver the local
+  !> solver of a _WR id.
+  subroutine fc3d_solve_global(m_row_ptr, m_col_idx, m_values, h_row_ptr, h_col_idx, h_values, &
+      q, b, mu, r, u, v, info, solver, tolerance, max_iter, time_budget, local_solver, settings, &
+      result, errmsg)
+    integer(c_int64_t), intent(in) :: m_row_ptr(:), m_col_idx(:), h_row_ptr(:), h_col_idx(:)
+    real(c_double), intent(in) :: m_values(:), h_values(:), q(:), b(:), mu(:)
+    real(c_double), intent(inout) :: r(:), u(:), v(:)
+    integer, intent(out) :: info
+    integer, intent(in), optional :: solver, max_iter, local_solver
+    real(c_double), intent(in), optional :: tolerance, time_budget
+    type(c_ptr), intent(in), optional :: settings
+    type(fc3d_result), intent(inout), optional :: result
+    character(len=:), allocatable, intent(out), optional :: errmsg
+    type(c_ptr) :: handle
+    logical :: owned
+    character(len=:), allocatable :: message
+    character(len=300) :: buffer
+    type(fc3d_result) :: res
+    integer(c_int64_t) :: nc, n
+    integer(c_int) :: code
+    nc = size(mu, kind=c_int64_t)
+    n = size(q, kind=c_int64_t)
+    message = ''
+    if (size(b, kind=c_int64_t) /= 3 * nc .or. size(r, kind=c_int64_t) /= 3 * nc .or. &
+        size(u, kind=c_int64_t) /= 3 * nc .or. size(v, kind=c_int64_t) /= n .or. &
+        size(m_row_ptr, kind=c_int64_t) /= n + 1 .or. size(h_row_ptr, kind=c_int64_t) /= n + 1 &
+        .or. size(m_col_idx) /= size(m_values) .or. size(h_col_idx) /= size(h_values)) then
+      write (buffer, '(a,12(i0,a))') 'fc3d_solve_global: sizes disagree: n = size(q) = ', n, &
+          ', nc = size(mu) = ', nc, ', size(b) = ', size(b), ', size(r) = ', size(r), &
+          ', size(u) = ', size(u), ', size(v) = ', size(v), ', size(m_row_ptr) = ', &
+          size(m_row_ptr), ', size(h_row_ptr) = ', size(h_row_ptr), ', M ', size(m_col_idx), &
+          '/', size(m_values), ' and H ', size(h_col_idx), '/', size(h_values), &
+          ' indices/values (want b, r, u: 3nc; v: n; row_ptr: n + 1)'
+      message = trim(buffer)
+    end if
+    handle = c_null_ptr
+    owned = .false.
+    if (len(message) > 0) then
+      code = FC3D_ERR_INVALID_SIZE
+    else
+      call prepare(settings, solver, tolerance, max_iter, time_budget, local_solver, handle, &
+          owned, code, message, default_solver=int(FC3D_GFC3D_NSGS_WR))
+      if (code == FC3D_OK) code = fc3d_solve_global_csr(n, nc, size(m_values, kind=c_int64_t), &
+          m_row_ptr, m_col_idx, m_values, size(h_values, kind=c_int64_t), h_row_ptr, h_col_idx, &
+          h_values, q, b, mu, r, u, v, handle, res)
+    end if
+    call finish(code, handle, owned, message)
+    info = int(code)
+    if (present(errmsg)) errmsg = message
+    if (code >= 0 .and. present(result)) result = res
+  end subroutine fc3d_solve_global
 
 end module fc3d

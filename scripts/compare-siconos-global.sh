@@ -20,7 +20,8 @@
 #   --tol T          tolerance (default 1e-6); --max-iter N (default 10000); --reps N (default 5,
 #                    median); --timeout S per process (default 60)
 #   --out FILE       the CSV (default target/compare-siconos-global/results.csv; the table is
-#                    written next to it with the extension .md)
+#                    written next to it with the extension .md, the per-id summary of
+#                    scripts/siconos-global-summary.py as -summary.md)
 # CSV columns: problem, solver, library, info, iterations, error_self, error_by_other, seconds,
 # reps, self_score (this library's gfc3d_compute_error of its own result on a fresh copy).
 set -euo pipefail
@@ -40,7 +41,7 @@ while [ $# -gt 0 ]; do
     --reps) reps=$2; shift ;;
     --timeout) cap=$2; shift ;;
     --out) out=$2; shift ;;
-    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -149,4 +150,10 @@ awk -F, -v tol="$tol" '
     if (m > 0) printf "\nGeometric mean of fc3d / Siconos over the %d runs of 1 ms or more that both converged: %.3f\n", m, exp(logs / m)
   }' "$out" >"$table"
 cat "$table"
-echo "(CSV $out, table $table)"
+summary="${out%.csv}-summary.md"
+if command -v python3 >/dev/null; then
+  python3 scripts/siconos-global-summary.py "$out" "$tol" >"$summary"
+  echo "(CSV $out, table $table, per-id summary $summary)"
+else
+  echo "(CSV $out, table $table; python3 scripts/siconos-global-summary.py $out gives the per-id summary)"
+fi

@@ -94,7 +94,8 @@ typedef struct Fc3dResult {
   int info;
   // Iterations (sweeps, Newton steps, ...) done.
   int64_t iterations;
-  // The natural-map error of the returned `(r, u)`.
+  // The error of the returned solution: the natural-map error of `(r, u)` for the local
+  // solves, Siconos' global error (`gfc3d_compute_error`) of `(r, u, v)` for the global ones.
   double error;
   // Wall-clock time of the solve, seconds.
   double seconds;
@@ -117,9 +118,10 @@ void fc3d_clear_last_error(void);
 // The library's version, e.g. "0.2.0" (a static string, do not free).
 const char *fc3d_version(void);
 
-// Settings of solver `solver_id` (a Siconos id such as 500 NSGS, 504 NSN_AC, 502 PROX) with
-// its defaults; NULL for an id fc3d does not implement (the reason in
-// `fc3d_last_error_message`). Release with `fc3d_settings_free`.
+// Settings of solver `solver_id` (a Siconos id such as 500 NSGS, 504 NSN_AC, 502 PROX, or a
+// global id 600-615 for `fc3d_solve_global_*`, 5000 for the global rolling solver) with its
+// defaults; NULL for an id fc3d does not implement (the reason in `fc3d_last_error_message`).
+// Release with `fc3d_settings_free`.
 struct Fc3dSettings *fc3d_settings_new(int solver_id);
 
 // Releases settings made by `fc3d_settings_new` (NULL is accepted).
@@ -217,6 +219,78 @@ int fc3d_solve_blocks(int64_t n_contacts,
                       const struct Fc3dSettings *settings,
                       struct Fc3dResult *result);
 
+// Solves the global problem: find the global velocity v (`ndof`), the local velocity u and the
+// reaction r (`3 n_contacts` each) with `M v = q + H r`, `u = H^T v + b` and Coulomb's law
+// between u and r at each contact (Siconos' `gfc3d_driver`). M (`ndof x ndof`, invertible) and
+// H (`ndof x 3 n_contacts`) are in compressed rows: `m_row_ptr` (`ndof + 1` entries),
+// `m_col_idx` and `m_values` (`m_nnz` each, 0-based; unsorted columns and duplicates are
+// accepted), and the same for H. `q` has `ndof` entries, `b` `3 n_contacts`, `mu` `n_contacts`.
+// `r` holds the initial reaction and receives the result, `u` and `v` receive theirs (v solves
+// `M v = q + H r` to round-off). `settings` may be NULL (600, NSGS on the reduced problem, with
+// Siconos' defaults) or of a global id 600-615. M and H are never modified. Returns the
+// result's `info` (0..3) or a negative `FC3D_ERR_*` code; `result->error` is Siconos' global
+// error of the returned `(r, u, v)`.
+int fc3d_solve_global_csr(int64_t ndof,
+                          int64_t n_contacts,
+                          int64_t m_nnz,
+                          const int64_t *m_row_ptr,
+                          const int64_t *m_col_idx,
+                          const double *m_values,
+                          int64_t h_nnz,
+                          const int64_t *h_row_ptr,
+                          const int64_t *h_col_idx,
+                          const double *h_values,
+                          const double *q,
+                          const double *b,
+                          const double *mu,
+                          double *r,
+                          double *u,
+                          double *v,
+                          const struct Fc3dSettings *settings,
+                          struct Fc3dResult *result);
+
+// As `fc3d_solve_global_csr` with M and H as triplets: `(m_rows[k], m_cols[k], m_values[k])`
+// for `k < m_nnz`, the same for H (0-based, any order, duplicates summed).
+int fc3d_solve_global_coo(int64_t ndof,
+                          int64_t n_contacts,
+                          int64_t m_nnz,
+                          const int64_t *m_rows,
+                          const int64_t *m_cols,
+                          const double *m_values,
+                          int64_t h_nnz,
+                          const int64_t *h_rows,
+                          const int64_t *h_cols,
+                          const double *h_values,
+                          const double *q,
+                          const double *b,
+                          const double *mu,
+                          double *r,
+                          double *u,
+                          double *v,
+                          const struct Fc3dSettings *settings,
+                          struct Fc3dResult *result);
+
+// As `fc3d_solve_global_csr` with M block diagonal, given as `n_blocks` dense blocks of
+// `block_size x block_size` (column-major, one after the other: `n_blocks * block_size^2`
+// values; `ndof = n_blocks * block_size`), as a rigid-body host stores its masses (6 a body);
+// H in compressed rows as there.
+int fc3d_solve_global_blocks(int64_t n_blocks,
+                             int64_t block_size,
+                             const double *m_blocks,
+                             int64_t n_contacts,
+                             int64_t h_nnz,
+                             const int64_t *h_row_ptr,
+                             const int64_t *h_col_idx,
+                             const double *h_values,
+                             const double *q,
+                             const double *b,
+                             const double *mu,
+                             double *r,
+                             double *u,
+                             double *v,
+                             const struct Fc3dSettings *settings,
+                             struct Fc3dResult *result);
+
 // Reads a Siconos `.dat` problem (or FCLIB `.hdf5` when fc3d is built with FCLIB); NULL on
 // failure. Release with `fc3d_problem_free`.
 struct Fc3dProblem *fc3d_problem_read(const char *path);
@@ -247,8 +321,9 @@ int fc3d_problem_solve(const struct Fc3dProblem *problem,
                        const struct Fc3dSettings *settings,
                        struct Fc3dResult *result);
 
-// The number of solvers `fc3d_settings_new` accepts: every top-level 3D solver of the native
-// entry, AUTO included (list them with `fc3d_solver_at`).
+// The number of solvers `fc3d_settings_new` accepts for the local solves: every top-level 3D
+// solver of the native entry, AUTO included (list them with `fc3d_solver_at`; the global ids
+// 600-615 are not listed).
 int fc3d_solver_count(void);
 
 // The solver at `index` (0 <= index < `fc3d_solver_count()`, in increasing id order): returns

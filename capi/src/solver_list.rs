@@ -1,6 +1,8 @@
 //! The solvers of the native entry, listed for bindings that name them: every id
-//! `fc3d_settings_new` accepts, with the constant that names it in the C headers and Siconos'
-//! name string. Python builds `fc3d.SOLVERS` from this list at import, and a test checks the
+//! `fc3d_settings_new` accepts for the local solves (`fc3d_solve_*`), with the constant that
+//! names it in the C headers and Siconos' name string. (The global ids 600-615 and 5000 it also
+//! accepts, for `fc3d_solve_global_*`, are not listed: the bindings name them apart,
+//! `fc3d.GLOBAL_SOLVERS` and `FC3D_GFC3D_*`.) Python builds `fc3d.SOLVERS` from this list at import, and a test checks the
 //! Fortran module's constants against it, so neither binding keeps a list of its own that could
 //! drift from the library.
 
@@ -66,8 +68,9 @@ fn accepted_by_native_entry(id: c_int) -> bool {
     }
 }
 
-/// The number of solvers `fc3d_settings_new` accepts: every top-level 3D solver of the native
-/// entry, AUTO included (list them with `fc3d_solver_at`).
+/// The number of solvers `fc3d_settings_new` accepts for the local solves: every top-level 3D
+/// solver of the native entry, AUTO included (list them with `fc3d_solver_at`; the global ids
+/// 600-615 are not listed).
 #[no_mangle]
 pub extern "C" fn fc3d_solver_count() -> c_int {
     ffi_guard(
@@ -136,8 +139,11 @@ mod tests {
     fn the_list_is_what_fc3d_settings_new_accepts() {
         let listed = listed();
         let ids: Vec<c_int> = listed.iter().map(|s| s.0).collect();
-        // Every id 0..6000 that the native entry accepts is listed, and only those.
+        // Every id 0..6000 that the native entry accepts for a local solve is listed, and only
+        // those: the global ids it accepts are for the global solves.
+        let global = |id: c_int| (600..=615).contains(&id) || id == 5000;
         let accepted: Vec<c_int> = (0..6000)
+            .filter(|&id| !global(id))
             .filter(|&id| {
                 let s = crate::native::settings::fc3d_settings_new(id);
                 unsafe { crate::native::settings::fc3d_settings_free(s) };

@@ -1,10 +1,12 @@
 //! `fc3d convert IN OUT`: rewrites a problem file in the format OUT's extension names, `.dat`
-//! (Siconos' text format) or `.hdf5` / `.h5` (FCLIB, local problem). IN is read as `fc3d solve`
-//! reads it: `.hdf5` / `.h5` as FCLIB (a global problem is reduced to the local form), anything
-//! else as `.dat`.
+//! (Siconos' text format) or `.hdf5` / `.h5` (FCLIB). IN is read as `fc3d solve` reads it:
+//! `.hdf5` / `.h5` as FCLIB, anything else as `.dat`; a global problem (M, H, q, b, mu: the
+//! global `.dat` format, or `/fclib_global`) stays global (`/fclib_global` in FCLIB, M and H as
+//! stored in IN for `.dat`, triplets when IN had no storage to keep), or with `--reduce` is
+//! written as its reduction FC(H^T M^-1 H, H^T M^-1 q + b, mu).
 //!
-//! The conversion is lossless: W keeps its storage and every value its bits, in both directions
-//! (`.dat` -> `.hdf5` -> `.dat` gives back the same text). FCLIB's info strings are taken from
+//! The conversion is lossless: W (M, H) keeps its storage and every value its bits, in both
+//! directions (`.dat` -> `.hdf5` -> `.dat` gives back the same text). FCLIB's info strings are taken from
 //! IN when it is an FCLIB file, else the title is IN's file name; `--title`, `--description` and
 //! `--math-info` replace them. FCLIB needs fc3d built with the `fclib` feature: without it,
 //! converting from or to `.hdf5` fails with a message saying so.
@@ -15,8 +17,13 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use crate::inputs::AnyProblem;
 use clap::Args;
-use fc3d_core::io::{has_fclib_extension, read_fclib_info, write_problem_file, FclibInfo};
+use fc3d_core::io::dat::write_global_dat_file;
+use fc3d_core::io::{
+    has_fclib_extension, read_fclib_info, write_fclib_global_file, write_problem_file, FclibInfo,
+};
+use fc3d_core::problem::GlobalProblem;
 use fc3d_core::{Fc3dError, FrictionProblem};
 
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -37,19 +44,37 @@ pub struct ConvertArgs {
     /// FCLIB mathematical information (default: IN's, or none).
     #[arg(long, value_name = "TEXT")]
     pub math_info: Option<String>,
+    /// Write a global problem's reduction (the local problem W = H^T M^-1 H, q = H^T M^-1 q + b)
+    /// instead of the global problem.
+    #[arg(long)]
+    pub reduce: bool,
 }
 
 pub fn run(args: &ConvertArgs) -> ExitCode {
     match convert(args) {
         Ok((problem, info)) => {
+            let what = match &problem {
+                AnyProblem::Local(p) => format!(
+                    "W {} {}x{}",
+                    p.w().storage_name(),
+                    p.w().nrows(),
+                    p.w().ncols()
+                ),
+                AnyProblem::Global(p, _) => format!(
+                    "global, M {}x{} ({} entries), H {}x{} ({} entries)",
+                    p.m().nrows(),
+                    p.m().ncols(),
+                    p.m().nnz(),
+                    p.h().nrows(),
+                    p.h().ncols(),
+                    p.h().nnz()
+                ),
+            };
             println!(
-                "{} -> {}: {} contacts, W {} {}x{}{}",
+                "{} -> {}: {} contacts, {what}{}",
                 args.input.display(),
                 args.output.display(),
                 problem.n_contacts(),
-                problem.w().storage_name(),
-                problem.w().nrows(),
-                problem.w().ncols(),
                 match (&info.title, has_fclib_extension(&args.output)) {
                     (Some(title), true) => format!(", title \"{title}\""),
                     _ => String::new(),
@@ -64,17 +89,32 @@ pub fn run(args: &ConvertArgs) -> ExitCode {
     }
 }
 
-/// Reads IN, writes OUT; returns the problem and the info written.
-fn convert(args: &ConvertArgs) -> Result<(FrictionProblem<'static>, FclibInfo), Fc3dError> {
+/// Reads IN, writes OUT; returns the problem written and the info written.
+fn convert(args: &ConvertArgs) -> Result<(AnyProblem, FclibInfo), Fc3dError> {
     check_output_name(&args.output)?;
-    let problem = crate::inputs::read_problem(&args.input)?;
+    let problem = match crate::inputs::read_any_problem(&args.input, true)? {
+        AnyProblem::Global(p, _) if args.reduce => AnyProblem::Local(reduction(&p)?),
+        p => p,
+    };
     let info = if has_fclib_extension(&args.output) {
         info_for(args)?
     } else {
         FclibInfo::default()
     };
-    write_problem_file(&problem, &args.output, &info)?;
+    match &problem {
+        AnyProblem::Local(p) => write_problem_file(p, &args.output, &info)?,
+        AnyProblem::Global(p, _) if has_fclib_extension(&args.output) => {
+            write_fclib_global_file(p, &args.output, &info)?
+        }
+        AnyProblem::Global(p, storage) => write_global_dat_file(p, storage, &args.output)?,
+    }
     Ok((problem, info))
+}
+
+/// The local problem of a global one (M factored, W assembled block-sparse).
+fn reduction(problem: &GlobalProblem<'_>) -> Result<FrictionProblem<'static>, Fc3dError> {
+    let mut operator = problem.operator()?;
+    problem.reduce(&mut operator)
 }
 
 /// OUT must name a format (checked before IN is read).

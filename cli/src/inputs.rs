@@ -1,10 +1,30 @@
 //! The problems a command reads: the built-in scenes, generated scenes
 //! (`gen:contacts=N,piles=P,seed=S[,shape=boxes]`), `.dat` and FCLIB files, and folders of them.
-//! `fc3d solve` and `fc3d bench` take the same inputs.
+//! `fc3d solve` and `fc3d bench` take the same inputs. A file named on the command line may hold
+//! a global problem (M, H, q, b, mu: Siconos' global `.dat` format or FCLIB `/fclib_global`):
+//! it is recognised by its content and solved as one.
 
 use std::path::{Path, PathBuf};
 
+use fc3d_core::io::dat::{read_global_dat_file, GlobalDat, GlobalDatProblem, GlobalStorage};
+use fc3d_core::problem::GlobalProblem;
 use fc3d_core::{Fc3dError, FrictionProblem};
+
+/// A problem in the local (Delassus) form or in the global one.
+pub(crate) enum AnyProblem {
+    Local(FrictionProblem<'static>),
+    /// With the storages its file gave M and H (sparse for FCLIB and generated scenes).
+    Global(Box<GlobalProblem<'static>>, GlobalStorage),
+}
+
+impl AnyProblem {
+    pub(crate) fn n_contacts(&self) -> usize {
+        match self {
+            AnyProblem::Local(p) => p.n_contacts(),
+            AnyProblem::Global(p, _) => p.n_contacts(),
+        }
+    }
+}
 
 /// One problem to solve: a built-in scene, a generated one
 /// (`gen:contacts=N,piles=P,seed=S[,shape=boxes]`) or a file.
@@ -16,7 +36,7 @@ pub(crate) enum Input {
 
 /// What reading one input gave.
 pub(crate) enum Loaded {
-    Problem(String, FrictionProblem<'static>),
+    Problem(String, AnyProblem),
     /// Found by a folder scan but not a problem fc3d handles (a note was printed).
     Skipped,
     /// Could not be read (a message naming it was printed).
@@ -26,9 +46,9 @@ pub(crate) enum Loaded {
 /// Reads one input; messages go to stderr.
 pub(crate) fn load_input(input: Input) -> Loaded {
     match input {
-        Input::Scene(s) => Loaded::Problem(s.name.to_string(), s.problem),
+        Input::Scene(s) => Loaded::Problem(s.name.to_string(), AnyProblem::Local(s.problem)),
         Input::Generated(spec) => match spec.generate() {
-            Ok(p) => Loaded::Problem(spec.name(), p),
+            Ok(p) => Loaded::Problem(spec.name(), AnyProblem::Local(p)),
             Err(e) => {
                 eprintln!("fc3d: {e}");
                 Loaded::Failed
@@ -37,7 +57,7 @@ pub(crate) fn load_input(input: Input) -> Loaded {
         Input::File {
             path,
             from_directory,
-        } => match read_problem(&path) {
+        } => match read_any_problem(&path, !from_directory) {
             Ok(p) => Loaded::Problem(display_name(&path), p),
             // The reader's messages name the file.
             Err(Fc3dError::Unsupported(why)) if from_directory => {
@@ -104,6 +124,58 @@ pub(crate) fn expand_paths(paths: &[PathBuf]) -> (Vec<Input>, Vec<String>) {
     (inputs, errors)
 }
 
+/// Reads a problem file, local or global: with `detect_global`, a global problem (Siconos'
+/// global `.dat` format, or an FCLIB file with `/fclib_global`) is read as one; otherwise, and
+/// when the file is not a global problem, as [`read_problem`] does.
+///
+/// A global `.dat` file is recognised by reading it as one (its text may also parse as a wrong
+/// local problem, so the global reader goes first); when that fails the local reader's answer
+/// is returned, except for a file Siconos' way names global (`GFC3D_*`, `gfc2d_*`), whose global
+/// reader's error is the one that explains it.
+pub(crate) fn read_any_problem(path: &Path, detect_global: bool) -> Result<AnyProblem, Fc3dError> {
+    if !detect_global {
+        return read_problem(path).map(AnyProblem::Local);
+    }
+    let global = if is_fclib(path) {
+        fc3d_core::io::read_fclib_global_file(path)
+            .map(|p| AnyProblem::Global(Box::new(p), sparse_storage()))
+    } else {
+        match read_global_dat_file(path) {
+            Ok(GlobalDat {
+                problem: GlobalDatProblem::Spatial(p),
+                storage,
+            }) => Ok(AnyProblem::Global(Box::new(p), storage)),
+            Ok(_) => {
+                return Err(Fc3dError::Unsupported(format!(
+                    "{}: a global problem of dimension 2 (gfc2d): fc3d solves dimension 3",
+                    path.display()
+                )))
+            }
+            Err(e) => Err(e),
+        }
+    };
+    match global {
+        Ok(p) => Ok(p),
+        Err(e) if is_global_name(path) => Err(e),
+        Err(_) => read_problem(path).map(AnyProblem::Local),
+    }
+}
+
+/// M and H as triplets (Siconos' `NM_SPARSE`): the storage of a global problem that came
+/// without one.
+pub(crate) fn sparse_storage() -> GlobalStorage {
+    GlobalStorage::default()
+}
+
+/// Siconos names global problem files `GFC3D_*` / `gfc3d_*` (`gfc2d_*` in 4.5).
+fn is_global_name(path: &Path) -> bool {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    name.starts_with("gfc3d_") || name.starts_with("gfc2d_")
+}
+
 /// `.hdf5`/`.h5` files are FCLIB problems (read when built with the `fclib` feature, refused
 /// with a clear message otherwise); any other path is read as a Siconos `.dat` file.
 pub(crate) fn read_problem(path: &Path) -> Result<FrictionProblem<'static>, Fc3dError> {
@@ -127,14 +199,11 @@ fn dat_files_in(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
             continue;
         }
         // Siconos names global problems (M, H, q, b, mu) GFC3D_/gfc3d_/gfc2d_: their text
-        // happens to parse as a (wrong) local problem, so a folder scan leaves them out.
-        let name = path
-            .file_name()
-            .map(|n| n.to_string_lossy().to_lowercase())
-            .unwrap_or_default();
-        if name.starts_with("gfc3d_") || name.starts_with("gfc2d_") {
+        // happens to parse as a (wrong) local problem, so a folder scan (which compares local
+        // solvers) leaves them out; named one by one, they are solved as global problems.
+        if is_global_name(&path) {
             eprintln!(
-                "fc3d: skipping {}: a global (M, H) problem, not an fc3d input",
+                "fc3d: skipping {}: a global (M, H) problem (name it to solve it)",
                 path.display()
             );
             continue;
@@ -160,14 +229,14 @@ mod tests {
         assert_eq!((inputs.len(), errors.len()), (2, 2), "{errors:?}");
         let mut loaded = inputs.into_iter().map(load_input);
         match loaded.next().unwrap() {
-            Loaded::Problem(name, p) => {
+            Loaded::Problem(name, AnyProblem::Local(p)) => {
                 assert_eq!(name, "piles-c10-p2-s1");
                 assert_eq!(p.n_contacts(), 10);
             }
             _ => panic!("a generated scene loads"),
         }
         match loaded.next().unwrap() {
-            Loaded::Problem(name, p) => {
+            Loaded::Problem(name, AnyProblem::Local(p)) => {
                 assert_eq!(name, "boxes-c30-p1-s1");
                 assert_eq!(p.n_contacts(), 30);
             }

@@ -8,7 +8,11 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use fc3d_core::io::{read_fclib_info, read_problem_file, write_dat, FclibInfo, FCLIB_AVAILABLE};
+use fc3d_core::io::dat::{read_global_dat_file, GlobalDatProblem};
+use fc3d_core::io::{
+    read_fclib_global_file, read_fclib_info, read_problem_file, write_dat, FclibInfo,
+    FCLIB_AVAILABLE,
+};
 
 const DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data/siconos");
 
@@ -142,11 +146,24 @@ fn fclib_to_fclib_keeps_the_info_unless_flags_replace_it() {
         read_problem_file(&out_file).unwrap(),
         read_problem_file(&input).unwrap()
     );
-    // A global problem is converted as its reduction.
+    // A global problem stays global, or with --reduce is converted as its reduction.
     let global = dir.join("boxes.dat");
     succeeds(&convert(&data("Box_Stacks-i0122-82-5.hdf5"), &global, &[]));
+    match read_global_dat_file(&global).unwrap().problem {
+        GlobalDatProblem::Spatial(p) => assert_eq!(
+            p,
+            read_fclib_global_file(&data("Box_Stacks-i0122-82-5.hdf5")).unwrap()
+        ),
+        other => panic!("a 3D global problem, not {other:?}"),
+    }
+    let reduced = dir.join("boxes-reduced.dat");
+    succeeds(&convert(
+        &data("Box_Stacks-i0122-82-5.hdf5"),
+        &reduced,
+        &["--reduce"],
+    ));
     assert_eq!(
-        read_problem_file(&global).unwrap(),
+        read_problem_file(&reduced).unwrap(),
         read_problem_file(&data("Box_Stacks-i0122-82-5.hdf5")).unwrap()
     );
     let _ = std::fs::remove_dir_all(&dir);

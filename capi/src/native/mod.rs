@@ -5,8 +5,8 @@
 //!
 //! Ownership: `fc3d_settings_new` and `fc3d_problem_read` return handles the caller releases with
 //! `fc3d_settings_free` / `fc3d_problem_free`; every array is the caller's, read or written in
-//! place. Sizes and indices are `int64_t`; W's entries are copied into fc3d's storage. On a
-//! negative return nothing is written (r, u, result and the settings stay as they were).
+//! place. Sizes and indices are `int64_t`; W's (M's, H's) entries are copied into fc3d's storage.
+//! On a negative return nothing is written (r, u, v, result and the settings stay as they were).
 
 // cbindgen reads a module's own items, then its submodules in the order declared here: the order
 // of include/fc3d.h and fc3d_native.h (settings, then solves, then problems read from files).
@@ -14,6 +14,8 @@
 pub(crate) mod settings;
 
 mod solve;
+
+mod global;
 
 mod problem;
 
@@ -46,7 +48,8 @@ pub struct Fc3dResult {
     pub info: c_int,
     /// Iterations (sweeps, Newton steps, ...) done.
     pub iterations: i64,
-    /// The natural-map error of the returned `(r, u)`.
+    /// The error of the returned solution: the natural-map error of `(r, u)` for the local
+    /// solves, Siconos' global error (`gfc3d_compute_error`) of `(r, u, v)` for the global ones.
     pub error: c_double,
     /// Wall-clock time of the solve, seconds.
     pub seconds: c_double,

@@ -8,14 +8,16 @@ use super::Fc3dSettings;
 use crate::alloc::{c_calloc, c_free};
 use crate::option_tree::delete_contents;
 use crate::options::create_options;
+use crate::params::global::{global_config_from_c, global_rolling_config_from_c};
 use crate::params::{config_from_c, OPTIONS_PARAM_SIZE};
 use crate::types::SolverOptions;
 use crate::{ffi_guard, CError, CResult, FC3D_ERR_INVALID_OPTION};
 use fc3d_core::LocalSolverKind;
 
-/// Settings of solver `solver_id` (a Siconos id such as 500 NSGS, 504 NSN_AC, 502 PROX) with
-/// its defaults; NULL for an id fc3d does not implement (the reason in
-/// `fc3d_last_error_message`). Release with `fc3d_settings_free`.
+/// Settings of solver `solver_id` (a Siconos id such as 500 NSGS, 504 NSN_AC, 502 PROX, or a
+/// global id 600-615 for `fc3d_solve_global_*`, 5000 for the global rolling solver) with its
+/// defaults; NULL for an id fc3d does not implement (the reason in `fc3d_last_error_message`).
+/// Release with `fc3d_settings_free`.
 #[no_mangle]
 pub extern "C" fn fc3d_settings_new(solver_id: c_int) -> *mut Fc3dSettings {
     ffi_guard(
@@ -24,13 +26,33 @@ pub extern "C" fn fc3d_settings_new(solver_id: c_int) -> *mut Fc3dSettings {
         || {
             let options = create_options(solver_id)?;
             // Reject ids fc3d only names (their defaults exist for Siconos' API).
-            if let Err(e) = unsafe { config_from_c(&*options) } {
+            if let Err(e) = unsafe { check_settings(&*options) } {
                 unsafe { release_options(options) };
                 return Err(e);
             }
             Ok(Box::into_raw(Box::new(Fc3dSettings { options })))
         },
     )
+}
+
+/// Whether fc3d runs the options as they are: a global id (600-615) as `gfc3d_driver` reads it,
+/// 5000 as `g_rolling_fc3d_driver`, any other as `fc3d_driver`.
+unsafe fn check_settings(o: &SolverOptions) -> CResult<()> {
+    if is_global_id(o.solverId) {
+        global_config_from_c(o).map(drop)
+    } else if o.solverId == GLOBAL_ROLLING_ID {
+        global_rolling_config_from_c(o).map(drop)
+    } else {
+        config_from_c(o).map(drop)
+    }
+}
+
+/// Siconos' global rolling id (`g_rolling_fc3d_driver`).
+const GLOBAL_ROLLING_ID: c_int = 5000;
+
+/// The ids `gfc3d_driver` dispatches (600-615).
+pub(super) fn is_global_id(id: c_int) -> bool {
+    (600..=615).contains(&id)
 }
 
 pub(super) unsafe fn release_options(options: *mut SolverOptions) {
@@ -235,7 +257,7 @@ unsafe fn set_internal_solver(settings: *mut Fc3dSettings, id: c_int) -> CResult
     let slot = o.internalSolvers.add(index);
     let previous = *slot;
     *slot = fresh;
-    if let Err(e) = config_from_c(o) {
+    if let Err(e) = check_settings(o) {
         *slot = previous;
         release_options(fresh);
         return Err(internal_solver_refused(o, id, e));
@@ -270,7 +292,7 @@ unsafe fn set_pfp_single_internal_solver(
     let (pair, count) = (o.internalSolvers, o.numberOfInternalSolvers);
     o.internalSolvers = single;
     o.numberOfInternalSolvers = 1;
-    if let Err(e) = config_from_c(o) {
+    if let Err(e) = check_settings(o) {
         o.internalSolvers = pair;
         o.numberOfInternalSolvers = count;
         c_free(single);

@@ -15,13 +15,13 @@ use fc3d_core::{
     solve, BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix, FrictionProblem, SolverConfig,
 };
 
-fn count(v: i64, what: &str) -> CResult<usize> {
+pub(super) fn count(v: i64, what: &str) -> CResult<usize> {
     usize::try_from(v)
         .map_err(|_| CError::new(FC3D_ERR_INVALID_SIZE, format!("{what} = {v} is negative")))
 }
 
 /// `3 n_contacts`, checked.
-fn size_of(n_contacts: i64) -> CResult<(usize, usize)> {
+pub(super) fn size_of(n_contacts: i64) -> CResult<(usize, usize)> {
     let nc = count(n_contacts, "n_contacts")?;
     let n = nc.checked_mul(3).ok_or_else(|| {
         CError::new(
@@ -32,7 +32,7 @@ fn size_of(n_contacts: i64) -> CResult<(usize, usize)> {
     Ok((nc, n))
 }
 
-fn indices(v: &[i64], what: &str) -> CResult<Vec<usize>> {
+pub(super) fn indices(v: &[i64], what: &str) -> CResult<Vec<usize>> {
     let mut out = try_vec(v.len(), 0, what)?;
     for (o, &x) in out.iter_mut().zip(v) {
         *o = count(x, what)?;

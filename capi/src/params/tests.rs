@@ -279,3 +279,23 @@ fn nsgs_decomposition_and_threads_slots() {
         crate::alloc::c_free(o);
     }
 }
+
+/// The global ids' defaults read back are the core's presets of those ids (what the CLI and the
+/// native entry's NULL settings run): one set of Siconos defaults, not two.
+#[test]
+fn global_defaults_read_back_are_the_core_presets() {
+    use fc3d_core::global::GlobalMethod;
+    for preset in GlobalMethod::presets() {
+        let id = preset.siconos_id();
+        let o = create_options(id).unwrap();
+        let read = unsafe { global::global_config_from_c(&*o) };
+        unsafe {
+            delete_contents(o);
+            crate::alloc::c_free(o);
+        }
+        let config = read.unwrap_or_else(|e| panic!("{id}: {}", e.message));
+        assert_eq!(config.method, preset, "{id}");
+        let (tol, max_iter) = preset.default_limits();
+        assert_eq!((config.tolerance, config.max_iter), (tol, max_iter), "{id}");
+    }
+}

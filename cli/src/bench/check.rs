@@ -2,6 +2,7 @@
 //! `u = W r + q` with `Delassus::mul_add`, then the relative natural-map error (eq. 133 of
 //! Acary-Brémond-Huber with Siconos' normalisation) from a projection written here.
 
+use fc3d_core::problem::GlobalProblem;
 use fc3d_core::FrictionProblem;
 
 /// Projection on the Coulomb cone `{ x : ||x_T|| <= mu x_N }` (components `N, T1, T2`).
@@ -39,6 +40,52 @@ pub fn independent_error(problem: &FrictionProblem<'_>, r: &[f64]) -> f64 {
     }
     let scale = norm(problem.q()).max(norm(r)).max(norm(&u));
     sum.sqrt() / if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// `y += A x` (`transpose`: `y += A^T x`) from A's compressed rows, written here.
+fn csr_mul_add(a: &fc3d_core::CsrMatrix, x: &[f64], y: &mut [f64], transpose: bool) {
+    let (ptr, idx, val) = (a.row_ptr(), a.col_idx(), a.values());
+    for i in 0..a.nrows() {
+        for k in ptr[i]..ptr[i + 1] {
+            if transpose {
+                y[idx[k]] += val[k] * x[i];
+            } else {
+                y[i] += val[k] * x[idx[k]];
+            }
+        }
+    }
+}
+
+/// `x / scale`, or x itself when the scale is (about) zero, as Siconos normalises.
+fn relative(x: f64, scale: f64) -> f64 {
+    if scale > f64::EPSILON {
+        x / scale
+    } else {
+        x
+    }
+}
+
+/// Siconos' global error (`gfc3d_compute_error`) of `(r, v)`, recomputed here:
+/// `||q + H r - M v|| / max(||q||, ||M v||, ||H r||)` plus the natural-map residual of
+/// `(r, u)`, `u = H^T v + b`, over `max(||u||, ||r||)`.
+pub fn independent_global_error(problem: &GlobalProblem<'_>, r: &[f64], v: &[f64]) -> f64 {
+    let n = problem.ndof();
+    let (mut hr, mut mv) = (vec![0.0; n], vec![0.0; n]);
+    csr_mul_add(problem.h(), r, &mut hr, false);
+    csr_mul_add(problem.m(), v, &mut mv, false);
+    let balance: Vec<f64> = (0..n).map(|i| problem.q()[i] + hr[i] - mv[i]).collect();
+    let balance_scale = norm(problem.q()).max(norm(&mv)).max(norm(&hr));
+    let mut u = problem.b().to_vec();
+    csr_mul_add(problem.h(), v, &mut u, true);
+    let mut sum = 0.0;
+    for (c, &mu) in problem.mu().iter().enumerate() {
+        let (rc, uc) = (&r[3 * c..3 * c + 3], &u[3 * c..3 * c + 3]);
+        let ut = (uc[1] * uc[1] + uc[2] * uc[2]).sqrt();
+        let x = [rc[0] - (uc[0] + mu * ut), rc[1] - uc[1], rc[2] - uc[2]];
+        let p = project_cone(x, mu);
+        sum += (0..3).map(|k| (rc[k] - p[k]).powi(2)).sum::<f64>();
+    }
+    relative(norm(&balance), balance_scale) + relative(sum.sqrt(), norm(&u).max(norm(r)))
 }
 
 /// Whether two measurements of the same error agree "within rounding": relative difference at

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use fc3d_core::FrictionProblem;
+use crate::inputs::AnyProblem;
 
 /// Problem family: the file name's prefix before the first digit or dash, without trailing
 /// `_`/`.` (`Rover1039.dat` → `Rover`, `Capsules-i100-889.dat` → `Capsules`,
@@ -24,7 +24,7 @@ pub fn family_of(file_name: &str) -> String {
 pub(super) struct Problem {
     pub(super) name: String,
     pub(super) family: String,
-    pub(super) problem: FrictionProblem<'static>,
+    pub(super) problem: AnyProblem,
 }
 
 /// Loads the inputs with the CLI's rules (folder scan, skips); errors go to stderr.
@@ -35,7 +35,7 @@ pub(super) fn load_problems(paths: &[PathBuf], failed: &mut bool) -> Vec<Problem
             .map(|s| Problem {
                 name: s.name.to_string(),
                 family: s.name.to_string(),
-                problem: s.problem,
+                problem: AnyProblem::Local(s.problem),
             })
             .collect();
     }

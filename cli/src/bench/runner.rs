@@ -5,7 +5,8 @@ use std::io::{IsTerminal, Write};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-use fc3d_core::{solve, FrictionProblem, SolveReport, SolveStatus};
+use fc3d_core::global::solve_global;
+use fc3d_core::{solve, SolveStatus};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::args::BenchArgs;
@@ -18,28 +19,57 @@ use super::problems::{load_problems, Problem};
 use super::spec::{self, SolverSpec};
 use super::stats::median;
 use super::summary::{budget_summary, tolerance_summary};
+use crate::inputs::AnyProblem;
 
 /// One repetition: solve from r = 0, time the solve call alone, then measure the error here.
 struct Rep {
     time: Duration,
-    report: SolveReport,
+    status: SolveStatus,
+    iterations: usize,
+    reported_error: f64,
     error: f64,
 }
 
-fn run_once(
-    problem: &FrictionProblem<'_>,
-    config: &fc3d_core::SolverConfig,
-) -> Result<Rep, fc3d_core::Fc3dError> {
-    let n = problem.size();
-    let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
-    let start = Instant::now();
-    let report = solve(problem, config, &mut r, &mut u)?;
-    let time = start.elapsed();
-    Ok(Rep {
-        time,
-        report,
-        error: check::independent_error(problem, &r),
-    })
+/// The limits of one run: tolerance, time budget, iteration limit.
+type Level = (f64, Duration, usize);
+
+/// One run of `spec` on a local problem, or on a global one (the global solver, or the
+/// reduction with the local solver; set-up and factorization of M included in the time).
+fn run_once(problem: &AnyProblem, spec: &SolverSpec, level: Level) -> Result<Rep, String> {
+    let (tol, budget, max_iter) = level;
+    match problem {
+        AnyProblem::Local(problem) => {
+            let config = spec::solver_config(spec, tol, max_iter, Some(budget))?;
+            let n = problem.size();
+            let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+            let start = Instant::now();
+            let report = solve(problem, &config, &mut r, &mut u).map_err(|e| e.to_string())?;
+            let time = start.elapsed();
+            Ok(Rep {
+                time,
+                status: report.status,
+                iterations: report.iterations,
+                reported_error: report.error,
+                error: check::independent_error(problem, &r),
+            })
+        }
+        AnyProblem::Global(problem, _) => {
+            let config = spec::global_solver_config(spec, tol, max_iter, Some(budget));
+            let (n, ndof) = (problem.size(), problem.ndof());
+            let (mut r, mut u, mut v) = (vec![0.0; n], vec![0.0; n], vec![0.0; ndof]);
+            let start = Instant::now();
+            let report = solve_global(problem, &config, &mut r, &mut u, &mut v)
+                .map_err(|e| e.to_string())?;
+            let time = start.elapsed();
+            Ok(Rep {
+                time,
+                status: report.status,
+                iterations: report.iterations,
+                reported_error: report.error,
+                error: check::independent_global_error(problem, &r, &v),
+            })
+        }
+    }
 }
 
 fn status_name(s: SolveStatus) -> &'static str {
@@ -81,9 +111,9 @@ pub fn run(args: &BenchArgs) -> ExitCode {
     for (k, p) in problems.iter().enumerate() {
         progress.set_message(format!("{} ({} contacts)", p.name, p.problem.n_contacts()));
         for spec in specs {
-            for &(tol, budget, max_iter) in &levels {
-                let config = spec::solver_config(spec, tol, max_iter, Some(budget));
-                match run_reps(p, spec, &config, &plan, args.reps as usize) {
+            for &level in &levels {
+                let tol = level.0;
+                match run_reps(p, spec, level, &plan, args.reps as usize) {
                     Ok(record) => {
                         if !record.error_ok {
                             mismatches += 1;
@@ -235,14 +265,15 @@ pub fn run(args: &BenchArgs) -> ExitCode {
 fn run_reps(
     p: &Problem,
     spec: &SolverSpec,
-    config: &fc3d_core::SolverConfig,
+    level: Level,
     plan: &Plan,
     reps: usize,
-) -> Result<RunRecord, fc3d_core::Fc3dError> {
+) -> Result<RunRecord, String> {
+    let (tolerance, budget, max_iter) = level;
     let mut runs: Vec<Rep> = Vec::with_capacity(reps);
     for _ in 0..reps {
-        let rep = run_once(&p.problem, config)?;
-        let out_of_time = rep.report.status == SolveStatus::TimeBudgetExhausted;
+        let rep = run_once(&p.problem, spec, level)?;
+        let out_of_time = rep.status == SolveStatus::TimeBudgetExhausted;
         runs.push(rep);
         if out_of_time && matches!(plan, Plan::Tolerances { .. }) {
             break;
@@ -250,7 +281,7 @@ fn run_reps(
     }
     let error_ok = runs
         .iter()
-        .all(|r| check::errors_agree(r.error, r.report.error));
+        .all(|r| check::errors_agree(r.error, r.reported_error));
     // Rounded to the nanosecond the clock resolves, so that the CSV shows no float noise.
     let time_s = (median(runs.iter().map(|r| r.time.as_secs_f64()).collect()) * 1e9).round() / 1e9;
     match plan {
@@ -264,16 +295,14 @@ fn run_reps(
         family: p.family.clone(),
         contacts: p.problem.n_contacts(),
         solver: spec.label(),
-        tolerance: config.tolerance,
-        time_budget_s: config
-            .time_budget
-            .map_or(f64::INFINITY, |b| b.as_secs_f64()),
-        max_iter: config.max_iter,
-        status: status_name(rep.report.status),
-        info: rep.report.status.info_code(),
-        iterations: rep.report.iterations,
+        tolerance,
+        time_budget_s: budget.as_secs_f64(),
+        max_iter,
+        status: status_name(rep.status),
+        info: rep.status.info_code(),
+        iterations: rep.iterations,
         error: rep.error,
-        reported_error: rep.report.error,
+        reported_error: rep.reported_error,
         error_ok,
         time_s,
         reps: runs.len(),

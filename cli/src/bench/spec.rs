@@ -8,37 +8,66 @@
 //! * `all` — NSGS with each local solver of [`LocalSolverKind::ALL`];
 //! * `SOLVER` — a solver by Siconos id or name with its defaults: `500` or `NSGS` (= `500/565`),
 //!   `DSFP`, `VI-FPP`, `NSN-AC`, `PROX-NSGS`, `TFP`, ... ([`solvers_help`] lists them);
-//! * `NSGS/LOCAL` (or `500/LOCAL`) — NSGS with a local solver given by Siconos id or name.
+//! * `NSGS/LOCAL` (or `500/LOCAL`) — NSGS with a local solver given by Siconos id or name;
+//! * a global id (600-615 but 601, 608, 609) or name (`GFC3D_NSGS`, `NSGS_WR`, `NSN_AC`, `IPM`,
+//!   ...; a name the local families also use means the local one: `GFC3D_ADMM` is 613, `ADMM`
+//!   523) — a global solver with Siconos' defaults, for global problems. A local solver given for
+//!   a global problem solves its reduction (`NSGS` there is 600, `AUTO` the reduction with AUTO).
 
 use std::time::Duration;
 
+use fc3d_core::global::{GlobalConfig, GlobalMethod};
 use fc3d_core::{LocalSolverKind, Method, NsgsOptions, SolverConfig};
 
-/// One solver to benchmark: a family with its defaults and, for NSGS, its local solver.
+/// One solver to benchmark: a local family with its defaults (for NSGS, its local solver), or a
+/// global solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverSpec {
-    pub method: Method,
+pub enum SolverSpec {
+    Local(Method),
+    Global(GlobalMethod),
 }
 
 impl SolverSpec {
     /// NSGS with the local solver `local`.
     pub fn nsgs(local: LocalSolverKind) -> Self {
-        SolverSpec {
-            method: Method::Nsgs(NsgsOptions::with_local(local)),
-        }
+        SolverSpec::Local(Method::Nsgs(NsgsOptions::with_local(local)))
     }
 
     /// The local solver, for NSGS.
     pub fn local(&self) -> Option<LocalSolverKind> {
-        match self.method {
-            Method::Nsgs(o) => Some(o.local.kind),
+        match self {
+            SolverSpec::Local(Method::Nsgs(o)) => Some(o.local.kind),
             _ => None,
         }
     }
 
-    /// The label of the CSV and the tables, e.g. `NSGS/552` (the CLI's `SolverConfig::label`).
+    /// The label of the CSV and the tables, e.g. `NSGS/552` (the CLI's `SolverConfig::label`),
+    /// `GFC3D-NSGS` (605), `WR-NSGS/565` (600).
     pub fn label(&self) -> String {
-        self.method.label()
+        match self {
+            SolverSpec::Local(m) => m.label(),
+            SolverSpec::Global(g) => g.label(),
+        }
+    }
+
+    /// The method on a local problem; a global solver has none.
+    pub fn local_method(&self) -> Result<Method, String> {
+        match self {
+            SolverSpec::Local(m) => Ok(*m),
+            SolverSpec::Global(g) => Err(format!(
+                "{} (id {}) is a global solver: it solves global problems (M, H) only",
+                g.label(),
+                g.siconos_id()
+            )),
+        }
+    }
+
+    /// The method on a global problem: the global solver, or the reduction with the local one.
+    pub fn global_method(&self) -> GlobalMethod {
+        match self {
+            SolverSpec::Local(m) => GlobalMethod::Reduced(*m),
+            SolverSpec::Global(g) => *g,
+        }
     }
 
     /// The label with the local solver's short name, for legends: `NSGS/552 PROJ` (families
@@ -58,11 +87,25 @@ pub fn solver_config(
     tolerance: f64,
     max_iter: usize,
     time_budget: Option<Duration>,
-) -> SolverConfig {
-    SolverConfig::new(spec.method)
+) -> Result<SolverConfig, String> {
+    Ok(SolverConfig::new(spec.local_method()?)
         .with_tolerance(tolerance)
         .with_max_iter(max_iter)
-        .with_time_budget(time_budget)
+        .with_time_budget(time_budget))
+}
+
+/// [`solver_config`] for a global problem.
+pub fn global_solver_config(
+    spec: &SolverSpec,
+    tolerance: f64,
+    max_iter: usize,
+    time_budget: Option<Duration>,
+) -> GlobalConfig {
+    let mut config = GlobalConfig::new(spec.global_method());
+    config.tolerance = tolerance;
+    config.max_iter = max_iter;
+    config.time_budget = time_budget;
+    config
 }
 
 /// Every implemented combination (what `all` stands for).
@@ -85,12 +128,18 @@ pub fn solvers_help() -> String {
         .iter()
         .map(|m| format!("{} {}", m.siconos_id(), m.name()))
         .collect();
+    let globals: Vec<String> = GlobalMethod::presets()
+        .iter()
+        .map(|m| format!("{} GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
+        .collect();
     format!(
         "Solvers, comma-separated: `all` (NSGS with every local solver), `500` or `NSGS` (NSGS \
          with its default local solver 565), `500/552`, `NSGS/SBP`, ... Local solvers by Siconos \
-         id or name: {}. Families by id or name, with their Siconos defaults: {}",
+         id or name: {}. Families by id or name, with their Siconos defaults: {}. Global solvers \
+         (for global problems; a local solver solves a global problem's reduction): {}",
         locals.join(", "),
-        families.join(", ")
+        families.join(", "),
+        globals.join(", ")
     )
 }
 
@@ -126,39 +175,76 @@ fn parse_local(s: &str) -> Result<LocalSolverKind, String> {
 /// Parses one spec (not `all`).
 pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
     let s = s.trim();
+    if let Some(global) = parse_global(s)? {
+        return Ok(SolverSpec::Global(global));
+    }
     let (solver, local) = match s.split_once('/') {
         Some((a, b)) => (a.trim(), Some(b.trim())),
         None => (s, None),
     };
-    let method = Method::preset(solver)
-        .filter(|_| !solver.is_empty())
-        .ok_or_else(|| {
-            format!(
-                "unknown solver '{solver}' in '{s}' (implemented: {}; or `all`)",
-                Method::presets()
-                    .iter()
-                    .map(|m| format!("{} = {}", m.siconos_id(), m.name()))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        })?;
+    let Some(method) = Method::preset(solver).filter(|_| !solver.is_empty()) else {
+        if let Some(global) = GlobalMethod::preset(s).filter(|_| local.is_none()) {
+            return Ok(SolverSpec::Global(global));
+        }
+        return Err(format!(
+            "unknown solver '{solver}' in '{s}' (implemented: {}; global: {}; or `all`)",
+            Method::presets()
+                .iter()
+                .map(|m| format!("{} = {}", m.siconos_id(), m.name()))
+                .collect::<Vec<_>>()
+                .join(", "),
+            GlobalMethod::presets()
+                .iter()
+                .map(|m| format!("{} = GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    };
     match (method, local) {
         // The preset's sweep options (its decomposition) with the local solver asked for.
-        (Method::Nsgs(o), local) => Ok(SolverSpec {
-            method: Method::Nsgs(NsgsOptions {
-                local: NsgsOptions::with_local(match local {
-                    Some(l) => parse_local(l)?,
-                    None => LocalSolverKind::NewtonHybrid,
-                })
-                .local,
-                ..o
-            }),
-        }),
-        (method, None) => Ok(SolverSpec { method }),
+        (Method::Nsgs(o), local) => Ok(SolverSpec::Local(Method::Nsgs(NsgsOptions {
+            local: NsgsOptions::with_local(match local {
+                Some(l) => parse_local(l)?,
+                None => LocalSolverKind::NewtonHybrid,
+            })
+            .local,
+            ..o
+        }))),
+        (method, None) => Ok(SolverSpec::Local(method)),
         (_, Some(_)) => Err(format!(
             "solver '{solver}' takes no local solver (in '{s}')"
         )),
     }
+}
+
+/// A global id (600-615, 5000) or a name with Siconos' `GFC3D` prefix: the global preset, or
+/// the reason fc3d does not run it. `None` for anything else.
+fn parse_global(s: &str) -> Result<Option<GlobalMethod>, String> {
+    let id = s.parse::<i32>().ok();
+    let global_id = id.is_some_and(|id| (600..=615).contains(&id) || id == 5000);
+    let prefixed = s.len() >= 5 && s[..5].eq_ignore_ascii_case("gfc3d");
+    if !global_id && !prefixed {
+        return Ok(None);
+    }
+    GlobalMethod::preset(s).map(Some).ok_or_else(|| match id {
+        Some(601) => "601 (GFC3D_NSGSV_WR) is not run: Siconos 4.4's exits the process on its \
+                      default options"
+            .to_string(),
+        Some(608 | 609) => {
+            format!("{s} (GAMS) is not run: GAMS is a commercial solver fc3d does not link")
+        }
+        Some(5000) => "5000 is the global rolling-friction solver (g_rolling_fc3d_driver): the \
+                       CLI solves global problems of dimension 3"
+            .to_string(),
+        _ => format!(
+            "unknown global solver '{s}' (one of {})",
+            GlobalMethod::presets()
+                .iter()
+                .map(|m| format!("{} = GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    })
 }
 
 /// Parses the `--solvers` list: comma-separated specs, `all` anywhere stands for every
@@ -283,7 +369,7 @@ mod tests {
             ("517", 517, "SOCLCP"),
         ] {
             let s = parse_spec(spec).unwrap();
-            let c = solver_config(&s, 1e-7, 12, None);
+            let c = solver_config(&s, 1e-7, 12, None).unwrap();
             assert_eq!(c.siconos_id(), id);
             assert_eq!((c.tolerance, c.max_iter), (1e-7, 12));
             assert_eq!(s.label(), label);
@@ -294,7 +380,7 @@ mod tests {
     #[test]
     fn config_and_labels() {
         let spec = nsgs(LocalSolverKind::ProjectionOnCone);
-        let c = solver_config(&spec, 1e-6, 77, Some(Duration::from_millis(5)));
+        let c = solver_config(&spec, 1e-6, 77, Some(Duration::from_millis(5))).unwrap();
         assert_eq!(c.tolerance, 1e-6);
         assert_eq!(c.max_iter, 77);
         assert_eq!(c.time_budget, Some(Duration::from_millis(5)));
@@ -318,7 +404,7 @@ mod tests {
             ("ADMM", 523, "ADMM"),
         ] {
             let spec = parse_spec(name).unwrap();
-            let c = solver_config(&spec, 1e-8, 33, None);
+            let c = solver_config(&spec, 1e-8, 33, None).unwrap();
             assert_eq!(c.siconos_id(), id);
             assert_eq!(c.tolerance, 1e-8);
             assert_eq!(c.max_iter, 33);
@@ -341,7 +427,7 @@ mod tests {
             ("PROX-NSGS", 502, "PROX/NSGS"),
         ] {
             let spec = parse_spec(text).unwrap();
-            let c = solver_config(&spec, 1e-8, 50, None);
+            let c = solver_config(&spec, 1e-8, 50, None).unwrap();
             assert_eq!(c.siconos_id(), id, "{text}");
             assert_eq!(c.tolerance, 1e-8);
             assert_eq!(c.max_iter, 50);
@@ -349,5 +435,37 @@ mod tests {
             assert_eq!(spec.legend(), label);
         }
         assert!(parse_spec("504/552").is_err());
+    }
+
+    #[test]
+    fn global_ids_and_names() {
+        for (text, id) in [
+            ("600", 600),
+            ("605", 605),
+            ("GFC3D_NSGS", 605),
+            ("gfc3d_nsgs_wr", 600),
+            ("NSGS_WR", 600),
+            ("GFC3D ADMM", 613),
+            ("gfc3d-admm", 613),
+            ("IPM", 615),
+            ("607", 607),
+            ("614", 614),
+        ] {
+            let spec = parse_spec(text).unwrap();
+            let SolverSpec::Global(g) = spec else {
+                panic!("{text} is global")
+            };
+            assert_eq!(g.siconos_id(), id, "{text}");
+            assert!(solver_config(&spec, 1e-6, 10, None).is_err());
+            let c = global_solver_config(&spec, 1e-6, 10, None);
+            assert_eq!((c.tolerance, c.max_iter), (1e-6, 10));
+        }
+        // Local names keep their local meaning; on a global problem they solve the reduction.
+        let nsgs = parse_spec("NSGS").unwrap();
+        assert_eq!(nsgs.global_method().siconos_id(), 600);
+        assert_eq!(parse_spec("ADMM").unwrap().label(), "ADMM");
+        for bad in ["601", "608", "609", "5000", "616", "GFC3D_FOO", "605/552"] {
+            assert!(parse_spec(bad).is_err(), "{bad}");
+        }
     }
 }

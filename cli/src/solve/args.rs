@@ -9,12 +9,14 @@ use clap::Args;
 use crate::bench;
 use crate::bench::spec::{parse_spec, SolverSpec};
 use crate::units::parse_tolerance;
+use fc3d_core::global::{GlobalConfig, GlobalMethod};
 use fc3d_core::{LocalSolverKind, Method, NsgsOptions, Rescaling, SolverConfig};
 
 #[derive(Args, Debug, Clone, PartialEq)]
 pub(crate) struct SolveArgs {
-    /// Siconos .dat problem files, or directories whose *.dat files are solved. None: the
-    /// built-in scenes.
+    /// Siconos .dat problem files (local or global: a global file, M and H, is recognised by its
+    /// content), FCLIB files, or directories whose *.dat files are solved. None: the built-in
+    /// scenes.
     #[arg(value_name = "FILES")]
     pub paths: Vec<PathBuf>,
     /// Tolerance on the relative natural-map error.
@@ -24,7 +26,9 @@ pub(crate) struct SolveArgs {
     #[arg(long, value_name = "N", default_value_t = 100_000)]
     pub max_iter: usize,
     /// Solver, by name or Siconos id, with its defaults (as `fc3d bench --solvers`): AUTO (590,
-    /// the default), NSGS or 500 (local solver 565), NSGS/552, VI-FPP, NSN-AC, PROX, TFP, ADMM...
+    /// the default), NSGS or 500 (local solver 565), NSGS/552, VI-FPP, NSN-AC, PROX, TFP, ADMM...;
+    /// for global problems also a global id or name (600 NSGS_WR, 605 GFC3D_NSGS, 607, 613, 615,
+    /// ...): a local solver solves a global problem's reduction (AUTO's by default).
     #[arg(long, value_name = "SOLVER", default_value = "AUTO", value_parser = parse_spec)]
     pub solver: SolverSpec,
     /// NSGS's local solver, by Siconos id (only with an NSGS solver): 550 (Alart-Curnier
@@ -95,9 +99,76 @@ fn parse_option(s: &str) -> Result<(SiconosOption, f64), String> {
     Ok((option, value))
 }
 
+/// The configuration of a global problem the flags describe, checked by the core: the global
+/// solver given, or the reduction with the local configuration of [`config_of`] (which must not
+/// rescale: the reduced problem is solved as it is, as Siconos' `_WR` ids do).
+pub(crate) fn global_config_of(args: &SolveArgs) -> Result<GlobalConfig, String> {
+    let SolverSpec::Global(method) = args.solver else {
+        let local = config_of(args)?;
+        if local.rescaling != Rescaling::None {
+            return Err(
+                "SICONOS_FRICTION_3D_IPARAM_RESCALING: the reduction of a global problem is \
+                 solved without rescaling"
+                    .to_string(),
+            );
+        }
+        let mut config = GlobalConfig::new(GlobalMethod::Reduced(local.method));
+        config.tolerance = local.tolerance;
+        config.max_iter = local.max_iter;
+        config.time_budget = local.time_budget;
+        return Ok(config);
+    };
+    if args.local.is_some() {
+        return Err(format!(
+            "--local applies to NSGS only, not to the global solver {}",
+            method.label()
+        ));
+    }
+    let mut config = GlobalConfig::new(method);
+    config.tolerance = args.tol;
+    config.max_iter = args.max_iter;
+    config.time_budget = args.budget;
+    for &(option, v) in &args.options {
+        match option {
+            SiconosOption::MaxIter => config.max_iter = whole(v, "SICONOS_IPARAM_MAX_ITER")?,
+            SiconosOption::Tolerance => config.tolerance = v,
+            SiconosOption::TimeBudget => config.time_budget = budget_of(v)?,
+            SiconosOption::Rescaling | SiconosOption::Relaxation => {
+                return Err(format!(
+                    "{} applies to the local solvers, not to the global solver {}",
+                    OPTION_NAMES
+                        .iter()
+                        .find(|(_, o)| *o == option)
+                        .map_or("", |(n, _)| *n),
+                    method.label()
+                ))
+            }
+        }
+    }
+    config.validate().map_err(|e| e.to_string())?;
+    Ok(config)
+}
+
+/// A whole number >= 0 from an option's value.
+fn whole(v: f64, what: &str) -> Result<usize, String> {
+    (v.fract() == 0.0 && v >= 0.0 && v <= usize::MAX as f64)
+        .then_some(v as usize)
+        .ok_or_else(|| format!("{what} must be a whole number >= 0, got {v}"))
+}
+
+/// `FC3D_DPARAM_TIME_BUDGET`: 0 none, else seconds.
+fn budget_of(v: f64) -> Result<Option<Duration>, String> {
+    if v == 0.0 {
+        return Ok(None);
+    }
+    Duration::try_from_secs_f64(v).map(Some).map_err(|_| {
+        format!("FC3D_DPARAM_TIME_BUDGET must be 0 or a positive number of seconds, got {v}")
+    })
+}
+
 /// The configuration the flags describe, checked by the core.
 pub(crate) fn config_of(args: &SolveArgs) -> Result<SolverConfig, String> {
-    let method = match (args.solver.method, args.local) {
+    let method = match (args.solver.local_method()?, args.local) {
         (Method::Nsgs(_), Some(local)) => Method::Nsgs(NsgsOptions::with_local(local)),
         (m, Some(_)) => {
             return Err(format!(
@@ -112,28 +183,18 @@ pub(crate) fn config_of(args: &SolveArgs) -> Result<SolverConfig, String> {
         .with_max_iter(args.max_iter)
         .with_time_budget(args.budget);
     for &(option, v) in &args.options {
-        let whole = |what: &str| {
-            (v.fract() == 0.0 && v >= 0.0 && v <= usize::MAX as f64)
-                .then_some(v as usize)
-                .ok_or_else(|| format!("{what} must be a whole number >= 0, got {v}"))
-        };
         match option {
-            SiconosOption::MaxIter => config.max_iter = whole("SICONOS_IPARAM_MAX_ITER")?,
+            SiconosOption::MaxIter => config.max_iter = whole(v, "SICONOS_IPARAM_MAX_ITER")?,
             SiconosOption::Tolerance => config.tolerance = v,
-            SiconosOption::TimeBudget if v == 0.0 => config.time_budget = None,
-            SiconosOption::TimeBudget => {
-                config.time_budget = Some(Duration::try_from_secs_f64(v).map_err(|_| {
-                    format!("FC3D_DPARAM_TIME_BUDGET must be 0 or a positive number of seconds, got {v}")
-                })?)
-            }
+            SiconosOption::TimeBudget => config.time_budget = budget_of(v)?,
             SiconosOption::Rescaling => {
-                config.rescaling = match whole("SICONOS_FRICTION_3D_IPARAM_RESCALING")? {
+                config.rescaling = match whole(v, "SICONOS_FRICTION_3D_IPARAM_RESCALING")? {
                     0 => Rescaling::None,
                     1 => Rescaling::Scalar,
                     other => {
                         return Err(format!(
-                            "SICONOS_FRICTION_3D_IPARAM_RESCALING = {other} is not 0 (none) or 1 (scalar)"
-                        ))
+                    "SICONOS_FRICTION_3D_IPARAM_RESCALING = {other} is not 0 (none) or 1 (scalar)"
+                ))
                     }
                 }
             }

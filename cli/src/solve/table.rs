@@ -3,15 +3,18 @@
 use std::time::Duration;
 
 use crate::units::{format_time, scientific};
-use fc3d_core::SolveReport;
+use fc3d_core::SolveStatus;
 
 /// A row of the result table.
 pub(crate) struct Row {
     pub problem: String,
     pub contacts: usize,
-    pub storage: &'static str,
+    /// W's storage, or `global (M <storage>)` for a global problem.
+    pub storage: String,
     pub solver: String,
-    pub report: SolveReport,
+    pub status: SolveStatus,
+    pub iterations: usize,
+    pub error: f64,
     pub time: Duration,
 }
 
@@ -44,14 +47,14 @@ impl Table {
             lines.push(format_cells(&HEADERS.map(String::from)));
             lines.push(format_cells(&WIDTHS.map(|w| "-".repeat(w))));
         }
-        let status = row.report.status.name();
+        let status = row.status.name();
         lines.push(format_cells(&[
             row.problem,
             row.contacts.to_string(),
-            row.storage.to_string(),
+            row.storage,
             row.solver,
-            row.report.iterations.to_string(),
-            scientific(row.report.error),
+            row.iterations.to_string(),
+            scientific(row.error),
             status.to_string(),
             format_time(row.time),
         ]));

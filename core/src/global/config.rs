@@ -155,6 +155,76 @@ impl GlobalMethod {
     }
 }
 
+/// Siconos' global ids gfc3d_driver runs, with the name of each (Siconos' `SICONOS_GLOBAL_*_STR`
+/// without the `GFC3D_` prefix, a space or dash read as `_`).
+const GLOBAL_NAMES: [(i32, &str); 13] = [
+    (600, "NSGS_WR"),
+    (602, "PROX_WR"),
+    (603, "DSFP_WR"),
+    (604, "TFP_WR"),
+    (605, "NSGS"),
+    (606, "NSN_AC_WR"),
+    (607, "NSN_AC"),
+    (610, "VI_FPP"),
+    (611, "VI_EG"),
+    (612, "ACLMFP"),
+    (613, "ADMM"),
+    (614, "ADMM_WR"),
+    (615, "IPM"),
+];
+
+impl GlobalMethod {
+    /// Every global id `gfc3d_driver` runs, with Siconos' defaults (the `_WR` ids with the
+    /// preset of their local id): what the CLI looks ids and names up in. The C layer reads the
+    /// same defaults from `solver_options_create`; a test checks that they agree.
+    pub fn presets() -> Vec<GlobalMethod> {
+        GLOBAL_NAMES
+            .iter()
+            .filter_map(|&(id, _)| GlobalMethod::of_id(id))
+            .collect()
+    }
+
+    fn of_id(id: i32) -> Option<GlobalMethod> {
+        if let Some(local) = GlobalMethod::reduced_local_id(id) {
+            return Method::preset(&local.to_string()).map(GlobalMethod::Reduced);
+        }
+        Some(match id {
+            605 => GlobalMethod::ProjectedJacobi(JacobiOptions::default()),
+            607 => GlobalMethod::Newton(GlobalNewtonOptions::default()),
+            610 => GlobalMethod::Vi(ViOptions::new(ViSolver::ViFixedPointProjection)),
+            611 => GlobalMethod::Vi(ViOptions::new(ViSolver::ViExtraGradient)),
+            612 => GlobalMethod::Aclm(GlobalAclmOptions::default()),
+            613 => GlobalMethod::Admm(GlobalAdmmOptions::default()),
+            615 => GlobalMethod::Ipm(IpmOptions::default()),
+            _ => return None,
+        })
+    }
+
+    /// Siconos' short name of the method's id (`NSGS_WR`, `NSN_AC`, `IPM`, ...; with the
+    /// `GFC3D_` prefix in Siconos), `None` for a reduction over a local method Siconos has no
+    /// `_WR` id for.
+    pub fn name(&self) -> Option<&'static str> {
+        let id = self.siconos_id();
+        GLOBAL_NAMES.iter().find(|(i, _)| *i == id).map(|(_, n)| *n)
+    }
+
+    /// The preset of a global id (`605`) or name (`NSGS_WR`, `gfc3d_nsgs_wr`, `GFC3D ADMM`,
+    /// `nsn-ac`; case-insensitive), with Siconos' defaults. `None` for anything else (the local
+    /// ids and names included).
+    pub fn preset(name: &str) -> Option<GlobalMethod> {
+        let name = name.trim();
+        let id = match name.parse::<i32>() {
+            Ok(id) => id,
+            Err(_) => {
+                let upper = name.to_ascii_uppercase().replace([' ', '-'], "_");
+                let short = upper.strip_prefix("GFC3D_").unwrap_or(&upper);
+                GLOBAL_NAMES.iter().find(|(_, n)| *n == short)?.0
+            }
+        };
+        GlobalMethod::of_id(id)
+    }
+}
+
 impl MethodChoice for GlobalMethod {
     fn default_limits(&self) -> (f64, usize) {
         GlobalMethod::default_limits(self)
@@ -182,4 +252,46 @@ pub type GlobalRollingConfig = RollingConfig;
 /// The rolling method Siconos' id 5000 runs on the reduced problem.
 pub fn global_rolling_default() -> RollingMethod {
     RollingMethod::Nsgs(Default::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn presets_cover_the_ids_gfc3d_driver_runs_by_id_and_name() {
+        let presets = GlobalMethod::presets();
+        let ids: Vec<i32> = presets.iter().map(GlobalMethod::siconos_id).collect();
+        assert_eq!(
+            ids,
+            [600, 602, 603, 604, 605, 606, 607, 610, 611, 612, 613, 614, 615]
+        );
+        for m in &presets {
+            let id = m.siconos_id();
+            assert_eq!(GlobalMethod::preset(&id.to_string()), Some(*m));
+            let name = m.name().unwrap();
+            assert_eq!(GlobalMethod::preset(name), Some(*m));
+            assert_eq!(
+                GlobalMethod::preset(&format!("gfc3d_{}", name.to_lowercase())),
+                Some(*m)
+            );
+            m.validate().unwrap();
+        }
+        assert_eq!(
+            GlobalMethod::preset("GFC3D ADMM").map(|m| m.siconos_id()),
+            Some(613)
+        );
+        assert_eq!(
+            GlobalMethod::preset("nsn-ac").map(|m| m.siconos_id()),
+            Some(607)
+        );
+        for refused in ["500", "601", "608", "5000", "AUTO", "", "NSGS_WRX"] {
+            assert_eq!(GlobalMethod::preset(refused), None, "{refused:?}");
+        }
+        // The reductions run their local id's preset.
+        assert_eq!(
+            GlobalMethod::preset("606"),
+            Some(GlobalMethod::Reduced(Method::preset("504").unwrap()))
+        );
+    }
 }

@@ -219,7 +219,9 @@ impl BlockLu {
             largest = largest.max(s);
             let a = &mut factors[factor_offsets[k]..factor_offsets[k + 1]];
             for (li, &i) in block_dofs.iter().enumerate() {
-                for p in row_ptr[i]..row_ptr[i + 1] {
+                // A stored zero may join unknowns of two blocks (the blocks are the components
+                // of the non-zero pattern): it adds nothing, and its column is not in this block.
+                for p in (row_ptr[i]..row_ptr[i + 1]).filter(|&p| values[p] != 0.0) {
                     a[li * s + local[col_idx[p]]] += values[p];
                 }
             }
@@ -356,6 +358,24 @@ mod tests {
         let mut r: Vec<f64> = b.iter().map(|v| -v).collect();
         m.mul_add(x, &mut r);
         r.iter().fold(0.0_f64, |a, v| a.max(v.abs()))
+    }
+
+    #[test]
+    fn stored_zeros_between_blocks_are_ignored() {
+        // A host's sparse M (scipy, a FE assembly) may store zeros outside the blocks.
+        let m = CsrMatrix::from_csr(
+            3,
+            3,
+            &[0, 2, 3, 5],
+            &[0, 1, 1, 0, 2],
+            &[2.0, 0.0, 4.0, 0.0, 8.0],
+        )
+        .unwrap();
+        let mut f = MassFactor::new(&m).unwrap();
+        assert_eq!(f.blocks().unwrap().1, &[0, 1, 2, 3]);
+        let mut x = vec![2.0, 4.0, 8.0];
+        f.solve_in_place(&mut x);
+        assert_eq!(x, [1.0, 1.0, 1.0]);
     }
 
     #[test]

@@ -12,8 +12,9 @@ This package calls fc3d's C library (the native entry of ``fc3d_native.h``) thro
     >>> p = fc3d.read_problem("Rover1039.dat")
     >>> fc3d.solve(p, solver="NSN_AC", tol=1e-8).error
 
-Main names: :func:`solve` (solver ``"AUTO"`` by default), :func:`read_problem`, :class:`Problem`,
-:class:`Result`, :class:`Fc3dError`, :data:`SOLVERS` (every solver of the library by name, read
+Main names: :func:`solve` (solver ``"AUTO"`` by default), :func:`solve_global` (the global form:
+M, H, q, b, mu; :data:`GLOBAL_SOLVERS`, :class:`GlobalResult`), :func:`read_problem`,
+:class:`Problem`, :class:`Result`, :class:`Fc3dError`, :data:`SOLVERS` (every solver of the library by name, read
 from the library at import), :data:`LOCAL_SOLVERS`, ``__version__`` (the C library's version).
 The library is the one bundled at build time unless the environment variable ``FC3D_LIBRARY``
 names another (read at import); :data:`library_path` tells which was loaded.
@@ -39,15 +40,20 @@ from ._errors import (
 from ._native import library_path, version as _library_version
 from ._solvers import LOCAL_SOLVERS, SOLVERS, local_solver_id, solver_id
 from ._api import Problem, Result, read_problem, solve
+from ._global import GLOBAL_SOLVERS, GlobalResult, global_solver_id, solve_global
 
 #: The version of the loaded C library (``fc3d_version()``), e.g. ``"0.2.0"``.
 __version__ = _library_version()
 
 __all__ = [
     "solve",
+    "solve_global",
     "read_problem",
     "Problem",
     "Result",
+    "GlobalResult",
+    "GLOBAL_SOLVERS",
+    "global_solver_id",
     "Fc3dError",
     "SOLVERS",
     "LOCAL_SOLVERS",

@@ -79,6 +79,21 @@ _PROTOTYPES = {
         c_int,
         [c_int64, c_int64, _ip, _ip, _dp, _dp, _dp, _dp, _dp, c_void_p, POINTER(Fc3dResult)],
     ),
+    "fc3d_solve_global_csr": (
+        c_int,
+        [c_int64, c_int64, c_int64, _ip, _ip, _dp, c_int64, _ip, _ip, _dp, _dp, _dp, _dp,
+         _dp, _dp, _dp, c_void_p, POINTER(Fc3dResult)],
+    ),
+    "fc3d_solve_global_coo": (
+        c_int,
+        [c_int64, c_int64, c_int64, _ip, _ip, _dp, c_int64, _ip, _ip, _dp, _dp, _dp, _dp,
+         _dp, _dp, _dp, c_void_p, POINTER(Fc3dResult)],
+    ),
+    "fc3d_solve_global_blocks": (
+        c_int,
+        [c_int64, c_int64, _dp, c_int64, c_int64, _ip, _ip, _dp, _dp, _dp, _dp, _dp, _dp, _dp,
+         c_void_p, POINTER(Fc3dResult)],
+    ),
     "fc3d_problem_read": (c_void_p, [c_char_p]),
     "fc3d_problem_free": (None, [c_void_p]),
     "fc3d_problem_contacts": (c_int64, [c_void_p]),
