@@ -750,7 +750,7 @@ contains
     integer(c_int) :: code
     nc = size(mu, kind=c_int64_t)
     n = size(q, kind=c_int64_t)
-    message = ''
+    allocate(character(len=0) :: message)
     if (size(b, kind=c_int64_t) /= 3 * nc .or. size(r, kind=c_int64_t) /= 3 * nc .or. &
         size(u, kind=c_int64_t) /= 3 * nc .or. size(v, kind=c_int64_t) /= n .or. &
         size(m_row_ptr, kind=c_int64_t) /= n + 1 .or. size(h_row_ptr, kind=c_int64_t) /= n + 1 &
