@@ -241,12 +241,18 @@ run_one() { # run_one <label> <index> <library>: prints "pass|fail|timeout|crash
   [ -x "$exe" ] || { echo "nobuild 0"; return; }
   dir=$(mktemp -d "$OUT/run/$label-$index-$which.XXXX")
   ln -s "$TESTDIR/data" "$dir/data"
+  # The fc3d programs find their library by RUNPATH, which a caller's LD_LIBRARY_PATH overrides
+  # (test-all.sh points it at the installed library, built without FCLIB): put theirs first.
+  local libdir=$LIB
+  [[ $label == *FCLIB* ]] && libdir=$FCLIB_LIB
+  local path=$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+  [ "$which" = fc3d ] || path=${LD_LIBRARY_PATH:-}
   start=$(date +%s.%N)
   set +e
   if [ "$index" = - ]; then
-    (cd "$dir" && timeout -k 5 "$TIMEOUT" "$exe") > "$OUT/logs/$label-$which.log" 2>&1
+    (cd "$dir" && LD_LIBRARY_PATH=$path timeout -k 5 "$TIMEOUT" "$exe") > "$OUT/logs/$label-$which.log" 2>&1
   else
-    (cd "$dir" && timeout -k 5 "$TIMEOUT" "$exe" "$index") > "$OUT/logs/$label-$index-$which.log" 2>&1
+    (cd "$dir" && LD_LIBRARY_PATH=$path timeout -k 5 "$TIMEOUT" "$exe" "$index") > "$OUT/logs/$label-$index-$which.log" 2>&1
   fi
   rc=$?
   set -e
@@ -262,7 +268,7 @@ run_one() { # run_one <label> <index> <library>: prints "pass|fail|timeout|crash
   awk -v o="$outcome" -v a="$start" -v b="$end" 'BEGIN { printf "%s %.2f\n", o, b - a }'
 }
 export -f run_one
-export OUT BIN TESTDIR TIMEOUT
+export OUT BIN TESTDIR TIMEOUT LIB FCLIB_LIB
 
 RESULTS=$OUT/results.tsv
 printf 'collection\tcase\tsolver_id\tsolver\tdata\tsiconos\tsiconos_s\tfc3d\tfc3d_s\twill_fail\n' > "$RESULTS"
