@@ -562,3 +562,48 @@ fn global_ipm_iterations_allocate_nothing() {
         );
     }
 }
+
+/// fc3d's SSN-ALM (690) allocates as many times for 3 Newton steps as for 15: the body-space
+/// pattern, its Cholesky analysis, GMRES' basis and the work vectors are set up once; the steps
+/// (contact maps, assembly and factorization on the fixed pattern, solves, GMRES, the line
+/// search, the error of the exact triple) allocate nothing.
+#[test]
+fn global_alm_iterations_allocate_nothing() {
+    use fc3d_core::global::{solve_global, GlobalAlmOptions, GlobalConfig, GlobalMethod};
+    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    for shape in [PileShape::Spheres, PileShape::Boxes] {
+        let p = GeneratedScene {
+            pile: PileSpec {
+                contacts: 60,
+                piles: 1,
+                seed: 3,
+            },
+            shape,
+        }
+        .generate_global()
+        .unwrap();
+        let allocations = |k| {
+            let config = GlobalConfig {
+                tolerance: 0.0,
+                max_iter: k,
+                ..GlobalConfig::new(GlobalMethod::AugmentedLagrangian(
+                    GlobalAlmOptions::default(),
+                ))
+            };
+            let (mut r, mut u, mut v) = (
+                vec![0.0; p.size()],
+                vec![0.0; p.size()],
+                vec![0.0; p.ndof()],
+            );
+            let (n, report) =
+                count_allocations(|| solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap());
+            assert_eq!(report.iterations, k);
+            n
+        };
+        let (few, many) = (allocations(3), allocations(15));
+        assert_eq!(
+            few, many,
+            "{shape:?}: {few} for 3 iterations, {many} for 15"
+        );
+    }
+}

@@ -7,6 +7,7 @@ use crate::solvers::rolling::RollingMethod;
 
 use super::aclm::GlobalAclmOptions;
 use super::admm::GlobalAdmmOptions;
+use super::alm::GlobalAlmOptions;
 use super::ipm::IpmOptions;
 use super::jacobi::JacobiOptions;
 use super::newton::GlobalNewtonOptions;
@@ -42,6 +43,10 @@ pub enum GlobalMethod {
     /// program; by default (as Siconos) it solves the convex relaxation, reported as
     /// [`crate::SolveStatus::RelaxationNotCoulomb`] where that is not a Coulomb solution.
     Ipm(IpmOptions),
+    /// fc3d's semismooth Newton augmented Lagrangian (fc3d id 690, `SSN_ALM`): the method of
+    /// multipliers in the bodies' velocities, Newton steps on `M + rho H D H^T` (M's size),
+    /// a fixed point on De Saxcé's term. For a symmetric M.
+    AugmentedLagrangian(GlobalAlmOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -75,6 +80,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(_) => 613,
             GlobalMethod::Aclm(_) => 612,
             GlobalMethod::Ipm(_) => 615,
+            GlobalMethod::AugmentedLagrangian(_) => 690,
         }
     }
 
@@ -125,6 +131,7 @@ impl GlobalMethod {
                 if o.update_s { "" } else { "-convex" },
                 if o.nesterov_todd { "" } else { "-arrow" }
             ),
+            GlobalMethod::AugmentedLagrangian(_) => "GFC3D-SSN-ALM".to_string(),
         }
     }
 
@@ -139,6 +146,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(_) => (1e-6, 20000),
             GlobalMethod::Aclm(_) => (1e-4, 1000),
             GlobalMethod::Ipm(_) => (1e-8, 200),
+            GlobalMethod::AugmentedLagrangian(_) => (1e-6, 500),
         }
     }
 
@@ -151,6 +159,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(o) => o.validate(),
             GlobalMethod::Aclm(o) => o.validate(),
             GlobalMethod::Ipm(o) => o.validate(),
+            GlobalMethod::AugmentedLagrangian(o) => o.validate(),
         }
     }
 }
@@ -172,6 +181,9 @@ const GLOBAL_NAMES: [(i32, &str); 13] = [
     (614, "ADMM_WR"),
     (615, "IPM"),
 ];
+
+/// fc3d's own global methods (not Siconos ids: gfc3d_driver does not run them), by id and name.
+const FC3D_GLOBAL_NAMES: [(i32, &str); 1] = [(690, "SSN_ALM")];
 
 impl GlobalMethod {
     /// Every global id `gfc3d_driver` runs, with Siconos' defaults (the `_WR` ids with the
@@ -196,6 +208,7 @@ impl GlobalMethod {
             612 => GlobalMethod::Aclm(GlobalAclmOptions::default()),
             613 => GlobalMethod::Admm(GlobalAdmmOptions::default()),
             615 => GlobalMethod::Ipm(IpmOptions::default()),
+            690 => GlobalMethod::AugmentedLagrangian(GlobalAlmOptions::default()),
             _ => return None,
         })
     }
@@ -205,7 +218,11 @@ impl GlobalMethod {
     /// `_WR` id for.
     pub fn name(&self) -> Option<&'static str> {
         let id = self.siconos_id();
-        GLOBAL_NAMES.iter().find(|(i, _)| *i == id).map(|(_, n)| *n)
+        GLOBAL_NAMES
+            .iter()
+            .chain(&FC3D_GLOBAL_NAMES)
+            .find(|(i, _)| *i == id)
+            .map(|(_, n)| *n)
     }
 
     /// The preset of a global id (`605`) or name (`NSGS_WR`, `gfc3d_nsgs_wr`, `GFC3D ADMM`,
@@ -218,7 +235,11 @@ impl GlobalMethod {
             Err(_) => {
                 let upper = name.to_ascii_uppercase().replace([' ', '-'], "_");
                 let short = upper.strip_prefix("GFC3D_").unwrap_or(&upper);
-                GLOBAL_NAMES.iter().find(|(_, n)| *n == short)?.0
+                GLOBAL_NAMES
+                    .iter()
+                    .chain(&FC3D_GLOBAL_NAMES)
+                    .find(|(_, n)| *n == short)?
+                    .0
             }
         };
         GlobalMethod::of_id(id)

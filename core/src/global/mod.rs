@@ -13,6 +13,7 @@
 
 mod aclm;
 mod admm;
+mod alm;
 mod config;
 mod ipm;
 mod jacobi;
@@ -27,6 +28,7 @@ pub use crate::measure::{
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use aclm::GlobalAclmOptions;
 pub use admm::GlobalAdmmOptions;
+pub use alm::GlobalAlmOptions;
 pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
 pub use ipm::IpmOptions;
 pub use jacobi::JacobiOptions;

@@ -4,11 +4,13 @@
 //! self-adaptive step rule, and the extreme eigenvalues of a symmetric operator (`spectrum`).
 
 pub mod cone;
+pub mod gmres;
 pub mod jordan;
 pub mod linalg;
 pub mod lu_cost;
 pub mod lu_fill;
 pub mod rolling;
+pub mod sparse_cholesky;
 pub mod sparse_lu;
 pub mod spectrum;
 pub mod step;
