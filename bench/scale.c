@@ -26,6 +26,12 @@
  *       iterations printed are cumulative from r = 0, one line per tolerance, flushed at once
  *       (a run stopped by a time limit keeps the lines it printed):
  *         tol T info I iterations K error E seconds S
+ *   solve <problem.dat> <solver> <max_iter> <tol>
+ *       One fc3d_driver call from r = 0 to <tol> (scripts/convergence-bench.sh: one process per
+ *       solver and tolerance, cut by the script's time limit). Prints
+ *         contacts C info I iterations K error E cpu_s S wall_s W rss_after_read_kb R peak_solve_kb P
+ *       (S: CPU seconds of the process during the call, set-up included; P: the peak RSS of the
+ *       call above what the process held once the problem was read).
  *   bandwidth <megabytes>
  *       Streaming read bandwidth of this machine (best of 5 sums over an array of that size):
  *       bandwidth_gbs G
@@ -277,6 +283,36 @@ static int mode_setup(int argc, char** argv) {
   return 0;
 }
 
+static int mode_solve(int argc, char** argv) {
+  if (argc != 6) {
+    fprintf(stderr, "usage: %s solve <problem.dat> <solver> <max_iter> <tol>\n", argv[0]);
+    return 2;
+  }
+  FrictionContactProblem* problem = read_problem(argv[2]);
+  if (!problem) return 2;
+  int solver = atoi(argv[3]), max_iter = atoi(argv[4]), n = 3 * problem->numberOfContacts;
+  double tol = atof(argv[5]);
+  double* r = calloc((size_t)n + 1, sizeof(double));
+  double* u = calloc((size_t)n + 1, sizeof(double));
+  memset(r, 0, (size_t)n * sizeof(double));
+  memset(u, 0, (size_t)n * sizeof(double));
+  long rss_after_read = status_kb("VmRSS");
+  reset_peak();
+  int info, iterations;
+  double error, w0 = wall_seconds();
+  double t = call(problem, solver, tol, max_iter, r, u, &info, &iterations, &error);
+  double wall = wall_seconds() - w0;
+  long peak = status_kb("VmHWM");
+  printf("contacts %d info %d iterations %d error %.6e cpu_s %.6e wall_s %.6e rss_after_read_kb %ld "
+         "peak_solve_kb %ld\n",
+         problem->numberOfContacts, info, iterations, error, t, wall, rss_after_read,
+         peak > rss_after_read ? peak - rss_after_read : 0);
+  frictionContactProblem_free(problem);
+  free(r);
+  free(u);
+  return 0;
+}
+
 static int mode_bandwidth(int argc, char** argv) {
   if (argc != 3) return 2;
   size_t n = (size_t)atol(argv[2]) * 1024 * 1024 / sizeof(double);
@@ -305,6 +341,7 @@ static int mode_bandwidth(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc >= 2 && strcmp(argv[1], "setup") == 0) return mode_setup(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "bandwidth") == 0) return mode_bandwidth(argc, argv);
-  fprintf(stderr, "usage: %s setup|bandwidth ... (see the source)\n", argv[0]);
+  if (argc >= 2 && strcmp(argv[1], "solve") == 0) return mode_solve(argc, argv);
+  fprintf(stderr, "usage: %s setup|solve|bandwidth ... (see the source)\n", argv[0]);
   return 2;
 }

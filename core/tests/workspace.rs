@@ -3,7 +3,7 @@
 //! cold solve started from the same iterate.
 
 use fc3d_core::matrix::BlockRows;
-use fc3d_core::scenes::sequences::{box_slide, pile_settling, Sequence};
+use fc3d_core::scenes::sequences::{box_slide, pile_settling, pile_settling_in_bin, Sequence};
 use fc3d_core::solvers::auto::choose;
 use fc3d_core::{
     solve, AutoOptions, BlockSparseMatrix, Decomposition, Delassus, FrictionProblem, Method,
@@ -378,4 +378,20 @@ fn auto_resumes_from_the_stage_that_finished_while_the_rule_holds() {
         .unwrap();
     assert!(!report.converged());
     assert!(ws.auto_choice().is_none());
+}
+
+#[test]
+fn the_settling_pile_in_a_bin_of_4_is_pile_settling_and_hands_over_its_ids() {
+    let kept = pile_settling(32, 40, &mut cold_stepper(nsgs()));
+    let mut stepper = cold_stepper(nsgs());
+    let mut seen = 0;
+    let solved = pile_settling_in_bin(32, 4, 40, &mut |step| {
+        let same = &kept.steps[seen];
+        assert_eq!(step.ids, same.ids, "step {seen}");
+        assert_eq!(step.problem.q(), same.problem.q(), "step {seen}");
+        seen += 1;
+        stepper(&step.problem)
+    });
+    assert_eq!((solved, seen), (kept.steps.len(), kept.steps.len()));
+    assert!(solved > 0);
 }

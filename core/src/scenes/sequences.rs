@@ -82,16 +82,41 @@ fn contact_id(kind: i64, i: usize, j: usize) -> i64 {
     (kind << 48) | ((i as i64) << 24) | j as i64
 }
 
+/// A solver that also sees the step's contact ids (to warm-start by id), for sequences whose
+/// steps are not kept ([`pile_settling_in_bin`]).
+pub type StepSolverWithIds<'a> = dyn FnMut(&Step) -> Vec<f64> + 'a;
+
 /// Runs `steps` steps of `bodies` under `detect`, solving each step's problem with `solve`.
 fn simulate(
     name: &'static str,
     description: &'static str,
-    mut bodies: Vec<SimBody>,
+    bodies: Vec<SimBody>,
     steps: usize,
     detect: &dyn Fn(&[SimBody]) -> Vec<Candidate>,
     solve: &mut StepSolver<'_>,
 ) -> Sequence {
     let mut out = Vec::with_capacity(steps);
+    run_steps(bodies, steps, detect, &mut |step: Step| {
+        let r = solve(&step.problem);
+        out.push(step);
+        r
+    });
+    Sequence {
+        name,
+        description,
+        steps: out,
+    }
+}
+
+/// The stepper: per step with contacts, `solve` gets the step (and may keep it) and returns r.
+/// Returns the number of steps that had contacts.
+fn run_steps(
+    mut bodies: Vec<SimBody>,
+    steps: usize,
+    detect: &dyn Fn(&[SimBody]) -> Vec<Candidate>,
+    solve: &mut dyn FnMut(Step) -> Vec<f64>,
+) -> usize {
+    let mut solved = 0;
     for _ in 0..steps {
         let mut world = World::new();
         for b in &bodies {
@@ -130,19 +155,15 @@ fn simulate(
         }
         problem = FrictionProblem::new(problem.w().clone(), q, problem.mu().to_vec())
             .expect("consistent step");
-        let r = solve(&problem);
+        let r = solve(Step { problem, ids });
+        solved += 1;
         let dv = world.impulse_response(&r);
         for ((s, b), d) in bodies.iter_mut().zip(&world.bodies).zip(&dv) {
             let v: [f64; 6] = std::array::from_fn(|i| b.v_free[i] + d[i]);
             advance(s, &v);
         }
-        out.push(Step { problem, ids });
     }
-    Sequence {
-        name,
-        description,
-        steps: out,
-    }
+    solved
 }
 
 /// Normal velocity of the material point of a body at `p` along `n`.
@@ -197,8 +218,39 @@ fn jitter(seed: &mut u64) -> f64 {
 /// vanish when they bounce apart or roll away, and the set stabilises as the pile comes to rest.
 /// Friction 0.5 on the ground, 0.3 between spheres.
 pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
+    let (bodies, detect) = settling_pile(n, 4);
+    simulate(
+        "pile_settling",
+        "spheres dropped in layers into a bin, settling on the ground",
+        bodies,
+        steps,
+        &detect,
+        solve,
+    )
+}
+
+/// [`pile_settling`] in a bin whose layers hold `per_side` x `per_side` spheres (4 there), at a
+/// host's scale: a wider bin settles a larger pile in the same number of steps. The steps are
+/// handed to `solve` (with their contact ids, to warm-start by id) and not kept (hundreds of
+/// W of 10^4 contacts would not fit); returns the number of steps that had contacts. The
+/// contact detection tests every pair of spheres: its cost grows with the square of `n`.
+pub fn pile_settling_in_bin(
+    n: usize,
+    per_side: usize,
+    steps: usize,
+    solve: &mut StepSolverWithIds<'_>,
+) -> usize {
+    let (bodies, detect) = settling_pile(n, per_side);
+    run_steps(bodies, steps, &detect, &mut |step: Step| solve(&step))
+}
+
+/// The spheres of [`pile_settling_in_bin`] and their contact detection.
+fn settling_pile(
+    n: usize,
+    per_side: usize,
+) -> (Vec<SimBody>, impl Fn(&[SimBody]) -> Vec<Candidate>) {
     let radius = 0.1;
-    let per_side = 4usize;
+    let per_side = per_side.max(1);
     // Room for the bottom layer to spread: a jammed packing wall to wall is a much harder
     // (and less typical) problem than a pile.
     let half_bin = 0.5 * per_side as f64 * 2.2 * radius * BIN_ROOM;
@@ -287,14 +339,7 @@ pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequ
         }
         found
     };
-    simulate(
-        "pile_settling",
-        "spheres dropped in layers into a bin, settling on the ground",
-        bodies,
-        steps,
-        &detect,
-        solve,
-    )
+    (bodies, detect)
 }
 
 /// A box (0.8 x 0.6 x 0.2, mass 4) carrying a smaller yawed box (mass 1) slides on the ground at
