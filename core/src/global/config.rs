@@ -3,6 +3,7 @@
 
 use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
+use crate::solvers::nsgs::{Decomposition, NsgsOptions};
 use crate::solvers::rolling::RollingMethod;
 
 use super::aclm::GlobalAclmOptions;
@@ -42,6 +43,12 @@ pub enum GlobalMethod {
     /// program; by default (as Siconos) it solves the convex relaxation, reported as
     /// [`crate::SolveStatus::RelaxationNotCoulomb`] where that is not a Coulomb solution.
     Ipm(IpmOptions),
+    /// fc3d's `NSGS_HFORM` (691, no Siconos id): NSGS in the velocity form on H and a
+    /// block-diagonal M ([`crate::solvers::nsgs`]'s product Gauss-Seidel): `v = M^-1 (q + H r)`
+    /// kept up to date contact by contact, W never formed; the local solver and the sweep
+    /// settings of [`NsgsOptions`] (sequential or coloured decomposition, natural order, no
+    /// freezing, no acceleration). The stopping test measures the global error.
+    HForm(NsgsOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -75,6 +82,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(_) => 613,
             GlobalMethod::Aclm(_) => 612,
             GlobalMethod::Ipm(_) => 615,
+            GlobalMethod::HForm(_) => HFORM_ID,
         }
     }
 
@@ -125,6 +133,15 @@ impl GlobalMethod {
                 if o.update_s { "" } else { "-convex" },
                 if o.nesterov_todd { "" } else { "-arrow" }
             ),
+            GlobalMethod::HForm(o) => format!(
+                "GFC3D-NSGS-HFORM{}/{}",
+                if o.decomposition == Decomposition::Coloured {
+                    "-COLOURED"
+                } else {
+                    ""
+                },
+                o.local.kind.siconos_id()
+            ),
         }
     }
 
@@ -139,6 +156,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(_) => (1e-6, 20000),
             GlobalMethod::Aclm(_) => (1e-4, 1000),
             GlobalMethod::Ipm(_) => (1e-8, 200),
+            GlobalMethod::HForm(_) => (1e-4, 1000),
         }
     }
 
@@ -151,6 +169,7 @@ impl GlobalMethod {
             GlobalMethod::Admm(o) => o.validate(),
             GlobalMethod::Aclm(o) => o.validate(),
             GlobalMethod::Ipm(o) => o.validate(),
+            GlobalMethod::HForm(o) => super::hform::validate(o),
         }
     }
 }
@@ -171,6 +190,16 @@ const GLOBAL_NAMES: [(i32, &str); 13] = [
     (613, "ADMM"),
     (614, "ADMM_WR"),
     (615, "IPM"),
+];
+
+/// fc3d's own global id of [`GlobalMethod::HForm`] (Siconos' global ids end at 615; 590 is
+/// fc3d's AUTO).
+pub const HFORM_ID: i32 = 691;
+
+/// fc3d's own global methods by name: the sequential and the coloured H-form sweep (one id).
+const OWN_GLOBAL_NAMES: [(&str, Decomposition); 2] = [
+    ("NSGS_HFORM", Decomposition::Sequential),
+    ("NSGS_HFORM_COLOURED", Decomposition::Coloured),
 ];
 
 impl GlobalMethod {
@@ -201,23 +230,39 @@ impl GlobalMethod {
     }
 
     /// Siconos' short name of the method's id (`NSGS_WR`, `NSN_AC`, `IPM`, ...; with the
-    /// `GFC3D_` prefix in Siconos), `None` for a reduction over a local method Siconos has no
-    /// `_WR` id for.
+    /// `GFC3D_` prefix in Siconos; fc3d's own `NSGS_HFORM`, `NSGS_HFORM_COLOURED`), `None` for
+    /// a reduction over a local method Siconos has no `_WR` id for.
     pub fn name(&self) -> Option<&'static str> {
+        if let GlobalMethod::HForm(o) = self {
+            let coloured = o.decomposition == Decomposition::Coloured;
+            return Some(OWN_GLOBAL_NAMES[usize::from(coloured)].0);
+        }
         let id = self.siconos_id();
         GLOBAL_NAMES.iter().find(|(i, _)| *i == id).map(|(_, n)| *n)
     }
 
     /// The preset of a global id (`605`) or name (`NSGS_WR`, `gfc3d_nsgs_wr`, `GFC3D ADMM`,
-    /// `nsn-ac`; case-insensitive), with Siconos' defaults. `None` for anything else (the local
-    /// ids and names included).
+    /// `nsn-ac`; case-insensitive), with Siconos' defaults; fc3d's own 691 / `NSGS_HFORM`
+    /// (sequential, the NSGS defaults) and `NSGS_HFORM_COLOURED` (threads from
+    /// `FC3D_NUM_THREADS` or the machine). `None` for anything else (the local ids and names
+    /// included).
     pub fn preset(name: &str) -> Option<GlobalMethod> {
         let name = name.trim();
+        let hform = |decomposition| {
+            GlobalMethod::HForm(NsgsOptions {
+                decomposition,
+                ..Default::default()
+            })
+        };
         let id = match name.parse::<i32>() {
+            Ok(HFORM_ID) => return Some(hform(Decomposition::Sequential)),
             Ok(id) => id,
             Err(_) => {
                 let upper = name.to_ascii_uppercase().replace([' ', '-'], "_");
                 let short = upper.strip_prefix("GFC3D_").unwrap_or(&upper);
+                if let Some((_, d)) = OWN_GLOBAL_NAMES.iter().find(|(n, _)| *n == short) {
+                    return Some(hform(*d));
+                }
                 GLOBAL_NAMES.iter().find(|(_, n)| *n == short)?.0
             }
         };

@@ -14,6 +14,7 @@
 mod aclm;
 mod admm;
 mod config;
+mod hform;
 mod ipm;
 mod jacobi;
 mod newton;
@@ -27,7 +28,10 @@ pub use crate::measure::{
 pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use aclm::GlobalAclmOptions;
 pub use admm::GlobalAdmmOptions;
-pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
+pub use config::{
+    global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig, HFORM_ID,
+};
+pub use hform::HFormSweep;
 pub use ipm::IpmOptions;
 pub use jacobi::JacobiOptions;
 pub use newton::GlobalNewtonOptions;

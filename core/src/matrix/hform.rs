@@ -48,6 +48,11 @@ impl HForm {
         &self.h
     }
 
+    /// `H^T` (`m x ndof`): row j is column j of H.
+    pub fn ht(&self) -> &CsrMatrix {
+        &self.ht
+    }
+
     pub fn mass(&self) -> &MassFactor {
         &self.mass
     }
