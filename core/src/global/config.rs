@@ -213,6 +213,15 @@ impl GlobalMethod {
             .collect()
     }
 
+    /// fc3d's own global methods (no Siconos id) under their names: 691 `NSGS_HFORM` and
+    /// `NSGS_HFORM_COLOURED`, with the NSGS defaults.
+    pub fn own_presets() -> Vec<GlobalMethod> {
+        OWN_GLOBAL_NAMES
+            .iter()
+            .filter_map(|(name, _)| GlobalMethod::preset(name))
+            .collect()
+    }
+
     fn of_id(id: i32) -> Option<GlobalMethod> {
         if let Some(local) = GlobalMethod::reduced_local_id(id) {
             return Method::preset(&local.to_string()).map(GlobalMethod::Reduced);

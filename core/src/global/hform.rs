@@ -7,7 +7,9 @@
 //! (`M v = q + H r`), so the triple measured (and returned) is consistent whatever round-off
 //! the incremental updates of `v` gathered, and the sweeps go on from the exact `v`.
 
-use crate::contract::{ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome};
+use crate::contract::{
+    BestIterate, ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome,
+};
 use crate::error::{require_setting, Fc3dError};
 use crate::matrix::HForm;
 use crate::measure::{global_error_with, ContactLaw, ErrorWork};
@@ -59,6 +61,12 @@ pub(super) fn run(
         options.evaluation_frequency,
         run.max_iter,
     );
+    // Under a time budget the run may be cut at any sweep: every iterate is measured and the
+    // best one returned, as NSGS does (its copy allocated once, here).
+    let mut best = match run.deadline() {
+        Some(_) => Some(BestIterate::try_new(r, f64::INFINITY)?),
+        None => None,
+    };
     operator.global_velocity(problem.q(), r, v);
     for iteration in 1..=run.max_iter {
         let increment_sq = sweeper.sweep(problem.b(), problem.mu(), r, v);
@@ -72,11 +80,25 @@ pub(super) fn run(
             error: test.error,
         });
         let measured = test.full.then_some(test.error);
+        if let Some(b) = best.as_mut() {
+            let e = match measured {
+                Some(e) => e,
+                None => {
+                    operator.global_velocity(problem.q(), r, v);
+                    global_error_with(problem, ContactLaw::Coulomb, r, u, v, None, &mut work)
+                }
+            };
+            b.offer(r, e);
+        }
         if test.stalled {
             return Ok(SolverOutcome::stopped(iteration, false).with_final_error(measured));
         }
         if let Some(outcome) = run.end_of_iteration(iteration, test.converged) {
             return Ok(if outcome.out_of_time {
+                // v and u are recomputed from the iterate returned (the solve's finish).
+                if let Some(b) = &best {
+                    b.restore(r);
+                }
                 outcome
             } else {
                 outcome.with_final_error(measured)

@@ -88,7 +88,14 @@ impl HFormContacts {
                 }
             }
             contact_blocks[first_block..].sort_unstable();
-            contact_blocks.dedup_by(|a, b| a == b);
+            let mut kept = first_block;
+            for p in first_block..contact_blocks.len() {
+                if p == first_block || contact_blocks[p] != contact_blocks[kept - 1] {
+                    contact_blocks[kept] = contact_blocks[p];
+                    kept += 1;
+                }
+            }
+            contact_blocks.truncate(kept);
             contact_block_ptr[c + 1] = contact_blocks.len();
             let start = dofs.len();
             for &k in &contact_blocks[first_block..] {
