@@ -8,7 +8,7 @@
 //! the incremental updates of `v` gathered, and the sweeps go on from the exact `v`.
 
 use crate::contract::{
-    BestIterate, ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome,
+    BestIterate, ErrorEvaluation, ErrorSchedule, IterationEvent, Limits, Observer, SolverOutcome,
 };
 use crate::error::{require_setting, Fc3dError};
 use crate::matrix::HForm;
@@ -17,7 +17,6 @@ use crate::problem::GlobalProblem;
 use crate::solvers::nsgs::{
     Acceleration, ContactOrder, Decomposition, HFormSweeper, LocalTolerance, NsgsOptions,
 };
-use crate::ErrorEvaluation;
 
 /// The NSGS options the velocity-form sweep runs: the local solver, relaxation, the error
 /// schedule, the sequential or coloured decomposition.
