@@ -18,7 +18,7 @@ use super::{Decomposition, NsgsOptions};
 use crate::error::{try_vec, Fc3dError};
 use crate::local::AnyLocalSolver;
 use crate::math::linalg::{distance_sq_d, Block};
-use crate::matrix::HForm;
+use crate::matrix::{sort_and_dedup_from, HForm};
 
 /// What the velocity-form sweep reads a contact by: its unknowns of M (whole blocks of M),
 /// `H_c^T` and `M^-1 H_c` on them, and `W_cc`.
@@ -87,15 +87,7 @@ impl HFormContacts {
                     contact_blocks.push(block_of[i]);
                 }
             }
-            contact_blocks[first_block..].sort_unstable();
-            let mut kept = first_block;
-            for p in first_block..contact_blocks.len() {
-                if p == first_block || contact_blocks[p] != contact_blocks[kept - 1] {
-                    contact_blocks[kept] = contact_blocks[p];
-                    kept += 1;
-                }
-            }
-            contact_blocks.truncate(kept);
+            sort_and_dedup_from(&mut contact_blocks, first_block);
             contact_block_ptr[c + 1] = contact_blocks.len();
             let start = dofs.len();
             for &k in &contact_blocks[first_block..] {
