@@ -117,7 +117,7 @@ impl ContactStep<3> for LocalStep {
         solver
     }
 
-    #[inline]
+    #[inline(always)]
     fn solve(
         &self,
         solver: &mut AnyLocalSolver,
@@ -208,7 +208,7 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
 /// local solve, relaxation; returns the new reaction and the local q when `keep_local_q` (or
 /// when computed anyway).
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(always)]
 pub(crate) fn solve_contact<const D: usize, S: ContactStep<D>>(
     step: &S,
     worker: &mut S::Worker,
