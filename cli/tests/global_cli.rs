@@ -84,15 +84,28 @@ fn solve_recognises_and_solves_global_files() {
     assert_eq!(status, "converged", "{out}");
     assert!(error <= 1e-8, "{out}");
     // Global ids and names, with their defaults and the tolerance given.
-    for solver in ["600", "605", "GFC3D_NSN_AC", "614", "NSGS"] {
-        let o = fc3d([
+    // fc3d's own 691 (the H-form sweep) by id and names, with NSGS' --local.
+    for solver in [
+        "600",
+        "605",
+        "GFC3D_NSN_AC",
+        "614",
+        "NSGS",
+        "691",
+        "NSGS_HFORM_COLOURED",
+        "NSGS_HFORM --local 552",
+    ] {
+        let mut words = solver.split(' ');
+        let mut args = vec![
             "solve".as_ref(),
             two_rods.as_os_str(),
             "--solver".as_ref(),
-            solver.as_ref(),
+            words.next().unwrap().as_ref(),
             "--tol".as_ref(),
             "1e-8".as_ref(),
-        ]);
+        ];
+        args.extend(words.map(std::ffi::OsStr::new));
+        let o = fc3d(args);
         assert!(o.status.success(), "{solver}: {}", stderr(&o));
         let out = stdout(&o);
         let (status, error) = row(&out, "GFC3D_TwoRods1.dat");
@@ -181,15 +194,17 @@ fn scene_global_writes_the_generated_global_problem() {
         spec.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(2));
-    // The written scene solves as a global problem.
-    let o = fc3d([spec.as_os_str(), "--solver".as_ref(), "606".as_ref()]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert_eq!(
-        row(&stdout(&o), "spec.dat").0,
-        "converged",
-        "{}",
-        stdout(&o)
-    );
+    // The written scene solves as a global problem (reduced, and in the H form).
+    for solver in ["606", "NSGS_HFORM"] {
+        let o = fc3d([spec.as_os_str(), "--solver".as_ref(), solver.as_ref()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert_eq!(
+            row(&stdout(&o), "spec.dat").0,
+            "converged",
+            "{solver}: {}",
+            stdout(&o)
+        );
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -563,6 +563,73 @@ fn global_ipm_iterations_allocate_nothing() {
     }
 }
 
+/// A global H-form solve (691) allocates as many times for 2 sweeps as for 30, sequential and
+/// coloured (on the calling thread), with the global error measured after every sweep and under
+/// a time budget (the best iterate kept): the sweep, the recomputed `v` and the error of the
+/// triple allocate nothing.
+#[test]
+fn global_hform_sweeps_allocate_nothing() {
+    use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
+    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    use fc3d_core::Decomposition;
+    for shape in [PileShape::Spheres, PileShape::Boxes] {
+        let p = GeneratedScene {
+            pile: PileSpec {
+                contacts: 1200,
+                piles: 1,
+                seed: 3,
+            },
+            shape,
+        }
+        .generate_global()
+        .unwrap();
+        for (decomposition, error_evaluation, budget) in [
+            (
+                Decomposition::Sequential,
+                ErrorEvaluation::LightWithFullFinal,
+                None,
+            ),
+            (Decomposition::Sequential, ErrorEvaluation::Full, None),
+            (Decomposition::Coloured, ErrorEvaluation::Full, None),
+            (
+                Decomposition::Sequential,
+                ErrorEvaluation::LightWithFullFinal,
+                Some(Duration::from_secs(600)),
+            ),
+        ] {
+            let allocations = |k| {
+                let config = GlobalConfig {
+                    tolerance: 0.0,
+                    max_iter: k,
+                    time_budget: budget,
+                    ..GlobalConfig::new(GlobalMethod::HForm(NsgsOptions {
+                        decomposition,
+                        error_evaluation,
+                        threads: 1,
+                        ..Default::default()
+                    }))
+                };
+                let (mut r, mut u, mut v) = (
+                    vec![0.0; p.size()],
+                    vec![0.0; p.size()],
+                    vec![0.0; p.ndof()],
+                );
+                let (n, report) = count_allocations(|| {
+                    solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap()
+                });
+                assert_eq!(report.iterations, k);
+                n
+            };
+            let (few, many) = (allocations(2), allocations(30));
+            assert_eq!(
+                few, many,
+                "{shape:?} {decomposition:?} {error_evaluation:?} {budget:?}: {few} for 2 \
+                 sweeps, {many} for 30"
+            );
+        }
+    }
+}
+
 /// fc3d's SSN-ALM (690) allocates as many times for 3 Newton steps as for 15: the body-space
 /// pattern, its Cholesky analysis, GMRES' basis and the work vectors are set up once; the steps
 /// (contact maps, assembly and factorization on the fixed pattern, solves, GMRES, the line

@@ -130,6 +130,7 @@ pub fn solvers_help() -> String {
         .collect();
     let globals: Vec<String> = GlobalMethod::presets()
         .iter()
+        .chain(&GlobalMethod::own_presets())
         .map(|m| format!("{} GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
         .collect();
     format!(
@@ -195,6 +196,7 @@ pub fn parse_spec(s: &str) -> Result<SolverSpec, String> {
                 .join(", "),
             GlobalMethod::presets()
                 .iter()
+                .chain(&GlobalMethod::own_presets())
                 .map(|m| format!("{} = GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
                 .collect::<Vec<_>>()
                 .join(", ")
@@ -240,6 +242,7 @@ fn parse_global(s: &str) -> Result<Option<GlobalMethod>, String> {
             "unknown global solver '{s}' (one of {})",
             GlobalMethod::presets()
                 .iter()
+                .chain(&GlobalMethod::own_presets())
                 .map(|m| format!("{} = GFC3D_{}", m.siconos_id(), m.name().unwrap_or("")))
                 .collect::<Vec<_>>()
                 .join(", ")

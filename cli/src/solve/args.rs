@@ -118,12 +118,20 @@ pub(crate) fn global_config_of(args: &SolveArgs) -> Result<GlobalConfig, String>
         config.time_budget = local.time_budget;
         return Ok(config);
     };
-    if args.local.is_some() {
-        return Err(format!(
-            "--local applies to NSGS only, not to the global solver {}",
-            method.label()
-        ));
-    }
+    let method = match (method, args.local) {
+        // The H-form sweep is NSGS: its local solver is chosen the same way.
+        (GlobalMethod::HForm(o), Some(local)) => GlobalMethod::HForm(NsgsOptions {
+            local: NsgsOptions::with_local(local).local,
+            ..o
+        }),
+        (method, Some(_)) => {
+            return Err(format!(
+                "--local applies to NSGS only, not to the global solver {}",
+                method.label()
+            ))
+        }
+        (method, None) => method,
+    };
     let mut config = GlobalConfig::new(method);
     config.tolerance = args.tol;
     config.max_iter = args.max_iter;

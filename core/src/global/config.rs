@@ -3,6 +3,7 @@
 
 use crate::config::{Method, MethodChoice, MethodConfig, RollingConfig};
 use crate::error::Fc3dError;
+use crate::solvers::nsgs::{Decomposition, NsgsOptions};
 use crate::solvers::rolling::RollingMethod;
 
 use super::aclm::GlobalAclmOptions;
@@ -47,6 +48,12 @@ pub enum GlobalMethod {
     /// multipliers in the bodies' velocities, Newton steps on `M + rho H D H^T` (M's size),
     /// a fixed point on De Saxcé's term. For a symmetric M.
     AugmentedLagrangian(GlobalAlmOptions),
+    /// fc3d's `NSGS_HFORM` (691, no Siconos id): NSGS in the velocity form on H and a
+    /// block-diagonal M ([`crate::solvers::nsgs`]'s product Gauss-Seidel): `v = M^-1 (q + H r)`
+    /// kept up to date contact by contact, W never formed; the local solver and the sweep
+    /// settings of [`NsgsOptions`] (sequential or coloured decomposition, natural order, no
+    /// freezing, no acceleration). The stopping test measures the global error.
+    HForm(NsgsOptions),
 }
 
 /// The global id of Siconos' `_WR` solver built on each local id.
@@ -81,6 +88,7 @@ impl GlobalMethod {
             GlobalMethod::Aclm(_) => 612,
             GlobalMethod::Ipm(_) => 615,
             GlobalMethod::AugmentedLagrangian(_) => 690,
+            GlobalMethod::HForm(_) => HFORM_ID,
         }
     }
 
@@ -132,6 +140,15 @@ impl GlobalMethod {
                 if o.nesterov_todd { "" } else { "-arrow" }
             ),
             GlobalMethod::AugmentedLagrangian(_) => "GFC3D-SSN-ALM".to_string(),
+            GlobalMethod::HForm(o) => format!(
+                "GFC3D-NSGS-HFORM{}/{}",
+                if o.decomposition == Decomposition::Coloured {
+                    "-COLOURED"
+                } else {
+                    ""
+                },
+                o.local.kind.siconos_id()
+            ),
         }
     }
 
@@ -147,6 +164,7 @@ impl GlobalMethod {
             GlobalMethod::Aclm(_) => (1e-4, 1000),
             GlobalMethod::Ipm(_) => (1e-8, 200),
             GlobalMethod::AugmentedLagrangian(_) => (1e-6, 500),
+            GlobalMethod::HForm(_) => (1e-4, 1000),
         }
     }
 
@@ -160,6 +178,7 @@ impl GlobalMethod {
             GlobalMethod::Aclm(o) => o.validate(),
             GlobalMethod::Ipm(o) => o.validate(),
             GlobalMethod::AugmentedLagrangian(o) => o.validate(),
+            GlobalMethod::HForm(o) => super::hform::validate(o),
         }
     }
 }
@@ -184,6 +203,15 @@ const GLOBAL_NAMES: [(i32, &str); 13] = [
 
 /// fc3d's own global methods (not Siconos ids: gfc3d_driver does not run them), by id and name.
 const FC3D_GLOBAL_NAMES: [(i32, &str); 1] = [(690, "SSN_ALM")];
+/// fc3d's own global id of [`GlobalMethod::HForm`] (Siconos' global ids end at 615; 590 is
+/// fc3d's AUTO).
+pub const HFORM_ID: i32 = 691;
+
+/// fc3d's own global methods by name: the sequential and the coloured H-form sweep (one id).
+const OWN_GLOBAL_NAMES: [(&str, Decomposition); 2] = [
+    ("NSGS_HFORM", Decomposition::Sequential),
+    ("NSGS_HFORM_COLOURED", Decomposition::Coloured),
+];
 
 impl GlobalMethod {
     /// Every global id `gfc3d_driver` runs, with Siconos' defaults (the `_WR` ids with the
@@ -193,6 +221,20 @@ impl GlobalMethod {
         GLOBAL_NAMES
             .iter()
             .filter_map(|&(id, _)| GlobalMethod::of_id(id))
+            .collect()
+    }
+
+    /// fc3d's own global methods (no Siconos id) under their names: 691 `NSGS_HFORM` and
+    /// `NSGS_HFORM_COLOURED`, with the NSGS defaults, and 690 `SSN_ALM`.
+    pub fn own_presets() -> Vec<GlobalMethod> {
+        OWN_GLOBAL_NAMES
+            .iter()
+            .filter_map(|(name, _)| GlobalMethod::preset(name))
+            .chain(
+                FC3D_GLOBAL_NAMES
+                    .iter()
+                    .filter_map(|&(id, _)| GlobalMethod::of_id(id)),
+            )
             .collect()
     }
 
@@ -214,9 +256,13 @@ impl GlobalMethod {
     }
 
     /// Siconos' short name of the method's id (`NSGS_WR`, `NSN_AC`, `IPM`, ...; with the
-    /// `GFC3D_` prefix in Siconos), `None` for a reduction over a local method Siconos has no
-    /// `_WR` id for.
+    /// `GFC3D_` prefix in Siconos; fc3d's own `NSGS_HFORM`, `NSGS_HFORM_COLOURED`), `None` for
+    /// a reduction over a local method Siconos has no `_WR` id for.
     pub fn name(&self) -> Option<&'static str> {
+        if let GlobalMethod::HForm(o) = self {
+            let coloured = o.decomposition == Decomposition::Coloured;
+            return Some(OWN_GLOBAL_NAMES[usize::from(coloured)].0);
+        }
         let id = self.siconos_id();
         GLOBAL_NAMES
             .iter()
@@ -226,15 +272,27 @@ impl GlobalMethod {
     }
 
     /// The preset of a global id (`605`) or name (`NSGS_WR`, `gfc3d_nsgs_wr`, `GFC3D ADMM`,
-    /// `nsn-ac`; case-insensitive), with Siconos' defaults. `None` for anything else (the local
-    /// ids and names included).
+    /// `nsn-ac`; case-insensitive), with Siconos' defaults; fc3d's own 691 / `NSGS_HFORM`
+    /// (sequential, the NSGS defaults) and `NSGS_HFORM_COLOURED` (threads from
+    /// `FC3D_NUM_THREADS` or the machine). `None` for anything else (the local ids and names
+    /// included).
     pub fn preset(name: &str) -> Option<GlobalMethod> {
         let name = name.trim();
+        let hform = |decomposition| {
+            GlobalMethod::HForm(NsgsOptions {
+                decomposition,
+                ..Default::default()
+            })
+        };
         let id = match name.parse::<i32>() {
+            Ok(HFORM_ID) => return Some(hform(Decomposition::Sequential)),
             Ok(id) => id,
             Err(_) => {
                 let upper = name.to_ascii_uppercase().replace([' ', '-'], "_");
                 let short = upper.strip_prefix("GFC3D_").unwrap_or(&upper);
+                if let Some((_, d)) = OWN_GLOBAL_NAMES.iter().find(|(n, _)| *n == short) {
+                    return Some(hform(*d));
+                }
                 GLOBAL_NAMES
                     .iter()
                     .chain(&FC3D_GLOBAL_NAMES)

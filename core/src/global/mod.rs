@@ -15,6 +15,7 @@ mod aclm;
 mod admm;
 mod alm;
 mod config;
+mod hform;
 mod ipm;
 mod jacobi;
 mod newton;
@@ -29,7 +30,10 @@ pub use crate::problem::{GlobalProblem, GlobalRollingProblem};
 pub use aclm::GlobalAclmOptions;
 pub use admm::GlobalAdmmOptions;
 pub use alm::GlobalAlmOptions;
-pub use config::{global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig};
+pub use config::{
+    global_rolling_default, GlobalConfig, GlobalMethod, GlobalRollingConfig, HFORM_ID,
+};
+pub use hform::HFormSweep;
 pub use ipm::IpmOptions;
 pub use jacobi::JacobiOptions;
 pub use newton::GlobalNewtonOptions;

@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
 use super::rescaling::{GlobalRescaling, Scaling};
-use super::{aclm, admm, alm, ipm, jacobi, newton, vi};
+use super::{aclm, admm, alm, hform, ipm, jacobi, newton, vi};
 use crate::config::SolverConfig;
 use crate::contract::{Limits, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, try_vec, Fc3dError};
@@ -131,6 +131,9 @@ pub fn solve_global_with_observer(
         }
         GlobalMethod::Ipm(options) => {
             ipm::run(problem, &mut operator, options, &limits, r, u, v, observer)?
+        }
+        GlobalMethod::HForm(options) => {
+            hform::run(problem, &mut operator, options, &limits, r, u, v, observer)?
         }
         GlobalMethod::ProjectedJacobi(options) => {
             jacobi::run(problem, &mut operator, options, &limits, r, u, v, observer)?

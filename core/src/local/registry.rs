@@ -92,7 +92,7 @@ macro_rules! local_solvers {
                 match self { $(AnyLocalSolver::$kind(s) => s.solve_with_rho(p, rho, r),)+ }
             }
 
-            #[inline]
+            #[inline(always)]
             fn solve_in_sweep(
                 &mut self,
                 p: &LocalProblem<'_>,

@@ -48,6 +48,11 @@ impl HForm {
         &self.h
     }
 
+    /// `H^T` (`m x ndof`): row j is column j of H.
+    pub fn ht(&self) -> &CsrMatrix {
+        &self.ht
+    }
+
     pub fn mass(&self) -> &MassFactor {
         &self.mass
     }
@@ -290,15 +295,7 @@ impl BlockAccumulator {
             for &k in &groups_of[count[a]..count[a + 1]] {
                 col_idx.extend_from_slice(&group_contacts[group_ptr[k]..group_ptr[k + 1]]);
             }
-            col_idx[start..].sort_unstable();
-            let mut kept = start;
-            for p in start..col_idx.len() {
-                if p == start || col_idx[p] != col_idx[kept - 1] {
-                    col_idx[kept] = col_idx[p];
-                    kept += 1;
-                }
-            }
-            col_idx.truncate(kept);
+            sort_and_dedup_from(&mut col_idx, start);
             row_ptr[a + 1] = col_idx.len();
         }
         let values = try_vec(col_idx.len() * dd, 0.0, "W's blocks")?;
@@ -421,6 +418,20 @@ fn blocks_to_delassus<const D: usize>(
         D * nc,
         &triplets,
     )?))
+}
+
+/// Sorts `v[start..]` and removes its repeats (`v[..start]` untouched): a list of lists built
+/// one list at a time, each kept sorted and without repeats.
+pub(crate) fn sort_and_dedup_from(v: &mut Vec<usize>, start: usize) {
+    v[start..].sort_unstable();
+    let mut kept = start;
+    for p in start..v.len() {
+        if p == start || v[p] != v[kept - 1] {
+            v[kept] = v[p];
+            kept += 1;
+        }
+    }
+    v.truncate(kept);
 }
 
 /// `y <- y + A^T x`.

@@ -21,6 +21,7 @@ pub use block_rows::BlockRows;
 pub use block_sparse::BlockSparseMatrix;
 pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
+pub(crate) use hform::sort_and_dedup_from;
 pub use hform::{transpose, transpose_mul_add, HForm};
 pub use mass::{MassFactor, DENSE_BLOCK_MAX};
 pub use storage::{BlockValues, Shared};

@@ -5,7 +5,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
-use super::parallel::{ContactGraph, PoisonOnPanic, Pool, SharedSlice, SpinBarrier};
+use super::parallel::{ContactGraph, Coupling, PoisonOnPanic, Pool, SharedSlice, SpinBarrier};
 use super::step::{new_reaction, ContactStep};
 use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::distance_sq_d;
@@ -40,7 +40,7 @@ pub(crate) struct Colouring {
 }
 
 impl Colouring {
-    fn of<const D: usize>(rows: &BlockRows<D>) -> Result<Self, Fc3dError> {
+    pub(crate) fn of(rows: &impl Coupling) -> Result<Self, Fc3dError> {
         let (order, colour_start) = ContactGraph::new(rows, UNIT)?.colour()?;
         Ok(Colouring {
             order,
@@ -50,8 +50,8 @@ impl Colouring {
 
     /// The colouring of the units of an island: `contacts` (in index order), closed under
     /// coupling; `position[c]` is contact c's position in `contacts`.
-    pub(crate) fn of_island<const D: usize>(
-        rows: &BlockRows<D>,
+    pub(crate) fn of_island(
+        rows: &impl Coupling,
         contacts: &[usize],
         position: &[usize],
     ) -> Result<Self, Fc3dError> {
@@ -76,8 +76,8 @@ impl Colouring {
 
 impl ColouredPlan {
     /// The plan over `colouring`, which must be that of `rows`' pattern (computed when `None`).
-    pub(super) fn new<const D: usize>(
-        rows: &BlockRows<D>,
+    pub(super) fn new(
+        rows: &impl Coupling,
         threads: usize,
         colouring: Option<Colouring>,
     ) -> Result<Self, Fc3dError> {
@@ -99,6 +99,27 @@ impl ColouredPlan {
     }
 }
 
+impl ColouredPlan {
+    /// The schedule of a sweep over all contacts, and the slots of its units' sums.
+    pub(super) fn units(&mut self) -> (Units<'_>, &mut [f64]) {
+        let ColouredPlan {
+            colouring,
+            unit_sums,
+            next_unit,
+            barrier,
+            pool,
+        } = self;
+        let units = Units {
+            contacts: None,
+            colouring,
+            next_unit,
+            barrier,
+            pool: pool.as_deref(),
+        };
+        (units, unit_sums)
+    }
+}
+
 /// The schedule of one coloured sweep over a set of contacts: the positions of `contacts`
 /// (every contact in index order when `None`) cut in units of [`UNIT`] consecutive positions,
 /// coloured by `colouring`. Used for the whole problem ([`Decomposition::Coloured`]) and for each
@@ -114,10 +135,8 @@ pub(crate) struct Units<'s> {
 }
 
 impl Units<'_> {
-    /// One sweep: colour after colour, the threads take the colour's units and sweep each in
-    /// position order. `unit_sums` (two slots per unit) receives each unit's squared increment
-    /// and squared reaction norm; returns their sums, taken in unit order, so that the result
-    /// does not depend on the number of threads.
+    /// One NSGS sweep of `rows`' contacts (see [`Units::run`]): each contact's update
+    /// ([`new_reaction`]) written into `reactions` and `memory`.
     #[allow(clippy::too_many_arguments)]
     pub fn sweep<const D: usize, S: ContactStep<D>>(
         &self,
@@ -130,6 +149,37 @@ impl Units<'_> {
         memory: &SharedSlice<'_>,
         unit_sums: &mut [f64],
     ) -> (f64, f64) {
+        let update = |worker: &mut S::Worker, c: usize| {
+            let mut m = memory.get(c);
+            let (rc, old, _) = new_reaction(
+                rows, step, worker, relaxation, c, q, mu, reactions, &mut m, false,
+            );
+            // SAFETY: contact c belongs to the unit being swept, by one thread only, and no
+            // unit of its colour reads another's contacts; the barrier between colours orders
+            // these writes before the next colour's reads.
+            unsafe {
+                reactions.set_contact(c, &rc);
+                memory.set(c, m);
+            }
+            (distance_sq_d(&rc, &old), distance_sq_d(&rc, &[0.0; D]))
+        };
+        self.run(rows.n_contacts(), || step.worker(), update, unit_sums)
+    }
+
+    /// One sweep of `update` over the positions: colour after colour, the threads take the
+    /// colour's units and update each unit's contacts in position order (`update(worker, c)`
+    /// returns contact c's squared increment and squared reaction norm, and may write only
+    /// what belongs to c and to the contacts it is coupled with). `unit_sums` (two slots per
+    /// unit) receives each unit's sums; returns their totals, taken in unit order, so that the
+    /// result does not depend on the number of threads. `n_contacts` counts the positions
+    /// when `contacts` is `None`.
+    pub fn run<W>(
+        &self,
+        n_contacts: usize,
+        worker: impl Fn() -> W + Sync,
+        update: impl Fn(&mut W, usize) -> (f64, f64) + Sync,
+        unit_sums: &mut [f64],
+    ) -> (f64, f64) {
         for next in self.next_unit {
             next.store(0, Ordering::Relaxed);
         }
@@ -138,12 +188,12 @@ impl Units<'_> {
             colour_start,
         } = self.colouring;
         let n_colours = colour_start.len() - 1;
-        let n_positions = self.contacts.map_or(rows.n_contacts(), |c| c.len());
+        let n_positions = self.contacts.map_or(n_contacts, |c| c.len());
         let (contacts, next_unit, barrier) = (self.contacts, self.next_unit, self.barrier);
         let sums = SharedSlice::new(unit_sums);
         let job = |_thread: usize| {
             let _poison = PoisonOnPanic(barrier);
-            let mut worker = step.worker();
+            let mut worker = worker();
             for k in 0..n_colours {
                 let units = &order[colour_start[k]..colour_start[k + 1]];
                 loop {
@@ -154,28 +204,9 @@ impl Units<'_> {
                     let (mut increment, mut norm) = (0.0, 0.0);
                     for position in unit * UNIT..((unit + 1) * UNIT).min(n_positions) {
                         let c = contacts.map_or(position, |contacts| contacts[position]);
-                        let mut m = memory.get(c);
-                        let (rc, old, _) = new_reaction(
-                            rows,
-                            step,
-                            &mut worker,
-                            relaxation,
-                            c,
-                            q,
-                            mu,
-                            reactions,
-                            &mut m,
-                            false,
-                        );
-                        increment += distance_sq_d(&rc, &old);
-                        norm += distance_sq_d(&rc, &[0.0; D]);
-                        // SAFETY: contact c belongs to this unit, swept by this thread only,
-                        // and no unit of this colour reads another's contacts; the barrier
-                        // below orders these writes before the next colour's reads.
-                        unsafe {
-                            reactions.set_contact(c, &rc);
-                            memory.set(c, m);
-                        }
+                        let (i, n) = update(&mut worker, c);
+                        increment += i;
+                        norm += n;
                     }
                     // SAFETY: unit taken by this thread only.
                     unsafe {

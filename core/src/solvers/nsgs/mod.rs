@@ -9,6 +9,7 @@
 
 mod anderson;
 mod coloured;
+mod hform;
 mod islands;
 mod parallel;
 mod settings;
@@ -16,6 +17,7 @@ mod step;
 mod sweeper;
 
 pub(crate) use coloured::Colouring;
+pub(crate) use hform::HFormSweeper;
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
 pub use settings::{Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
 pub use step::{update_contact, ContactStep, LocalStep};

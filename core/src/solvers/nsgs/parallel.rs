@@ -143,24 +143,44 @@ impl<const D: usize> Reactions<D> for SharedSlice<'_> {
     }
 }
 
+/// Which contacts a contact's update reads or writes besides its own: the coupling a colouring
+/// must separate. Through W, the contacts of its stored off-diagonal blocks; in the H form, the
+/// contacts sharing a block of M (a body) with it.
+pub(crate) trait Coupling {
+    fn n_contacts(&self) -> usize;
+    /// Calls `f` with every contact coupled to `c` (`c` itself left out; repeats allowed).
+    fn for_each_coupled(&self, c: usize, f: impl FnMut(usize));
+}
+
+impl<const D: usize> Coupling for BlockRows<'_, D> {
+    fn n_contacts(&self) -> usize {
+        BlockRows::n_contacts(self)
+    }
+    #[inline]
+    fn for_each_coupled(&self, c: usize, f: impl FnMut(usize)) {
+        self.coupled(c).for_each(f)
+    }
+}
+
 /// The undirected graph of units of contacts: contacts `unit * size .. (unit + 1) * size`
-/// form one unit, and two units are adjacent when W couples a contact of one to a contact of the
-/// other (`W_bc` or `W_cb` stored). With units of one contact it is the contact graph.
+/// form one unit, and two units are adjacent when a contact of one is coupled ([`Coupling`]) to
+/// a contact of the other (through W: `W_bc` or `W_cb` stored). With units of one contact it is
+/// the contact graph.
 pub(crate) struct ContactGraph {
     ptr: Vec<usize>,
     adjacent: Vec<usize>,
 }
 
 impl ContactGraph {
-    pub fn new<const D: usize>(rows: &BlockRows<D>, size: usize) -> Result<Self, Fc3dError> {
+    pub fn new(rows: &impl Coupling, size: usize) -> Result<Self, Fc3dError> {
         Self::over(rows, None, size)
     }
 
     /// The graph of units of `size` consecutive positions of `island = (contacts, position)`
     /// (contacts closed under coupling, `position[c]`: contact c's position in `contacts`);
     /// without an island, of all contacts in index order.
-    pub fn over<const D: usize>(
-        rows: &BlockRows<D>,
+    pub fn over(
+        rows: &impl Coupling,
         island: Option<(&[usize], &[usize])>,
         size: usize,
     ) -> Result<Self, Fc3dError> {
@@ -188,12 +208,15 @@ impl ContactGraph {
         let mut reached_by = try_vec(n, usize::MAX, "contact graph")?;
         for unit in 0..n {
             for p in unit * size..((unit + 1) * size).min(n_positions) {
-                for v in rows.coupled(contact(p)).map(unit_of) {
-                    if v != unit && reached_by[v] != unit {
+                let mut pushed = Ok(());
+                rows.for_each_coupled(contact(p), |b| {
+                    let v = unit_of(b);
+                    if v != unit && reached_by[v] != unit && pushed.is_ok() {
                         reached_by[v] = unit;
-                        try_push(&mut forward, v, "contact graph")?;
+                        pushed = try_push(&mut forward, v, "contact graph");
                     }
-                }
+                });
+                pushed?;
             }
             forward_ptr[unit + 1] = forward.len();
         }

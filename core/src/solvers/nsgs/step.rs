@@ -69,7 +69,11 @@ pub struct LocalStep {
 impl LocalStep {
     /// The step of `options`' local solver for the contacts of `rows`.
     pub fn new(rows: &BlockRows, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
-        let nc = rows.n_contacts();
+        Self::for_contacts(rows.n_contacts(), options)
+    }
+
+    /// The step of `options`' local solver for `nc` contacts.
+    pub fn for_contacts(nc: usize, options: &LocalSolverOptions) -> Result<Self, Fc3dError> {
         let mut rho = Vec::new();
         rho.try_reserve_exact(nc)
             .map_err(|_| Fc3dError::OutOfMemory {
@@ -113,7 +117,7 @@ impl ContactStep<3> for LocalStep {
         solver
     }
 
-    #[inline]
+    #[inline(always)]
     fn solve(
         &self,
         solver: &mut AnyLocalSolver,
@@ -180,24 +184,64 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
     memory: &mut f64,
     keep_local_q: bool,
 ) -> ([f64; D], [f64; D], Option<[f64; D]>) {
-    let w = rows.diagonal(c);
     let old: [f64; D] = r.contact(c);
+    let (rc, local_q) = solve_contact(
+        step,
+        worker,
+        relaxation,
+        c,
+        &rows.diagonal(c),
+        mu[c],
+        &old,
+        || r.local_q(rows, c, q),
+        || r.local_q_normal(rows, c, q),
+        memory,
+        keep_local_q,
+    );
+    (rc, old, local_q)
+}
+
+/// The one-contact update of every Gauss-Seidel sweep, whatever holds the coupling (W's block
+/// rows, or the H form's velocity): contact `c` with diagonal block `w`, friction `mu` and
+/// reaction `old`, whose local q (`q_c + sum_{b != c} W_cb r_b`) `local_q` computes (and its
+/// normal component `local_q_normal`, all a frictionless contact needs). Frictionless shortcut,
+/// local solve, relaxation; returns the new reaction and the local q when `keep_local_q` (or
+/// when computed anyway).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn solve_contact<const D: usize, S: ContactStep<D>>(
+    step: &S,
+    worker: &mut S::Worker,
+    relaxation: Option<f64>,
+    c: usize,
+    w: &Block<D>,
+    mu: f64,
+    old: &[f64; D],
+    local_q: impl FnOnce() -> [f64; D],
+    local_q_normal: impl FnOnce() -> f64,
+    memory: &mut f64,
+    keep_local_q: bool,
+) -> ([f64; D], Option<[f64; D]>) {
     let wnn = w[0][0];
-    let frictionless = step.normal_only(c, mu[c]) && wnn > 0.0 && wnn.is_finite();
+    let frictionless = step.normal_only(c, mu) && wnn > 0.0 && wnn.is_finite();
     let need_local_q = !frictionless || keep_local_q;
-    let local_q = need_local_q.then(|| r.local_q(rows, c, q));
+    let mut compute = Some(local_q);
+    let mut local_q = if need_local_q {
+        compute.take().map(|f| f())
+    } else {
+        None
+    };
     // The cone is the half-line R+ e_N: only the normal row of the coupling matters. A
     // quotient that overflows (a subnormal W_NN) is left to the one-contact step.
     let scalar = if frictionless {
         let qn = match local_q {
             Some(lq) => lq[0],
-            None => r.local_q_normal(rows, c, q),
+            None => local_q_normal(),
         };
         Some((-qn / wnn).max(0.0)).filter(|rn| rn.is_finite())
     } else {
         None
     };
-    let mut local_q = local_q;
     let mut rc = match scalar {
         Some(rn) => {
             let mut rc = [0.0; D];
@@ -205,20 +249,21 @@ pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + 
             rc
         }
         None => {
-            let lq = *local_q.get_or_insert_with(|| r.local_q(rows, c, q));
-            let mut rc = old;
-            step.solve(worker, c, &w, &lq, mu[c], memory, &mut rc);
+            // Without a local q only when a frictionless quotient overflowed: computed now.
+            let lq = *local_q.get_or_insert_with(|| compute.take().map_or([0.0; D], |f| f()));
+            let mut rc = *old;
+            step.solve(worker, c, w, &lq, mu, memory, &mut rc);
             rc
         }
     };
     if let Some(omega) = relaxation {
-        for (x, o) in rc.iter_mut().zip(&old) {
+        for (x, o) in rc.iter_mut().zip(old) {
             *x = omega * *x + (1.0 - omega) * o;
         }
         if omega > 1.0 {
             // Over-relaxation can leave the cone; the iterate must stay admissible.
-            rc = step.project(c, &rc, mu[c]);
+            rc = step.project(c, &rc, mu);
         }
     }
-    (rc, old, local_q)
+    (rc, local_q)
 }

@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use super::coloured::{ColouredPlan, Colouring, Units};
+use super::coloured::{ColouredPlan, Colouring};
 use super::parallel::{resolve_threads, Pool, SharedSlice};
 use super::settings::{ContactOrder, Decomposition, NsgsOptions};
 use super::step::{new_reaction, ContactStep, LocalStep};
@@ -319,20 +319,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
             ..
         } = self;
         let coloured = coloured.as_mut().expect("a coloured plan");
-        let ColouredPlan {
-            colouring,
-            unit_sums,
-            next_unit,
-            barrier,
-            pool,
-        } = &mut *coloured;
-        let units = Units {
-            contacts: None,
-            colouring,
-            next_unit,
-            barrier,
-            pool: pool.as_deref(),
-        };
+        let (units, unit_sums) = coloured.units();
         let (increment_sq, _) = units.sweep(
             rows,
             &*step,
