@@ -24,7 +24,7 @@ use crate::problem::FrictionProblem;
 /// (see [`walk_layers`]): even layers `m x m` on pockets at `(i - 1, i)`, odd layers
 /// `(m - 1) x (m - 1)` on the spheres at `(i, i + 1)`.
 fn layer_of(m: usize, layer: usize) -> (usize, isize) {
-    if layer % 2 == 0 {
+    if layer.is_multiple_of(2) {
         (m, -1)
     } else {
         (m - 1, 0)
@@ -101,16 +101,8 @@ fn build_box(world: &mut World, random: &mut super::granular::Random, pile: &Pil
 mod tests {
     use super::*;
     use crate::scenes::granular::tests::{
-        bits, blocks_are_exactly_the_shared_bodies, positive_semidefinite,
+        bits, blocks_are_exactly_the_shared_bodies, positive_semidefinite, spec,
     };
-
-    fn spec(contacts: usize, piles: usize, seed: u64) -> PileSpec {
-        PileSpec {
-            contacts,
-            piles,
-            seed,
-        }
-    }
 
     #[test]
     fn full_layers_count_their_contacts() {

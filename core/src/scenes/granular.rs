@@ -346,7 +346,7 @@ pub(super) mod tests {
     use super::*;
     use crate::matrix::Delassus;
 
-    fn spec(contacts: usize, piles: usize, seed: u64) -> PileSpec {
+    pub(crate) fn spec(contacts: usize, piles: usize, seed: u64) -> PileSpec {
         PileSpec {
             contacts,
             piles,
