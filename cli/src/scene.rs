@@ -2,7 +2,8 @@
 //! `fc3d scene contacts=N,piles=P,seed=S,shape=boxes ...`, the spec of a `gen:` input): generates
 //! a pile scene ([`fc3d_core::scenes::sphere_piles`]: spheres in square pyramids on the ground, or
 //! [`fc3d_core::scenes::box_piles`]: stepped pyramids of boxes with 4 contact points per face
-//! contact; one time step of rigid-body dynamics, sparse-block W) and writes it as a Siconos `.dat` file (or FCLIB
+//! contact, or [`fc3d_core::scenes::fcc_piles`]: boxes of spheres in a face-centred cubic
+//! lattice; one time step of rigid-body dynamics, sparse-block W) and writes it as a Siconos `.dat` file (or FCLIB
 //! `.hdf5` when fc3d is built with the `fclib` feature), by OUT's extension. With `--global` the
 //! scene is written in the global form instead (M block diagonal, one 6x6 block a body, H the
 //! contact Jacobians, b = 0: [`GeneratedScene::generate_global`]), M and H as sparse matrices
@@ -26,7 +27,7 @@ use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
 
 #[derive(Args, Debug, Clone, PartialEq)]
 pub struct SceneArgs {
-    /// The scene as one spec, `contacts=N[,piles=P][,seed=S][,shape=spheres|boxes]` (as after
+    /// The scene as one spec, `contacts=N[,piles=P][,seed=S][,shape=spheres|boxes|fcc]` (as after
     /// `gen:`), in place of the flags.
     #[arg(value_name = "SPEC", value_parser = parse_scene,
           conflicts_with_all = ["contacts", "piles", "seed", "shape"])]
@@ -40,7 +41,8 @@ pub struct SceneArgs {
     /// Seed of the pseudo-random jitter, masses and velocities.
     #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
-    /// What the piles are made of: spheres, or boxes (4 contact points per face contact).
+    /// What the piles are made of: spheres, boxes (4 contact points per face contact), or fcc
+    /// (boxes of spheres in a regular face-centred cubic lattice).
     #[arg(long, value_name = "SHAPE", default_value = "spheres", value_parser = parse_shape)]
     pub shape: PileShape,
     /// Write the global form (M, H, q, b, mu: Siconos' GlobalFrictionContactProblem) instead of
@@ -80,10 +82,10 @@ fn description(scene: &GeneratedScene, global: bool) -> String {
         spec.contacts,
         spec.piles,
         spec.seed,
-        if scene.shape == PileShape::Boxes {
-            " --shape boxes"
-        } else {
-            ""
+        match scene.shape {
+            PileShape::Spheres => "",
+            PileShape::Boxes => " --shape boxes",
+            PileShape::Fcc => " --shape fcc",
         },
         if global { " --global" } else { "" }
     )

@@ -67,10 +67,7 @@ fn main() {
             size => sizes.push(size.parse::<usize>().expect("a contact count")),
         }
     }
-    let shape_name = match shape {
-        PileShape::Spheres => "spheres",
-        PileShape::Boxes => "boxes",
-    };
+    let shape_name = shape.label();
     let header = "shape,contacts,piles,solver,tolerance,status,seconds,outer_iterations,products,\
                   reported_error,recomputed_error,load_before,load_after,inner_ratio,inner_max";
     println!("{header}");

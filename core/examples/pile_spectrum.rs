@@ -183,10 +183,7 @@ fn main() {
         };
         let line = format!(
             "{},{contacts},{},{layers},{ndof},{lambda_max_w:.6e},{hi:.6e},{lo:.6e},{condition},{steps},{settled},{:.1}",
-            match args.shape {
-                PileShape::Spheres => "spheres",
-                PileShape::Boxes => "boxes",
-            },
+            args.shape.label(),
             args.piles,
             t.elapsed().as_secs_f64()
         );

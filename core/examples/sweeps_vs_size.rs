@@ -45,10 +45,7 @@ fn main() {
             size => sizes.push(size.parse::<usize>().expect("a contact count")),
         }
     }
-    let shape_name = match shape {
-        PileShape::Spheres => "spheres",
-        PileShape::Boxes => "boxes",
-    };
+    let shape_name = shape.label();
     let header = "shape,contacts,piles,layers,sweep_ms,sweeps_1e-3,sweeps_1e-4,sweeps_1e-6,\
                   est_s_1e-3,est_s_1e-4,est_s_1e-6,last_sweep,last_error,run_s,load_before,load_after";
     println!("{header}");

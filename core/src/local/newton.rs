@@ -255,10 +255,68 @@ impl SiconosAcPoint {
         }
     }
 
-    /// The Jacobian `A W + B` at the point (a: derivative in u, Siconos' A; b: in r, its B).
-    #[allow(clippy::needless_range_loop)] // i, j index three matrices at once
+    /// The Jacobian `A W + B` at the point (A: derivative in u, Siconos' A; B: in r, its B).
+    /// Each entry is Siconos' `(A_i0 W_0j + A_i1 W_1j) + A_i2 W_2j + B_ij`; a row of A with one
+    /// non-zero entry `a` gives `a W_kj + 0.0` (W is finite: the zero products are signed
+    /// zeros, which change nothing but a zero's sign, and the final `+ B_ij = + 0.0` makes
+    /// that sign positive) and a zero row gives B's row, so only sliding rows are formed in
+    /// full ([`SiconosAcPoint::jacobian_full`] is the reference of the tests).
+    #[inline]
     fn jacobian(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64) -> Mat3 {
-        let mu = p.mu;
+        let w = p.w;
+        let scaled_row =
+            |a: f64, k: usize| [a * w[k][0] + 0.0, a * w[k][1] + 0.0, a * w[k][2] + 0.0];
+        let normal = if self.normal_active {
+            scaled_row(rho_n, 0)
+        } else {
+            [1.0, 0.0, 0.0]
+        };
+        match self.branch {
+            TangentBranch::Stick => [normal, scaled_row(rho_t, 1), scaled_row(rho_t, 2)],
+            TangentBranch::Free => [normal, [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            TangentBranch::Slide => {
+                let (a, b) = self.slide_rows(p.mu, rho_n, rho_t);
+                let full_row = |i: usize| {
+                    let row = |j: usize| {
+                        a[i][0] * w[0][j] + a[i][1] * w[1][j] + a[i][2] * w[2][j] + b[i][j]
+                    };
+                    [row(0), row(1), row(2)]
+                };
+                [normal, full_row(0), full_row(1)]
+            }
+        }
+    }
+
+    /// Rows T and S of A and B in the slide branch.
+    #[inline]
+    fn slide_rows(&self, mu: f64, rho_n: f64, rho_t: f64) -> ([Vec3; 2], [Vec3; 2]) {
+        let (rvt, rvs, rv1, radius) = (self.rvt, self.rvs, self.rv1, self.radius);
+        let rv3 = rv1 * rv1 * rv1;
+        let g_tt = rv1 - rvt * rvt * rv3;
+        let g_ts = -rvt * rvs * rv3;
+        let g_ss = rv1 - rvs * rvs * rv3;
+        let a = [
+            [
+                mu * rho_n * rvt * rv1,
+                g_tt * rho_t * radius,
+                g_ts * rho_t * radius,
+            ],
+            [
+                mu * rho_n * rvs * rv1,
+                g_ts * rho_t * radius,
+                g_ss * rho_t * radius,
+            ],
+        ];
+        let b = [
+            [-mu * rvt * rv1, 1.0 - g_tt * radius, -g_ts * radius],
+            [-mu * rvs * rv1, -g_ts * radius, 1.0 - g_ss * radius],
+        ];
+        (a, b)
+    }
+
+    /// The Jacobian as Siconos forms it: A and B in full, `A W + B` by the full product.
+    #[cfg(test)]
+    fn jacobian_full(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64) -> Mat3 {
         let mut a: Mat3 = [[0.0; 3]; 3];
         let mut b: Mat3 = [[0.0; 3]; 3];
         if self.normal_active {
@@ -266,40 +324,27 @@ impl SiconosAcPoint {
         } else {
             b[0][0] = 1.0;
         }
-        let (rvt, rvs, rv1, radius) = (self.rvt, self.rvs, self.rv1, self.radius);
         match self.branch {
             TangentBranch::Stick => {
                 a[1][1] = rho_t;
                 a[2][2] = rho_t;
             }
             TangentBranch::Slide => {
-                let rv3 = rv1 * rv1 * rv1;
-                let g_tt = rv1 - rvt * rvt * rv3;
-                let g_ts = -rvt * rvs * rv3;
-                let g_ss = rv1 - rvs * rvs * rv3;
-                a[1][0] = mu * rho_n * rvt * rv1;
-                a[2][0] = mu * rho_n * rvs * rv1;
-                a[1][1] = g_tt * rho_t * radius;
-                a[1][2] = g_ts * rho_t * radius;
-                a[2][1] = g_ts * rho_t * radius;
-                a[2][2] = g_ss * rho_t * radius;
-                b[1][0] = -mu * rvt * rv1;
-                b[1][1] = 1.0 - g_tt * radius;
-                b[1][2] = -g_ts * radius;
-                b[2][0] = -mu * rvs * rv1;
-                b[2][1] = -g_ts * radius;
-                b[2][2] = 1.0 - g_ss * radius;
+                let (sa, sb) = self.slide_rows(p.mu, rho_n, rho_t);
+                a[1] = sa[0];
+                a[2] = sa[1];
+                b[1] = sb[0];
+                b[2] = sb[1];
             }
             TangentBranch::Free => {
                 b[1][1] = 1.0;
                 b[2][2] = 1.0;
             }
         }
-        let aw = mat3_mul(&a, p.w);
-        let mut jac = aw;
-        for i in 0..3 {
-            for j in 0..3 {
-                jac[i][j] += b[i][j];
+        let mut jac = mat3_mul(&a, p.w);
+        for (row, b_row) in jac.iter_mut().zip(&b) {
+            for (x, y) in row.iter_mut().zip(b_row) {
+                *x += y;
             }
         }
         jac
@@ -324,22 +369,75 @@ fn alart_curnier_siconos<const JAC: bool>(
     (point.f, jac)
 }
 
-/// A Newton point of the Siconos variant: F at r, and how to form the Jacobian there.
-#[derive(Debug, Clone, Copy)]
-enum NewtonPoint {
-    /// Alart-Curnier: the Jacobian from the point's intermediates.
-    AlartCurnier(SiconosAcPoint),
-    /// Jean-Moreau: F; the Jacobian is formed anew (with F) at r.
-    JeanMoreau(Vec3),
+/// A Newton point of the Siconos variant: F at r, and how to form the Jacobian there. The
+/// iterations are generic over it, so each formulation runs its own code.
+trait SiconosPoint: Copy {
+    fn at(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Self;
+    fn f(&self) -> Vec3;
+    /// F and the Jacobian at `r`, the point's reaction.
+    fn f_and_jacobian(
+        &self,
+        p: &LocalProblem<'_>,
+        rho_n: f64,
+        rho_t: f64,
+        r: &Vec3,
+    ) -> (Vec3, Mat3);
 }
 
-impl NewtonPoint {
-    fn f(&self) -> Vec3 {
-        match self {
-            NewtonPoint::AlartCurnier(point) => point.f,
-            NewtonPoint::JeanMoreau(f) => *f,
-        }
+impl SiconosPoint for SiconosAcPoint {
+    #[inline]
+    fn at(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Self {
+        SiconosAcPoint::at(p, rho_n, rho_t, r)
     }
+    #[inline]
+    fn f(&self) -> Vec3 {
+        self.f
+    }
+    /// The Jacobian from the point's branch and intermediates.
+    #[inline]
+    fn f_and_jacobian(
+        &self,
+        p: &LocalProblem<'_>,
+        rho_n: f64,
+        rho_t: f64,
+        _r: &Vec3,
+    ) -> (Vec3, Mat3) {
+        (self.f, self.jacobian(p, rho_n, rho_t))
+    }
+}
+
+/// Jean-Moreau's F; the Jacobian is formed anew (with F) at r.
+#[derive(Debug, Clone, Copy)]
+struct JeanMoreauPoint(Vec3);
+
+impl SiconosPoint for JeanMoreauPoint {
+    #[inline]
+    fn at(p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> Self {
+        JeanMoreauPoint(ac_eval::<false, true>(p, rho_n, rho_t, r).0)
+    }
+    #[inline]
+    fn f(&self) -> Vec3 {
+        self.0
+    }
+    #[inline]
+    fn f_and_jacobian(
+        &self,
+        p: &LocalProblem<'_>,
+        rho_n: f64,
+        rho_t: f64,
+        r: &Vec3,
+    ) -> (Vec3, Mat3) {
+        jean_moreau_function(p, rho_n, rho_t, r)
+    }
+}
+
+/// Whether `a` and `b` hold the same bits (so that any function of them gives the same value:
+/// `-0.0 == 0.0` would not do).
+#[inline]
+fn same_bits(a: &Vec3, b: &Vec3) -> bool {
+    a[0].to_bits() == b[0].to_bits()
+        && a[1].to_bits() == b[1].to_bits()
+        && a[2].to_bits() == b[2].to_bits()
 }
 
 /// Alart-Curnier Newton: plain (550), with Goldstein-Price line search (551), or hybrid (565).
@@ -383,16 +481,6 @@ impl AlartCurnierNewton {
             ac_eval::<false, true>(p, rho_n, rho_t, r).0
         } else {
             alart_curnier_residual(p, rho_n, rho_t, r)
-        }
-    }
-
-    /// F of the formulation at r, with Siconos' arithmetic for Alart-Curnier.
-    #[inline]
-    fn point_siconos(&self, p: &LocalProblem<'_>, rho_n: f64, rho_t: f64, r: &Vec3) -> NewtonPoint {
-        if self.jean_moreau {
-            NewtonPoint::JeanMoreau(ac_eval::<false, true>(p, rho_n, rho_t, r).0)
-        } else {
-            NewtonPoint::AlartCurnier(SiconosAcPoint::at(p, rho_n, rho_t, r))
         }
     }
 
@@ -446,9 +534,25 @@ impl AlartCurnierNewton {
 
     /// Siconos 4.4's Newton iterations from `r` (module documentation); `inv_q` is
     /// `1 / ||q||` (1 for a tiny q). Returns (converged, iterations). F is evaluated once a
-    /// point: the Jacobian of a step is formed from the point (Alart-Curnier), and the point a
-    /// line search accepted is the next one.
+    /// point: the Jacobian of a step is formed from the point (Alart-Curnier), the point a
+    /// line search accepted is the next one, and a step that leaves `r`'s bits unchanged keeps
+    /// its point (near a solution the search's short trials round back to `r`: on
+    /// Capsules-i101-404 three trials in four).
     fn newton_siconos(
+        &self,
+        p: &LocalProblem<'_>,
+        rho: (f64, f64),
+        inv_q: f64,
+        r: &mut Vec3,
+    ) -> (bool, usize) {
+        if self.jean_moreau {
+            self.newton_siconos_with::<JeanMoreauPoint>(p, rho, inv_q, r)
+        } else {
+            self.newton_siconos_with::<SiconosAcPoint>(p, rho, inv_q, r)
+        }
+    }
+
+    fn newton_siconos_with<P: SiconosPoint>(
         &self,
         p: &LocalProblem<'_>,
         rho: (f64, f64),
@@ -457,15 +561,12 @@ impl AlartCurnierNewton {
     ) -> (bool, usize) {
         let (rho_n, rho_t) = rho;
         let tol = self.options.tolerance;
-        let mut point = self.point_siconos(p, rho_n, rho_t, r);
+        let mut point = P::at(p, rho_n, rho_t, r);
         for it in 0..self.options.max_iter {
             if past_deadline(self.deadline, it) {
                 return (false, it);
             }
-            let (f, jac) = match point {
-                NewtonPoint::AlartCurnier(ac) => (ac.f, ac.jacobian(p, rho_n, rho_t)),
-                NewtonPoint::JeanMoreau(_) => jean_moreau_function(p, rho_n, rho_t, r),
-            };
+            let (f, jac) = point.f_and_jacobian(p, rho_n, rho_t, r);
             // A singular Jacobian ends the iterations where they are.
             let Some(d) = solve3_partial_pivoting(&jac, &[-f[0], -f[1], -f[2]]) else {
                 return (false, it);
@@ -479,7 +580,7 @@ impl AlartCurnierNewton {
                 ];
                 let slope = f[0] * jd[0] + f[1] * jd[1] + f[2] * jd[2];
                 let f_sq = f[0] * f[0] + f[1] * f[1] + f[2] * f[2];
-                self.goldstein_price_siconos(p, rho, r, &d, f_sq, slope)
+                self.goldstein_price_siconos(p, rho, r, &point, &d, f_sq, slope)
             } else {
                 (1.0, None)
             };
@@ -487,9 +588,14 @@ impl AlartCurnierNewton {
             if !next.iter().all(|v| v.is_finite()) {
                 return (false, it + 1);
             }
+            // The accepted trial was evaluated at this very point (same operations); a step
+            // that rounds back to r has r's point.
+            point = match accepted {
+                Some(trial) => trial,
+                None if same_bits(&next, r) => point,
+                None => P::at(p, rho_n, rho_t, &next),
+            };
             *r = next;
-            // The accepted trial was evaluated at this very point (same operations).
-            point = accepted.unwrap_or_else(|| self.point_siconos(p, rho_n, rho_t, r));
             let f = point.f();
             if 0.5 * (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) * inv_q < tol {
                 return (true, it + 1);
@@ -498,19 +604,23 @@ impl AlartCurnierNewton {
         (false, self.options.max_iter)
     }
 
-    /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` (slope
-    /// `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]` from `alpha = 1`, `hi`
-    /// starting at 1e20; after the last trial the next bisection point is returned untested.
-    /// Returns the step and, when a trial was accepted, the point it evaluated there.
-    fn goldstein_price_siconos(
+    /// Siconos 4.4's Goldstein-Price search on `psi = ||F||^2 / 2` along `d` from `r`, whose
+    /// point is `at_r` (slope `slope0`, `-||F||^2` up to rounding): bisection of `[lo, hi]`
+    /// from `alpha = 1`, `hi` starting at 1e20; after the last trial the next bisection point
+    /// is returned untested. Returns the step and, when a trial was accepted, the point it
+    /// evaluated there. A trial point that rounds to `r` (same bits) has `at_r`'s F, so it is
+    /// not evaluated again: its `psi` is `psi0`.
+    #[allow(clippy::too_many_arguments)]
+    fn goldstein_price_siconos<P: SiconosPoint>(
         &self,
         p: &LocalProblem<'_>,
         rho: (f64, f64),
         r: &Vec3,
+        at_r: &P,
         d: &Vec3,
         f_sq: f64,
         slope0: f64,
-    ) -> (f64, Option<NewtonPoint>) {
+    ) -> (f64, Option<P>) {
         const UNBOUNDED: f64 = 1e20;
         let psi0 = 0.5 * f_sq;
         let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
@@ -524,14 +634,29 @@ impl AlartCurnierNewton {
                 r[1] + alpha * d[1],
                 r[2] + alpha * d[2],
             ];
-            let point = self.point_siconos(p, rho.0, rho.1, &rt);
-            let ft = point.f();
-            let psi = 0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+            // At r's bits, psi is psi0 (the same F, squared and summed in the same order).
+            let trial_point = (!same_bits(&rt, r)).then(|| P::at(p, rho.0, rho.1, &rt));
+            let psi = match &trial_point {
+                Some(point) => {
+                    let ft = point.f();
+                    0.5 * (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2])
+                }
+                None => psi0,
+            };
             let slope = (psi - psi0) / alpha;
             let long_enough = slope >= GP_M2 * slope0;
             let short_enough = slope <= GP_M1 * slope0;
             if long_enough && short_enough {
-                return (alpha, Some(point));
+                return (alpha, Some(trial_point.unwrap_or(*at_r)));
+            }
+            if trial_point.is_none() && lo == 0.0 && long_enough {
+                // Too long at a point that rounds to r: every later trial halves alpha, and
+                // r + alpha d, monotone in alpha, rounds to r as well (psi = psi0, the same
+                // verdict). Only the last bisection point remains to be formed.
+                for _ in trial..self.options.line_search_max_iter {
+                    alpha *= 0.5;
+                }
+                return (alpha, None);
             }
             if !long_enough {
                 lo = alpha;
@@ -578,10 +703,12 @@ impl AlartCurnierNewton {
         }
         let tol = self.options.tolerance;
         let local_error = |x: &Vec3| p.residual(x) * inv_q;
-        let mut kept = *r;
-        let mut kept_error = local_error(r);
-        // A new point replaces the kept one when it is good enough or no worse.
+        // A new point replaces the kept one when it is good enough or no worse. A point with
+        // the kept one's bits has its error: it is not measured again.
         let keep_or_discard = |x: &mut Vec3, kept: &mut Vec3, kept_error: &mut f64| {
+            if same_bits(x, kept) {
+                return;
+            }
             let e = local_error(x);
             if e <= tol || e <= *kept_error {
                 *kept = *x;
@@ -590,8 +717,21 @@ impl AlartCurnierNewton {
                 *x = *kept;
             }
         };
+        let start = *r;
         let (_, mut iterations) = self.newton_siconos(p, rho, inv_q, r);
-        keep_or_discard(r, &mut kept, &mut kept_error);
+        // The starting point's error is needed only when Newton's point is not within the
+        // tolerance (or is the starting point itself).
+        let mut kept = *r;
+        let mut kept_error = local_error(r);
+        let within_tolerance = kept_error <= tol;
+        if !within_tolerance && !same_bits(r, &start) {
+            let start_error = local_error(&start);
+            let no_worse = kept_error <= start_error;
+            if !no_worse {
+                (kept, kept_error) = (start, start_error);
+                *r = start;
+            }
+        }
         let mut round = 0;
         while kept_error > tol && round < self.options.hybrid_max_loop {
             // A round runs two iterations whose clocks tick every CLOCK_PERIOD steps: read the
@@ -813,6 +953,99 @@ mod siconos_arithmetic_tests {
             for i in 0..3 {
                 prop_assert!(close(x[i], y[i], 1.0), "{:?} {:?}", x, y);
             }
+        }
+    }
+
+    /// A W entry: often an exact zero of either sign (so that products are signed zeros), else
+    /// any value.
+    fn w_entry() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(0.0), Just(-0.0), -3.0f64..3.0, -3.0f64..3.0]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2048))]
+
+        /// The Jacobian formed by branch has the bits of Siconos' full product `A W + B`.
+        #[test]
+        fn jacobian_by_branch_has_the_full_products_bits(
+            w in prop::array::uniform3(prop::array::uniform3(w_entry())),
+            q in prop::array::uniform3(-5.0f64..5.0),
+            r in prop::array::uniform3(prop_oneof![Just(0.0), Just(-0.0), -5.0f64..5.0]),
+            mu in prop_oneof![Just(0.0), 0.0f64..2.0],
+            rho_n in 0.1f64..2.0,
+            rho_t in 0.1f64..2.0,
+        ) {
+            let p = LocalProblem { w: &w, q, mu };
+            let point = SiconosAcPoint::at(&p, rho_n, rho_t, &r);
+            let lean = point.jacobian(&p, rho_n, rho_t).map(|row| row.map(f64::to_bits));
+            let full = point.jacobian_full(&p, rho_n, rho_t).map(|row| row.map(f64::to_bits));
+            prop_assert_eq!(lean, full, "{:?} at {:?}", point.branch, r);
+        }
+    }
+
+    #[test]
+    fn jacobian_by_branch_covers_every_branch() {
+        let w = [[2.0, -0.0, 0.5], [0.0, 1.5, -0.25], [0.5, -0.25, 1.0]];
+        let p = LocalProblem {
+            w: &w,
+            q: [-1.0, 0.2, -0.1],
+            mu: 0.5,
+        };
+        let mut seen = Vec::new();
+        // Stick at rest, slide with a large tangential reaction, free after take-off with a
+        // tangential reaction, and take-off at zero.
+        for r in [
+            [0.5, 0.0, 0.0],
+            [0.5, 3.0, -2.0],
+            [0.0, 0.3, 3.0],
+            [0.0, 0.0, 0.0],
+        ] {
+            let point = SiconosAcPoint::at(&p, 0.5, 0.5, &r);
+            let bits = |m: Mat3| m.map(|row| row.map(f64::to_bits));
+            assert_eq!(
+                bits(point.jacobian(&p, 0.5, 0.5)),
+                bits(point.jacobian_full(&p, 0.5, 0.5))
+            );
+            seen.push(point.branch);
+        }
+        for branch in [
+            TangentBranch::Stick,
+            TangentBranch::Slide,
+            TangentBranch::Free,
+        ] {
+            assert!(seen.contains(&branch), "{branch:?} not reached: {seen:?}");
+        }
+    }
+
+    /// Near a solution the Newton step is below half an ulp of r: every trial of Siconos'
+    /// search rounds to r, the search takes its eleventh bisection point 2^-10 untested, and
+    /// the step leaves r's bits unchanged (the point is reused, not evaluated again).
+    #[test]
+    fn a_search_whose_trials_round_to_r_ends_at_the_last_bisection_point() {
+        let w = [[1.0, 0.1, 0.0], [0.1, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let p = LocalProblem {
+            w: &w,
+            q: [-1.0, 0.0, 0.0],
+            mu: 0.5,
+        };
+        let solver =
+            AlartCurnierNewton::new(&LocalSolverOptions::new(LocalSolverKind::NewtonHybrid));
+        let r = [1.0, -0.1, 0.0];
+        let at_r = SiconosAcPoint::at(&p, 1.0, 1.0, &r);
+        let d = [1e-17, -1e-18, 0.0];
+        let f_sq = 1e-30;
+        let (alpha, accepted) =
+            solver.goldstein_price_siconos(&p, (1.0, 1.0), &r, &at_r, &d, f_sq, -f_sq);
+        assert_eq!(alpha, 0.5f64.powi(10));
+        assert!(accepted.is_none());
+        // A step that does move r is searched as before: from a sticking point F is linear,
+        // the full step is accepted and lands on the solution u = 0, r = (1, -0.1, 0) / 0.99.
+        let mut x = [0.9, 0.0, 0.0];
+        let (converged, iterations) = solver.newton_siconos(&p, (1.0, 1.0), 1.0, &mut x);
+        assert!(converged, "{iterations} iterations to {x:?}");
+        let exact = [1.0 / 0.99, -0.1 / 0.99, 0.0];
+        for (x, e) in x.iter().zip(exact) {
+            assert!((x - e).abs() < 1e-14, "{x} against {e}");
         }
     }
 

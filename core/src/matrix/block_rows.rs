@@ -328,7 +328,9 @@ impl<'a, const D: usize> BlockRows<'a, D> {
     /// `q_c + sum_{b != c} W_cb r_b`: the local q of contact c for the current r.
     #[inline]
     pub fn local_q(&self, c: usize, q: &[f64], r: &[f64]) -> [f64; D] {
-        self.local_q_by(c, q, |b| contact_of(r, b))
+        // As D-arrays: one bounds check a coupled contact.
+        let contacts = r.as_chunks::<D>().0;
+        self.local_q_by(c, q, |b| contacts[b])
     }
 
     /// [`BlockRows::local_q`] with each contact's reaction read through `r_of` (reactions
@@ -339,12 +341,12 @@ impl<'a, const D: usize> BlockRows<'a, D> {
         let cols = &self.cols[range.clone()];
         with_blocks!(&self.values, D * D, |blocks| {
             let mut acc = contact_of(q, c);
-            for (k, &b) in range.clone().zip(cols) {
+            for (m, &b) in blocks.blocks(range.clone()).zip(cols) {
                 if b == c {
                     continue;
                 }
                 let rb: [f64; D] = r_of(b);
-                let m = &blocks.at(k)[..D * D];
+                let m = &m[..D * D];
                 // Each component summed in the order of `block_vec_add` (same bits as a
                 // row-major block).
                 for (i, a) in acc.iter_mut().enumerate() {

@@ -99,6 +99,8 @@ impl BlockValues<'_> {
 /// Read access to block `k` (its values column-major) of one storage; see the module doc.
 pub(crate) trait BlockAt {
     fn at(&self, k: usize) -> &[f64];
+    /// Blocks `range`, in order (one bounds check for the range, none a block).
+    fn blocks(&self, range: std::ops::Range<usize>) -> impl Iterator<Item = &[f64]>;
 }
 
 /// Packed storage of `len`-value blocks.
@@ -113,6 +115,10 @@ impl BlockAt for Packed<'_> {
     fn at(&self, k: usize) -> &[f64] {
         &self.values[self.len * k..self.len * (k + 1)]
     }
+    #[inline(always)]
+    fn blocks(&self, range: std::ops::Range<usize>) -> impl Iterator<Item = &[f64]> {
+        self.values[self.len * range.start..self.len * range.end].chunks_exact(self.len)
+    }
 }
 
 /// A table of references to 3x3 blocks.
@@ -123,6 +129,10 @@ impl BlockAt for Table<'_, '_> {
     #[inline(always)]
     fn at(&self, k: usize) -> &[f64] {
         self.0[k]
+    }
+    #[inline(always)]
+    fn blocks(&self, range: std::ops::Range<usize>) -> impl Iterator<Item = &[f64]> {
+        self.0[range].iter().map(|b| &b[..])
     }
 }
 

@@ -20,7 +20,7 @@
 //! box by box, contact by contact, until its share is reached (the last box may keep only part of
 //! its contacts), so the count is exact. Same seed, same bits: see [`super::granular`].
 
-use super::granular::{piles_side_by_side, random_motion, walk_pyramid, Pile, Random};
+use super::granular::{pile_shape, piles_side_by_side, random_motion, walk_pyramid, Pile, Random};
 use super::world::{yaw, Body, Storage, World, E_Z};
 use crate::error::Fc3dError;
 use crate::problem::FrictionProblem;
@@ -60,7 +60,13 @@ pub fn box_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dError>
 pub(super) fn box_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     let pitch = 2.0 * HALF_WIDTH + GAP;
     // Three box widths of empty ground between piles.
-    piles_side_by_side(spec, layer_contacts, pitch, 6.0 * HALF_WIDTH, build_pile)
+    piles_side_by_side(
+        spec,
+        |c| pile_shape(c, layer_contacts).0,
+        pitch,
+        6.0 * HALF_WIDTH,
+        build_pile,
+    )
 }
 
 /// A box as placed: centre and horizontal half-widths.

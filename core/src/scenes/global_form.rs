@@ -61,6 +61,7 @@ impl GeneratedScene {
         let world = match self.shape {
             PileShape::Spheres => super::granular::pile_world(&self.pile)?,
             PileShape::Boxes => super::boxes::box_world(&self.pile)?,
+            PileShape::Fcc => super::fcc::fcc_world(&self.pile)?,
         };
         world.global_problem()
     }
@@ -73,7 +74,7 @@ mod tests {
 
     #[test]
     fn reduced_global_scenes_equal_the_local_ones() {
-        for shape in [PileShape::Spheres, PileShape::Boxes] {
+        for shape in [PileShape::Spheres, PileShape::Boxes, PileShape::Fcc] {
             let scene = GeneratedScene {
                 pile: PileSpec {
                     contacts: 300,

@@ -124,13 +124,13 @@ pub(super) struct Pile {
     pub(super) mu: f64,
 }
 
-/// Lays out the piles of `spec` along x, for a shape whose full layers of `m x m` cells have
-/// `layer_contacts(m, on_ground)` contacts and whose cells are `pitch` apart: per pile the smallest base
-/// holding its share of the contacts, one friction coefficient in [0.3, 0.5], and `gap` of empty
-/// ground before the next pile (so that piles never touch). `build` adds one pile to the world.
+/// Lays out the piles of `spec` along x, for a shape whose smallest base holding `c` contacts is
+/// `base_of(c)` cells and whose cells are `pitch` apart: per pile that base for its share of the
+/// contacts, one friction coefficient in [0.3, 0.5], and `gap` of empty ground before the next
+/// pile (so that piles never touch). `build` adds one pile to the world.
 pub(super) fn piles_side_by_side(
     spec: &PileSpec,
-    layer_contacts: fn(usize, bool) -> usize,
+    base_of: fn(usize) -> usize,
     pitch: f64,
     gap: f64,
     mut build: impl FnMut(&mut World, &mut Random, &Pile),
@@ -141,7 +141,7 @@ pub(super) fn piles_side_by_side(
     let mut x_origin = 0.0;
     for pile in 0..spec.piles {
         let contacts = spec.pile_contacts(pile);
-        let (base, _) = pile_shape(contacts, layer_contacts);
+        let base = base_of(contacts);
         let mu = 0.4 + 0.1 * random.symmetric();
         build(
             &mut world,
@@ -190,13 +190,26 @@ pub(super) struct Cell<'a, T> {
 pub(super) fn walk_pyramid<T: Copy>(
     n: usize,
     contacts: usize,
+    place: impl FnMut(&mut ContactBudget, &Cell<'_, T>) -> T,
+) {
+    walk_layers(n, |layer| (n - layer, 0), contacts, place)
+}
+
+/// [`walk_pyramid`] for any stack of square layers: layer `L` has `m x m` cells and cell
+/// `(i, j)` rests on the cells `(i + s + di, j + s + dj)`, `di, dj` in {0, 1}, of the layer
+/// below that exist, where `(m, s) = layer_of(L)` (a pyramid: `m = n - L`, `s = 0`).
+pub(super) fn walk_layers<T: Copy>(
+    layers: usize,
+    layer_of: impl Fn(usize) -> (usize, isize),
+    contacts: usize,
     mut place: impl FnMut(&mut ContactBudget, &Cell<'_, T>) -> T,
 ) {
     let mut budget = ContactBudget(contacts);
     let mut supports: Vec<Option<T>> = Vec::with_capacity(4);
     let mut below: Vec<Option<T>> = Vec::new();
-    for layer in 0..n {
-        let m = n - layer;
+    let mut mb = 0;
+    for layer in 0..layers {
+        let (m, shift) = layer_of(layer);
         let mut current: Vec<Option<T>> = vec![None; m * m];
         for j in 0..m {
             for i in 0..m {
@@ -207,9 +220,11 @@ pub(super) fn walk_pyramid<T: Copy>(
                 if layer == 0 {
                     supports.push(None);
                 } else {
-                    let mb = m + 1;
                     for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                        supports.extend(below[(i + di) + mb * (j + dj)].map(Some));
+                        let (ib, jb) = (i as isize + shift + di, j as isize + shift + dj);
+                        if (0..mb as isize).contains(&ib) && (0..mb as isize).contains(&jb) {
+                            supports.extend(below[ib as usize + mb * jb as usize].map(Some));
+                        }
                     }
                 }
                 let cell = Cell {
@@ -232,6 +247,7 @@ pub(super) fn walk_pyramid<T: Copy>(
             }
         }
         below = current;
+        mb = m;
     }
 }
 
@@ -257,7 +273,13 @@ pub fn sphere_piles(spec: &PileSpec) -> Result<FrictionProblem<'static>, Fc3dErr
 
 pub(super) fn pile_world(spec: &PileSpec) -> Result<World, Fc3dError> {
     // Three radii of empty ground between piles.
-    piles_side_by_side(spec, layer_contacts, 2.0 * RADIUS, 6.0 * RADIUS, build_pile)
+    piles_side_by_side(
+        spec,
+        |c| pile_shape(c, layer_contacts).0,
+        2.0 * RADIUS,
+        6.0 * RADIUS,
+        build_pile,
+    )
 }
 
 /// Adds one pyramid of spheres with its left front corner at `x = x_origin, y = 0`.
@@ -274,36 +296,49 @@ fn build_pile(world: &mut World, random: &mut Random, pile: &Pile) {
             RADIUS + layer_height * layer as f64 + if layer == 0 { 0.0 } else { jitter3() },
         ];
         let mass = MASS * (1.0 + 0.2 * random.symmetric());
-        let (v, omega) = random_motion(random);
-        let body = world.add_body(Body::sphere(x, mass, RADIUS, v, omega));
-        // The supports first (ground or the 4 below), then the left and back neighbours.
-        let neighbours = [cell.left, cell.back].into_iter().flatten().map(Some);
-        for other in cell.supports.iter().copied().chain(neighbours) {
-            if !budget.take() {
-                break;
-            }
-            match other {
-                None => world.add_contact(body, None, [x[0], x[1], 0.0], E_Z, pile.mu),
-                Some(b) => {
-                    let xb = world.bodies[b].x;
-                    let normal = normalize(&[x[0] - xb[0], x[1] - xb[1], x[2] - xb[2]]);
-                    // Midway between the two surfaces.
-                    let gap =
-                        ((x[0] - xb[0]).powi(2) + (x[1] - xb[1]).powi(2) + (x[2] - xb[2]).powi(2))
-                            .sqrt()
-                            - 2.0 * RADIUS;
-                    let reach = RADIUS + 0.5 * gap;
-                    let point = [
-                        xb[0] + reach * normal[0],
-                        xb[1] + reach * normal[1],
-                        xb[2] + reach * normal[2],
-                    ];
-                    world.add_contact(body, Some(b), point, normal, pile.mu);
-                }
+        add_sphere(world, budget, cell, x, mass, random_motion(random), pile.mu)
+    });
+}
+
+/// Adds a sphere of radius [`RADIUS`] centred at `x` in `cell`, with its contacts while `budget`
+/// allows: its supports first (the ground or the spheres below), then its left and back
+/// neighbours. Returns the body.
+pub(super) fn add_sphere(
+    world: &mut World,
+    budget: &mut ContactBudget,
+    cell: &Cell<'_, usize>,
+    x: [f64; 3],
+    mass: f64,
+    (v, omega): ([f64; 3], [f64; 3]),
+    mu: f64,
+) -> usize {
+    let body = world.add_body(Body::sphere(x, mass, RADIUS, v, omega));
+    let neighbours = [cell.left, cell.back].into_iter().flatten().map(Some);
+    for other in cell.supports.iter().copied().chain(neighbours) {
+        if !budget.take() {
+            break;
+        }
+        match other {
+            None => world.add_contact(body, None, [x[0], x[1], 0.0], E_Z, mu),
+            Some(b) => {
+                let xb = world.bodies[b].x;
+                let normal = normalize(&[x[0] - xb[0], x[1] - xb[1], x[2] - xb[2]]);
+                // Midway between the two surfaces.
+                let gap =
+                    ((x[0] - xb[0]).powi(2) + (x[1] - xb[1]).powi(2) + (x[2] - xb[2]).powi(2))
+                        .sqrt()
+                        - 2.0 * RADIUS;
+                let reach = RADIUS + 0.5 * gap;
+                let point = [
+                    xb[0] + reach * normal[0],
+                    xb[1] + reach * normal[1],
+                    xb[2] + reach * normal[2],
+                ];
+                world.add_contact(body, Some(b), point, normal, mu);
             }
         }
-        body
-    });
+    }
+    body
 }
 
 #[cfg(test)]
@@ -311,7 +346,7 @@ pub(super) mod tests {
     use super::*;
     use crate::matrix::Delassus;
 
-    fn spec(contacts: usize, piles: usize, seed: u64) -> PileSpec {
+    pub(crate) fn spec(contacts: usize, piles: usize, seed: u64) -> PileSpec {
         PileSpec {
             contacts,
             piles,

@@ -24,12 +24,14 @@ use crate::problem::FrictionProblem;
 
 mod boxes;
 mod builtin;
+mod fcc;
 mod global_form;
 mod granular;
 pub mod towers;
 mod world;
 pub use boxes::box_piles;
 pub use builtin::{default_scenes, Scene};
+pub use fcc::fcc_piles;
 pub use granular::{sphere_piles, PileSpec};
 pub use towers::{box_towers, TowerMotion, TowerSpec};
 
@@ -42,16 +44,28 @@ pub enum PileShape {
     /// Stepped pyramids of boxes, 4 contact points per face contact
     /// ([`box_piles`]).
     Boxes,
+    /// Boxes of spheres in a regular face-centred cubic lattice ([`fcc_piles`]).
+    Fcc,
 }
 
 impl PileShape {
-    /// The shape named `spheres` or `boxes`.
+    /// The shape's name, as [`PileShape::from_name`] reads it.
+    pub fn label(&self) -> &'static str {
+        match self {
+            PileShape::Spheres => "spheres",
+            PileShape::Boxes => "boxes",
+            PileShape::Fcc => "fcc",
+        }
+    }
+
+    /// The shape named `spheres`, `boxes` or `fcc`.
     pub fn from_name(name: &str) -> Result<PileShape, Fc3dError> {
         match name.trim() {
             "spheres" => Ok(PileShape::Spheres),
             "boxes" => Ok(PileShape::Boxes),
+            "fcc" => Ok(PileShape::Fcc),
             other => Err(Fc3dError::InvalidOption(format!(
-                "unknown shape '{other}' (spheres, boxes)"
+                "unknown shape '{other}' (spheres, boxes, fcc)"
             ))),
         }
     }
@@ -65,33 +79,36 @@ pub struct GeneratedScene {
 }
 
 impl GeneratedScene {
-    /// Parses `contacts=N,piles=P,seed=S,shape=spheres|boxes` (any order; `piles` defaults to 1,
+    /// Parses `contacts=N,piles=P,seed=S,shape=spheres|boxes|fcc` (any order; `piles` defaults to 1,
     /// `seed` to 1, `shape` to spheres).
     pub fn parse(text: &str) -> Result<GeneratedScene, Fc3dError> {
         parse_spec(text, true)
     }
 
     /// A short name for tables and files: `piles-c100000-p4-s1` (spheres),
-    /// `boxes-c100000-p4-s1`.
+    /// `boxes-c100000-p4-s1`, `fcc-c100000-p4-s1`.
     pub fn name(&self) -> String {
-        match self.shape {
-            PileShape::Spheres => self.pile.name(),
-            PileShape::Boxes => format!(
-                "boxes-c{}-p{}-s{}",
-                self.pile.contacts, self.pile.piles, self.pile.seed
-            ),
-        }
+        let prefix = match self.shape {
+            PileShape::Spheres => return self.pile.name(),
+            PileShape::Boxes => "boxes",
+            PileShape::Fcc => "fcc",
+        };
+        format!(
+            "{prefix}-c{}-p{}-s{}",
+            self.pile.contacts, self.pile.piles, self.pile.seed
+        )
     }
 
     /// The height of each pile in layers of bodies (a pile is built bottom-up until its share
     /// of the contacts is spent, so its top layers may be missing from the full pyramid).
     pub fn pile_layers(&self) -> Vec<usize> {
-        let layer_contacts = match self.shape {
-            PileShape::Spheres => granular::layer_contacts,
-            PileShape::Boxes => boxes::layer_contacts,
+        let layers = |contacts: usize| match self.shape {
+            PileShape::Spheres => granular::pile_shape(contacts, granular::layer_contacts).1,
+            PileShape::Boxes => granular::pile_shape(contacts, boxes::layer_contacts).1,
+            PileShape::Fcc => fcc::box_shape(contacts).1,
         };
         (0..self.pile.piles)
-            .map(|p| granular::pile_shape(self.pile.pile_contacts(p), layer_contacts).1)
+            .map(|p| layers(self.pile.pile_contacts(p)))
             .collect()
     }
 
@@ -100,6 +117,7 @@ impl GeneratedScene {
         match self.shape {
             PileShape::Spheres => sphere_piles(&self.pile),
             PileShape::Boxes => box_piles(&self.pile),
+            PileShape::Fcc => fcc_piles(&self.pile),
         }
     }
 }
