@@ -80,7 +80,8 @@
 #define FC3D_ONECONTACT_EAL 572
 
 // Output index in AUTO's `iparam`: the stages it took, one decimal digit each, first stage
-// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG; 12 = NSGS then NSN-AC).
+// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG, 7 TFP-APGD; 12 = NSGS then
+// NSN-AC).
 #define FC3D_IPARAM_AUTO_STAGES 18
 
 // Major version of the library (semantic versioning: the C ABI changes only with it).

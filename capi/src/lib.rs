@@ -117,7 +117,8 @@ pub const FC3D_ONECONTACT_EBP: c_int = 571;
 /// the Alart-Curnier Newton 550, with Dumont's rho (`FC3D_RHO_STRATEGY_DUMONT`) by default.
 pub const FC3D_ONECONTACT_EAL: c_int = 572;
 /// Output index in AUTO's `iparam`: the stages it took, one decimal digit each, first stage
-/// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG; 12 = NSGS then NSN-AC).
+/// most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG, 7 TFP-APGD; 12 = NSGS then
+/// NSN-AC).
 pub const FC3D_IPARAM_AUTO_STAGES: c_int = 18;
 
 /// Siconos' verbosity switch: > 0 prints rejected calls and solver summaries to stderr.

@@ -202,3 +202,42 @@ fn bad_bench_arguments_exit_2_and_bad_paths_exit_1() {
     assert_eq!(s.status.code(), Some(1));
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn auto_ratio_is_written_and_auto_max_ratio_sets_the_exit_status() {
+    // AUTO and NSGS on the built-in scenes: `auto-ratio.txt` has a row per scene with AUTO's
+    // time over the faster of the others; a limit no run can miss passes, one every run misses
+    // (AUTO a billion times faster than the best other solver) fails with exit status 1.
+    for (limit, succeeds) in [("1e9", true), ("1e-9", false)] {
+        let out = out_dir(&format!("auto-ratio-{succeeds}"));
+        let result = fc3d()
+            .args([
+                "bench",
+                "--solvers",
+                "AUTO,NSGS,NSGS/551",
+                "--reps",
+                "1",
+                "--tol",
+                "1e-6",
+                "--auto-max-ratio",
+                limit,
+                "--out",
+            ])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.success(), succeeds, "{limit}: {stderr}");
+        let table = std::fs::read_to_string(out.join("auto-ratio.txt")).unwrap();
+        let rows: Vec<&str> = table
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with("problem"))
+            .collect();
+        assert!(!rows.is_empty(), "{table}");
+        assert!(table.contains("# tolerance 1e-6:"), "{table}");
+        if !succeeds {
+            assert!(table.contains("over the limit"), "{table}");
+            assert!(stderr.contains("AUTO more than"), "{stderr}");
+        }
+    }
+}

@@ -5,7 +5,9 @@ use std::time::{Duration, Instant};
 
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::local::LocalSolverKind;
-use fc3d_core::solvers::auto::{choose, sweep_local_solver, PlannedStage, ProblemFeatures, RULES};
+use fc3d_core::solvers::auto::{
+    choose, sweep_local_solver, PlannedStage, ProblemFeatures, PROBE, RULES,
+};
 use fc3d_core::{
     natural_map_error, solve, AutoOptions, Delassus, DenseMatrix, FrictionProblem, SolveStatus,
     SolverConfig, StageEnd, StageKind,
@@ -206,7 +208,10 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     // OneObject-i1028-138: mu 0.3, normal-row dominance 0.14, 23 contacts.
     let f = ProblemFeatures::of(&shared("OneObject-i1028-138.hdf5.dat"));
     assert!(f.strongly_coupled());
-    let first = |tol: f64, budget: Option<Duration>| choose(&f, tol, budget).1[0].kind;
+    // The first stage after the TFP-APGD probe of rule 9 (tests/auto_rules.rs).
+    let after_probe =
+        |plan: &[PlannedStage]| plan.iter().find(|s| s.allowance != PROBE).unwrap().kind;
+    let first = |tol: f64, budget: Option<Duration>| after_probe(choose(&f, tol, budget).1);
     assert_eq!(first(0.0, Some(Duration::from_millis(1))), StageKind::Nsgs);
     assert_eq!(first(0.0, Some(Duration::from_secs(1))), StageKind::Prox);
     assert_eq!(first(1e-8, None), StageKind::Prox);
@@ -215,7 +220,7 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     // BoxesStack1 (52 contacts, mu 0.7): ADMM first to 1e-6.
     let f = ProblemFeatures::of(&shared("BoxesStack1-i100000-32.hdf5.dat"));
     assert!(f.strongly_coupled() && f.mu_max >= 0.5);
-    assert_eq!(choose(&f, 1e-6, None).1[0].kind, StageKind::Admm);
+    assert_eq!(after_probe(choose(&f, 1e-6, None).1), StageKind::Admm);
     // Capsules-i101-404: 225 contacts, EG first at loose tolerances.
     let f = ProblemFeatures::of(&shared("Capsules-i101-404.dat"));
     assert_eq!(choose(&f, 1e-4, None).1[0].kind, StageKind::ExtraGradient);
@@ -224,11 +229,12 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     assert!(!f.strongly_coupled());
     assert_eq!(choose(&f, 1e-8, None).1[0].kind, StageKind::Nsgs);
     // Budget rows: on the Capsules and BoxesStack (40-300 contacts) an anytime solve starts
-    // with NSGS under 7 ms, with ADMM from 7 to 20 ms, with PROX above; OneObject (23
+    // with NSGS under 7 ms, with ADMM from 7 to 20 ms, with PROX above (after the TFP-APGD
+    // probe); OneObject (23
     // contacts) and RockPile (463) keep NSGS up to 20 ms.
     let anytime = |name: &str, ms: u64| {
         let f = ProblemFeatures::of(&shared(name));
-        choose(&f, 0.0, Some(Duration::from_millis(ms))).1[0].kind
+        after_probe(choose(&f, 0.0, Some(Duration::from_millis(ms))).1)
     };
     for name in ["Capsules-i101-404.dat", "BoxesStack1-i100000-32.hdf5.dat"] {
         assert_eq!(anytime(name, 1), StageKind::Nsgs, "{name}");

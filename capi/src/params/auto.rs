@@ -3,7 +3,8 @@
 //! dparam[19] the time budget (`FC3D_DPARAM_TIME_BUDGET`). AUTO has no other setting: its rules
 //! are data in the core (`fc3d_core::solvers::auto::RULES`). Output beside iparam[1] and
 //! dparam[1]: `iparam[FC3D_IPARAM_AUTO_STAGES]` packs the stages taken, one decimal digit each,
-//! first stage most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG: 12 is NSGS then NSN-AC).
+//! first stage most significant (1 NSGS, 2 NSN-AC, 3 PROX, 4 ADMM, 5 TFP, 6 EG, 7 TFP-APGD: 12 is
+//! NSGS then NSN-AC).
 
 use std::os::raw::c_int;
 

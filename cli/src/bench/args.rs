@@ -44,6 +44,11 @@ pub struct BenchArgs {
     /// reached within each.
     #[arg(long, value_name = "TIME,...", value_delimiter = ',', value_parser = parse_duration)]
     pub budget: Option<Vec<Duration>>,
+    /// Tolerance mode with AUTO among the solvers: exit status 1 when AUTO is more than this many
+    /// times slower than the fastest other solver on some problem and tolerance, or does not
+    /// converge where another does (`auto-ratio.txt` lists every ratio).
+    #[arg(long, value_name = "X")]
+    pub auto_max_ratio: Option<f64>,
     /// Output directory (created if needed) for the CSV, the summary and the pictures.
     #[arg(long, value_name = "DIR", default_value = "target/bench-out")]
     pub out: PathBuf,

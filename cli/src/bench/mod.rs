@@ -11,10 +11,15 @@
 //!   criterion. Outputs: `budget.csv`, `summary.txt`, and error-versus-time pictures per family
 //!   (`budget-<family>.svg/.png`).
 //!
+//! With AUTO among the solvers (tolerance mode), `auto-ratio.txt` compares its time with the
+//! fastest other solver's per problem and tolerance; `--auto-max-ratio X` fails the run when
+//! AUTO is more than X times behind.
+//!
 //! The error in every row is measured here ([`check::independent_error`]) and compared with the
 //! solver's report; a disagreement is flagged in the CSV and on stderr, and makes the exit status 1.
 
 pub(crate) mod args;
+mod auto_ratio;
 mod check;
 mod csv;
 mod format;

@@ -10,6 +10,7 @@ use fc3d_core::{solve, SolveStatus};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::args::BenchArgs;
+use super::auto_ratio::{auto_ratio_table, auto_ratios, over_limit};
 use super::check;
 use super::csv::{self, RunRecord};
 use super::format::{duration_name, tol_name};
@@ -214,6 +215,11 @@ pub fn run(args: &BenchArgs) -> ExitCode {
         }
     }
 
+    if let Err(e) = write_auto_ratios(&records, &plan, args, &mut written) {
+        eprintln!("fc3d bench: {e}");
+        failed = true;
+    }
+
     let legends: Vec<String> = specs.iter().map(SolverSpec::legend).collect();
     let pictures = match &plan {
         Plan::Tolerances { tols, .. } => {
@@ -307,4 +313,38 @@ fn run_reps(
         time_s,
         reps: runs.len(),
     })
+}
+
+/// `auto-ratio.txt` when AUTO ran in tolerance mode; an error when `--auto-max-ratio` is
+/// exceeded (or the file cannot be written).
+fn write_auto_ratios(
+    records: &[RunRecord],
+    plan: &Plan,
+    args: &BenchArgs,
+    written: &mut Vec<std::path::PathBuf>,
+) -> Result<(), String> {
+    let ratios = auto_ratios(records);
+    if ratios.is_empty() || !matches!(plan, Plan::Tolerances { .. }) {
+        return Ok(());
+    }
+    let table = auto_ratio_table(&ratios, args.auto_max_ratio);
+    let path = args.out.join("auto-ratio.txt");
+    std::fs::write(&path, &table).map_err(|e| format!("{}: {e}", path.display()))?;
+    written.push(path);
+    eprint!("{table}");
+    let Some(limit) = args.auto_max_ratio else {
+        return Ok(());
+    };
+    let over = over_limit(&ratios, limit);
+    if over.is_empty() {
+        return Ok(());
+    }
+    let names: Vec<String> = over
+        .iter()
+        .map(|r| format!("{} at {:e}", r.problem, r.tolerance))
+        .collect();
+    Err(format!(
+        "AUTO more than {limit}x behind the fastest other solver on {}",
+        names.join(", ")
+    ))
 }

@@ -20,20 +20,25 @@ pub enum StageKind {
     /// Siconos' extragradient with a self-adaptive step (EG, 512): the fastest to 1e-4 on the
     /// large strongly coupled shared problems.
     ExtraGradient,
+    /// Tresca fixed point with APGD sub-problems (TFP-APGD, 503): its first step from r = 0 is
+    /// a frictionless solve, a fraction of a millisecond on the small shared problems, which
+    /// is nearly the solution on some (LMGC_100_PR_PerioBox).
+    TrescaApgd,
 }
 
 impl StageKind {
     /// Every kind, in the order of their codes.
-    pub const ALL: [StageKind; 6] = [
+    pub const ALL: [StageKind; 7] = [
         StageKind::Nsgs,
         StageKind::Newton,
         StageKind::Prox,
         StageKind::Admm,
         StageKind::Tresca,
         StageKind::ExtraGradient,
+        StageKind::TrescaApgd,
     ];
 
-    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1 to 6.
+    /// The digit of this kind in the C output (`FC3D_IPARAM_AUTO_STAGES`): 1 to 7.
     pub fn code(self) -> u8 {
         match self {
             StageKind::Nsgs => 1,
@@ -42,6 +47,7 @@ impl StageKind {
             StageKind::Admm => 4,
             StageKind::Tresca => 5,
             StageKind::ExtraGradient => 6,
+            StageKind::TrescaApgd => 7,
         }
     }
 
@@ -59,6 +65,7 @@ impl StageKind {
             StageKind::Admm => "ADMM",
             StageKind::Tresca => "TFP",
             StageKind::ExtraGradient => "EG",
+            StageKind::TrescaApgd => "TFP-APGD",
         }
     }
 }

@@ -28,8 +28,8 @@ pub use features::{ProblemFeatures, STRONG_MU, WEAK_DOMINANCE};
 pub use plan::{factorizes, next_stage, Handover, NextStage};
 pub use rules::{
     choose, sweep_local_solver, Condition, PlannedStage, Rule, StallRule, ADMM_BUDGET,
-    ADMM_MAX_CONTACTS, HUGE_PROBLEM, LARGE_PROBLEM, MODERATE_MU, RULES, SHORT_BUDGET, STALL,
-    TO_THE_LIMITS,
+    ADMM_MAX_CONTACTS, HUGE_PROBLEM, LARGE_PROBLEM, MODERATE_MU, PROBE, PROBE_PRODUCTS, RULES,
+    SHORT_BUDGET, STALL, TO_THE_LIMITS,
 };
 pub(crate) use run::auto_with;
 

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use crate::contract::StageKind;
 
-use super::rules::PlannedStage;
+use super::rules::{PlannedStage, PROBE};
 
 use StageKind::{Admm, Newton, Prox};
 
@@ -36,15 +36,17 @@ pub struct NextStage {
 
 /// The plan's stage that fills the time a stage stopped short of the deadline left: its first
 /// stage that does not factorize (NSGS, TFP or EG, whose iterations are short and end at the
-/// deadline).
+/// deadline), a probe excepted.
 fn filler(plan: &[PlannedStage]) -> Option<usize> {
-    plan.iter().position(|s| !factorizes(s.kind))
+    plan.iter()
+        .position(|s| !factorizes(s.kind) && s.allowance != PROBE)
 }
 
 /// The next stage of a solve: `first` to begin with (`previous` is `None`), then the stage after
 /// `previous`. Without a budget (`time` is `None`) the plan ends after its last stage. Under a
 /// budget (`time`: the time left and the budget) the time is used up to the deadline:
-/// - the plan starts over after its last stage (a plan whose stages all stalled early);
+/// - the plan starts over after its last stage (a plan whose stages all stalled early), without
+///   its probe (a probe runs once);
 /// - a factorizing stage is not started after the first one when less than a quarter of the
 ///   budget is left (its first step overran the deadline on the Capsules), the next stage of the
 ///   plan is taken instead;
@@ -83,7 +85,10 @@ pub fn next_stage(
     }
     (1..=plan.len())
         .map(|k| (last + k) % plan.len())
-        .find(|&i| !(factorizes(plan[i].kind) && left < budget / 4))
+        .find(|&i| {
+            !(factorizes(plan[i].kind) && left < budget / 4)
+                && !(plan[i].allowance == PROBE && i <= last)
+        })
         .map(|index| NextStage {
             index,
             to_the_limits: false,
@@ -204,6 +209,27 @@ mod tests {
         assert_eq!(
             next_stage(sweeps, 0, Some((0, Handover::Ended)), left),
             at(0)
+        );
+    }
+
+    #[test]
+    fn a_probe_runs_once_and_never_fills() {
+        use super::super::rules::PROBE;
+        use crate::contract::StageKind::TrescaApgd;
+        let plan = &[
+            stage(TrescaApgd, PROBE),
+            stage(Admm, None),
+            stage(Nsgs, None),
+        ];
+        let half = Some((5 * MS, 10 * MS));
+        assert_eq!(next_stage(plan, 0, None, half), at(0));
+        assert_eq!(next_stage(plan, 0, Some((0, Handover::Ended)), half), at(1));
+        // The plan starts over after its last stage without the probe.
+        assert_eq!(next_stage(plan, 0, Some((2, Handover::Ended)), half), at(1));
+        // The filler is the first non-factorizing stage that is not a probe.
+        assert_eq!(
+            next_stage(plan, 0, Some((1, Handover::ShortOfDeadline)), half),
+            filling(2)
         );
     }
 

@@ -8,7 +8,7 @@ use crate::local::LocalSolverKind;
 
 use super::features::ProblemFeatures;
 
-use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca, TrescaApgd};
 
 /// A time budget this short favours methods whose first iterations are cheap.
 pub const SHORT_BUDGET: Duration = Duration::from_millis(20);
@@ -52,6 +52,20 @@ pub(crate) const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedS
 /// on large hyperstatic piles every method's error falls slowly but steadily (docs/scale.md),
 /// and a stall test would end the solve with most of the budget unspent.
 pub const TO_THE_LIMITS: Option<usize> = Some(usize::MAX);
+
+/// The allowance of a probe: a stage that ends, whatever its progress, once its products with
+/// W pass [`PROBE_PRODUCTS`] times those of its first iteration. A probe tries a method that is
+/// far ahead on some problems of a class and behind on others at a bounded cost: the TFP-APGD
+/// probe in front of ADMM (LMGC_100_PR_PerioBox: TFP-APGD at 1e-6 in 5 outer steps, 0.3 ms,
+/// where ADMM first took 170 ms).
+pub const PROBE: Option<usize> = Some(usize::MAX - 1);
+
+/// How many times the products with W of its first iteration a probe may spend. The first
+/// outer step of TFP-APGD (a frictionless solve from r = 0) takes 0.1-0.45 ms on the strongly
+/// coupled shared problems (1.1-1.4 ms on RockPile); its later steps cost more as the inner
+/// tolerance follows the outer error (BoxesStack1: 0.1 ms, then 9 ms for its fifth step). Ten
+/// first steps is the 10x margin AUTO may lose to the best fixed solver, spent once.
+pub const PROBE_PRODUCTS: usize = 10;
 
 /// When a rule applies: every condition given must hold (`None`: any value).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -241,30 +255,49 @@ pub const RULES: &[Rule] = &[
             min_tolerance: Some(1e-6),
             ..Condition::ANY
         },
-        plan: &[stage(Admm, None), stage(Prox, None), stage(Nsgs, None)],
+        plan: &[
+            stage(TrescaApgd, PROBE),
+            stage(Admm, None),
+            stage(Prox, None),
+            stage(Nsgs, None),
+        ],
         why: "strongly coupled problems (BoxesStack, Capsules, RockPile) to 1e-4 or 1e-6: ADMM is \
-              the fastest on most, NSGS and TFP crawl; PROX takes over where ADMM stalls",
+              the fastest on most, NSGS and TFP crawl; PROX takes over where ADMM stalls. The \
+              TFP-APGD probe first: on LMGC_100_PR_PerioBox its first outer step (a frictionless \
+              solve) is at 9.7e-5 and it reaches 1e-6 in 5 (0.1 and 0.5 ms) where ADMM first \
+              took 100-170 ms (2300-3300x the best fixed solver); elsewhere its cap costs ten \
+              first steps (0.1-0.45 ms on BoxesStack1, the Capsules, OneObject)",
     },
     Rule {
         when: Condition {
             strongly_coupled: Some(true),
             ..Condition::ANY
         },
-        plan: &[stage(Prox, None), stage(Admm, None), stage(Nsgs, None)],
+        plan: &[
+            stage(TrescaApgd, PROBE),
+            stage(Prox, None),
+            stage(Admm, None),
+            stage(Nsgs, None),
+        ],
         why: "strongly coupled problems (OneObject, Capsules at 1e-8): the proximal Newton \
-              converges in a few steps where NSGS does not converge at all",
+              converges in a few steps where NSGS does not converge at all. The TFP-APGD probe \
+              first: from its iterate PROX needs 1-3 steps, at 1e-8 AUTO's instruction count \
+              falls from 763M to 60M on LMGC_100_PR_PerioBox, 391M to 60M on BoxesStack1, 178M \
+              to 130M and 76M to 71M on Capsules-i100-889 and -i101-404",
     },
     Rule {
         when: Condition::ANY,
         plan: &[
             stage(Nsgs, None),
-            stage(Tresca, None),
+            stage(TrescaApgd, None),
             stage(Prox, None),
             stage(Newton, None),
         ],
         why: "small or weakly coupled problems (Rover, Confeti, NESpheres, FC3D_Example1): NSGS \
               with the Newton local solver 551 is the fastest or within 1.5x of it (TFP, PFP); \
-              TFP, PROX and Newton go on where it stalls",
+              TFP-APGD, PROX and Newton go on where it stalls (a generated tower of 142 boxes, \
+              568 contacts: TFP-APGD converges in 4-8 outer steps after the sweeps where TFP \
+              with Gauss-Seidel sub-problems stalled and PROX ended the solve 5.7-15x behind)",
     },
 ];
 
@@ -278,7 +311,7 @@ pub struct StallRule {
 }
 
 /// The stall rules (one per kind).
-pub const STALL: [StallRule; 6] = [
+pub const STALL: [StallRule; 7] = [
     StallRule {
         kind: Nsgs,
         chunk: 10,
@@ -311,6 +344,13 @@ pub const STALL: [StallRule; 6] = [
     StallRule {
         kind: ExtraGradient,
         chunk: 100,
+        factor: 0.5,
+    },
+    // As TFP (its error is not monotone: on LMGC_100_PR_PerioBox 1.1e-6 at the third outer
+    // step, 2.5e-3 at the fourth, 2.9e-7 at the fifth).
+    StallRule {
+        kind: TrescaApgd,
+        chunk: 5,
         factor: 0.5,
     },
 ];

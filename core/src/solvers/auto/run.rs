@@ -14,15 +14,17 @@ use crate::solvers::admm::AdmmOptions;
 use crate::solvers::nsgs::{run_sweeps, NsgsOptions, PreparedSweep, SweepSchedule, Sweeper};
 use crate::solvers::nsn::{NewtonSolver, NsnFormulation, NsnOptions};
 use crate::solvers::prox::{ProxOptions, ProxState};
-use crate::solvers::tresca::TrescaOptions;
+use crate::solvers::tresca::{TrescaInnerSolver, TrescaOptions};
 use crate::solvers::vi::{ViOptions, ViSolver};
 
 use super::features::ProblemFeatures;
 use super::plan::{next_probe, next_stage, Handover};
-use super::rules::{choose, stall_rule, sweep_local_solver, SHORT_BUDGET, TO_THE_LIMITS};
+use super::rules::{
+    choose, stall_rule, sweep_local_solver, PROBE, PROBE_PRODUCTS, SHORT_BUDGET, TO_THE_LIMITS,
+};
 use super::{AutoCarry, AutoChoice, AutoOptions, ROUND_OFF};
 
-use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca};
+use StageKind::{Admm, ExtraGradient, Newton, Nsgs, Prox, Tresca, TrescaApgd};
 
 /// The remaining budget as limits for a stage of at most `max_iter` iterations.
 fn stage_limits(tolerance: f64, max_iter: usize, deadline: Option<Instant>) -> Limits {
@@ -120,6 +122,10 @@ pub(crate) fn auto_with<'a>(
     };
     let admm_options = AdmmOptions::default();
     let tresca_options = TrescaOptions::default();
+    let tresca_apgd_options = TrescaOptions {
+        inner: TrescaInnerSolver::apgd(),
+        ..TrescaOptions::default()
+    };
     let eg_options = ViOptions::new(ViSolver::ExtraGradient);
     let newton_options = NsnOptions::new(NsnFormulation::AlartCurnier);
     let mut newton: Option<NewtonSolver> = None;
@@ -151,7 +157,11 @@ pub(crate) fn auto_with<'a>(
             error = best_error;
         }
         let watch = stall_rule(planned.kind);
-        let allowance = planned.allowance.unwrap_or(usize::MAX);
+        let probe = planned.allowance == PROBE && !next.to_the_limits;
+        let allowance = match planned.allowance {
+            _ if probe => usize::MAX,
+            a => a.unwrap_or(usize::MAX),
+        };
         let to_the_limits = next.to_the_limits || planned.allowance == TO_THE_LIMITS;
         // Under a budget above SHORT_BUDGET, a stage of a plan with several gets at most half of
         // the time left, so that a method that is slow on this problem (PROX on BoxesStack and
@@ -217,7 +227,9 @@ pub(crate) fn auto_with<'a>(
         // window as often as its predicted convergence asks.
         let mut window_start = error;
         let mut window = 0usize;
-        let mut probe = 1usize;
+        let mut probe_sweeps = 1usize;
+        // A probe's products with W: those of its first iteration set its cap.
+        let (mut products, mut first_products) = (0usize, None);
         loop {
             let left = (run.max_iter - total).min(allowance - done);
             if left == 0 {
@@ -229,7 +241,9 @@ pub(crate) fn auto_with<'a>(
                 break;
             }
             let chunk = match planned.kind {
-                Nsgs => probe.min(watch.chunk - window),
+                Nsgs => probe_sweeps.min(watch.chunk - window),
+                // A probe checks its cap after each iteration.
+                _ if probe => 1,
                 _ => watch.chunk,
             }
             .min(left);
@@ -245,37 +259,38 @@ pub(crate) fn auto_with<'a>(
             // The families report the natural-map error of (r, u = W r + q) when their last
             // step measured it (the contract of `SolverOutcome::final_error`): then it is not
             // measured again.
-            let (iterations, measured, stopped_for_time) = match planned.kind {
+            let (iterations, measured, stopped_for_time, chunk_products) = match planned.kind {
                 Nsgs => {
                     let sweeper = sweeper.as_mut().expect("built above");
                     // Tolerance 0: the sweeps run the whole probe (or stop on a fixed point).
                     let l = stage_limits(0.0, chunk, stage_deadline);
                     let o = run_sweeps(problem, sweeper, &schedule, &l, r, u, &mut shifted)?;
-                    (o.iterations, o.final_error, o.out_of_time)
+                    (o.iterations, o.final_error, o.out_of_time, o.products)
                 }
                 Newton => {
                     let solver = newton.as_mut().expect("built above");
                     let inner = stage_limits(tolerance, chunk, stage_deadline).start();
                     let o = solver.run(problem.q(), problem.mu(), 0.0, &inner, r, u, &mut shifted);
-                    (o.iterations, None, o.out_of_time)
+                    (o.iterations, None, o.out_of_time, None)
                 }
                 Prox => {
                     let state = prox.as_mut().expect("built above");
                     let l = stage_limits(tolerance, chunk, stage_deadline);
                     let o = state.run(problem, &l.start(), r, u, &mut shifted)?;
                     fill = Fill::largest(fill, o.fill);
-                    (o.iterations, o.final_error, o.out_of_time)
+                    (o.iterations, o.final_error, o.out_of_time, o.products)
                 }
-                Admm | Tresca | ExtraGradient => {
+                Admm | Tresca | TrescaApgd | ExtraGradient => {
                     let family: &dyn Family = match planned.kind {
                         Admm => &admm_options,
                         ExtraGradient => &eg_options,
+                        TrescaApgd => &tresca_apgd_options,
                         _ => &tresca_options,
                     };
                     let l = stage_limits(tolerance, chunk, stage_deadline);
                     let o = family.run(problem, &l, r, u, &mut shifted)?;
                     fill = Fill::largest(fill, o.fill);
-                    (o.iterations, o.final_error, o.out_of_time)
+                    (o.iterations, o.final_error, o.out_of_time, o.products)
                 }
             };
             // A stage that did nothing (converged at entry, or cut at once) still counts one
@@ -307,6 +322,15 @@ pub(crate) fn auto_with<'a>(
                 end = StageEnd::Limits;
                 break;
             }
+            if probe {
+                // A family that does not count its products counts one per iteration.
+                products += chunk_products.unwrap_or(iterations);
+                let cap = PROBE_PRODUCTS * *first_products.get_or_insert(products);
+                if products > cap {
+                    end = StageEnd::Allowance;
+                    break;
+                }
+            }
             // A stage run to the limits is not ended by a stall (large piles: every method's
             // error falls slowly).
             // So is the last stage of a budgeted solve: the host gave the time left.
@@ -322,7 +346,14 @@ pub(crate) fn auto_with<'a>(
                 window_start = error;
                 window = 0;
             }
-            probe = next_probe(probe, before, error, iterations, tolerance, watch.chunk);
+            probe_sweeps = next_probe(
+                probe_sweeps,
+                before,
+                error,
+                iterations,
+                tolerance,
+                watch.chunk,
+            );
         }
         log.push(Stage {
             kind: planned.kind,
