@@ -34,7 +34,7 @@ use std::time::{Duration, Instant};
 use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
 use fc3d_core::io::dat::write_dat_file;
 use fc3d_core::scenes::sequences::{pile_settling_in_bin, Step};
-use fc3d_core::scenes::{GeneratedScene, PileShape};
+use fc3d_core::scenes::GeneratedScene;
 use fc3d_core::{natural_map_error, solve, Method, SolveReport, SolverConfig, Workspace};
 
 const SOLVE_HEADER: &str =
@@ -132,13 +132,6 @@ fn load_average() -> String {
         .unwrap_or_else(|| "?".into())
 }
 
-fn shape_name(shape: PileShape) -> &'static str {
-    match shape {
-        PileShape::Spheres => "spheres",
-        PileShape::Boxes => "boxes",
-    }
-}
-
 /// A method given by name or id: a local one, else a global one (run on the global form).
 enum AnyMethod {
     Local(Method),
@@ -202,7 +195,7 @@ fn run_solve(args: &[String]) -> Result<(), String> {
         let scene = GeneratedScene::parse(&spec).map_err(|e| e.to_string())?;
         let columns = format!(
             "{},{},{},{}",
-            shape_name(scene.shape),
+            scene.shape.label(),
             scene.pile.contacts,
             scene.pile.piles,
             scene.pile.seed
