@@ -108,7 +108,7 @@ fn reports_the_error_of_its_triple_and_matches_nsgs_on_w() {
         // thousands of sweeps: those run a fixed number of sweeps.
         let (tolerance, max_iter) = match shape {
             PileShape::Boxes => (1e-4, 20_000),
-            PileShape::Spheres => (0.0, 300),
+            PileShape::Spheres | PileShape::Fcc => (0.0, 300),
         };
         let mut runs = Vec::new();
         for method in [
