@@ -622,6 +622,9 @@ impl AlartCurnierNewton {
         slope0: f64,
     ) -> (f64, Option<P>) {
         const UNBOUNDED: f64 = 1e20;
+        // Halvings that take any alpha below 2^70 (> 10 UNBOUNDED) to 0: 70 to 1, 1074 more
+        // to the smallest subnormal, one to 0.
+        const HALVINGS_TO_ZERO: usize = 1200;
         let psi0 = 0.5 * f_sq;
         let (mut lo, mut hi) = (0.0_f64, UNBOUNDED);
         let mut alpha = 1.0;
@@ -652,8 +655,12 @@ impl AlartCurnierNewton {
             if trial_point.is_none() && lo == 0.0 && long_enough {
                 // Too long at a point that rounds to r: every later trial halves alpha, and
                 // r + alpha d, monotone in alpha, rounds to r as well (psi = psi0, the same
-                // verdict). Only the last bisection point remains to be formed.
-                for _ in trial..self.options.line_search_max_iter {
+                // verdict). Only the last bisection point remains to be formed: alpha halved
+                // once a remaining trial, exactly as the trials would, but at most
+                // HALVINGS_TO_ZERO times (alpha < 2^70 is 0 by then and stays 0), so that an
+                // INT_MAX trial limit costs no more than that.
+                let remaining = self.options.line_search_max_iter - trial;
+                for _ in 0..remaining.min(HALVINGS_TO_ZERO) {
                     alpha *= 0.5;
                 }
                 return (alpha, None);
