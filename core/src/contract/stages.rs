@@ -208,7 +208,7 @@ mod tests {
             Some(vec![StageKind::Nsgs, StageKind::Newton, StageKind::Prox])
         );
         assert_eq!(StageLog::unpack_codes(0), Some(vec![]));
-        assert_eq!(StageLog::unpack_codes(17), None);
+        assert_eq!(StageLog::unpack_codes(18), None);
         // A full log packs into 9 digits, below i32::MAX.
         let mut full = StageLog::new(0);
         while full.push(Stage {
