@@ -14,6 +14,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use crate::error::{try_vec, Fc3dError};
+use crate::math::sparse_lu::compressed_columns;
 
 /// A symmetric `n x n` matrix stored by its lower triangle in compressed columns, values
 /// refillable in place, with its Cholesky factor.
@@ -48,43 +49,8 @@ impl SparseCholesky {
         positions: &[(usize, usize)],
         what: &str,
     ) -> Result<(Self, Vec<usize>), Fc3dError> {
-        if let Some(&(i, j)) = positions.iter().find(|&&(i, j)| i >= n || j >= n) {
-            return Err(Fc3dError::InvalidStructure(format!(
-                "{what}: entry ({i}, {j}) outside a {n}x{n} matrix"
-            )));
-        }
-        let lower = |k: usize| {
-            let (i, j) = positions[k];
-            (i.max(j), i.min(j))
-        };
-        let mut order = try_vec(positions.len(), 0usize, what)?;
-        order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
-        order.sort_unstable_by_key(|&k| {
-            let (i, j) = lower(k);
-            (j, i)
-        });
-        let mut col_ptr = try_vec(n + 1, 0usize, what)?;
-        let mut row_idx = Vec::new();
-        row_idx
-            .try_reserve_exact(positions.len())
-            .map_err(|_| Fc3dError::OutOfMemory {
-                what: what.to_string(),
-                bytes: positions.len() * 8,
-            })?;
-        let mut slots = try_vec(positions.len(), 0usize, what)?;
-        let mut last = None;
-        for k in order {
-            let (i, j) = lower(k);
-            if last != Some((i, j)) {
-                row_idx.push(i);
-                col_ptr[j + 1] += 1;
-                last = Some((i, j));
-            }
-            slots[k] = row_idx.len() - 1;
-        }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
+        let (col_ptr, row_idx, slots) =
+            compressed_columns(n, positions, |(i, j)| (i.max(j), i.min(j)), what)?;
         let nnz = row_idx.len();
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         let symbolic = factorize_symbolic_cholesky(

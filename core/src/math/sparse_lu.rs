@@ -9,7 +9,7 @@ use faer::sparse::linalg::lu::{factorize_symbolic_lu, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
-use crate::error::Fc3dError;
+use crate::error::{try_vec, Fc3dError};
 
 /// A sparse `n x n` matrix in compressed columns, its values refillable in place, with its LU.
 pub struct SparseLu {
@@ -73,29 +73,7 @@ impl SparseLu {
         positions: &[(usize, usize)],
         what: &str,
     ) -> Result<(Self, Vec<usize>), Fc3dError> {
-        if let Some(&(i, j)) = positions.iter().find(|&&(i, j)| i >= n || j >= n) {
-            return Err(Fc3dError::InvalidStructure(format!(
-                "{what}: entry ({i}, {j}) outside a {n}x{n} matrix"
-            )));
-        }
-        let mut order: Vec<usize> = (0..positions.len()).collect();
-        order.sort_unstable_by_key(|&k| (positions[k].1, positions[k].0));
-        let mut col_ptr = vec![0usize; n + 1];
-        let mut row_idx = Vec::with_capacity(positions.len());
-        let mut slots = vec![0usize; positions.len()];
-        let mut last = None;
-        for k in order {
-            let (i, j) = positions[k];
-            if last != Some((i, j)) {
-                row_idx.push(i);
-                col_ptr[j + 1] += 1;
-                last = Some((i, j));
-            }
-            slots[k] = row_idx.len() - 1;
-        }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
+        let (col_ptr, row_idx, slots) = compressed_columns(n, positions, |p| p, what)?;
         Ok((SparseLu::new(n, col_ptr, row_idx, what)?, slots))
     }
 
@@ -167,6 +145,52 @@ impl SparseLu {
             }
         }
     }
+}
+
+/// Compressed columns `(col_ptr, row_idx)` of an `n x n` pattern given as positions in any
+/// order, each mapped by `entry` to the stored `(row, col)` (the identity, or a symmetric
+/// matrix's lower triangle), duplicates merged, and for each position in the given order its
+/// slot. Fails on a position outside the matrix or when the arrays cannot be allocated.
+pub(crate) fn compressed_columns(
+    n: usize,
+    positions: &[(usize, usize)],
+    entry: impl Fn((usize, usize)) -> (usize, usize),
+    what: &str,
+) -> Result<(Vec<usize>, Vec<usize>, Vec<usize>), Fc3dError> {
+    if let Some(&(i, j)) = positions.iter().find(|&&(i, j)| i >= n || j >= n) {
+        return Err(Fc3dError::InvalidStructure(format!(
+            "{what}: entry ({i}, {j}) outside a {n}x{n} matrix"
+        )));
+    }
+    let mut order = try_vec(positions.len(), 0usize, what)?;
+    order.iter_mut().enumerate().for_each(|(k, o)| *o = k);
+    order.sort_unstable_by_key(|&k| {
+        let (i, j) = entry(positions[k]);
+        (j, i)
+    });
+    let mut col_ptr = try_vec(n + 1, 0usize, what)?;
+    let mut row_idx = Vec::new();
+    row_idx
+        .try_reserve_exact(positions.len())
+        .map_err(|_| Fc3dError::OutOfMemory {
+            what: what.to_string(),
+            bytes: positions.len() * 8,
+        })?;
+    let mut slots = try_vec(positions.len(), 0usize, what)?;
+    let mut last = None;
+    for k in order {
+        let (i, j) = entry(positions[k]);
+        if last != Some((i, j)) {
+            row_idx.push(i);
+            col_ptr[j + 1] += 1;
+            last = Some((i, j));
+        }
+        slots[k] = row_idx.len() - 1;
+    }
+    for j in 0..n {
+        col_ptr[j + 1] += col_ptr[j];
+    }
+    Ok((col_ptr, row_idx, slots))
 }
 
 #[cfg(test)]
