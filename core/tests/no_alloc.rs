@@ -517,44 +517,55 @@ fn rolling_solve_allocations_do_not_grow_with_iterations() {
 /// A global interior-point solve (615) allocates as many times for 2 iterations as for 12: the
 /// Newton matrix's pattern, analysis and work vectors are set up once; the iterations (blocks,
 /// factorization on the fixed pattern, solves, steps, the error of the triple) allocate nothing.
+/// The allocations of a global solve of a 60-contact generated pile running exactly `k`
+/// iterations of `method` (asserted).
+fn global_solve_allocations(
+    shape: fc3d_core::scenes::PileShape,
+    method: fc3d_core::global::GlobalMethod,
+    k: usize,
+) -> usize {
+    use fc3d_core::global::{solve_global, GlobalConfig};
+    use fc3d_core::scenes::{GeneratedScene, PileSpec};
+    let p = GeneratedScene {
+        pile: PileSpec {
+            contacts: 60,
+            piles: 1,
+            seed: 3,
+        },
+        shape,
+    }
+    .generate_global()
+    .unwrap();
+    let config = GlobalConfig {
+        tolerance: 0.0,
+        max_iter: k,
+        ..GlobalConfig::new(method)
+    };
+    let (mut r, mut u, mut v) = (
+        vec![0.0; p.size()],
+        vec![0.0; p.size()],
+        vec![0.0; p.ndof()],
+    );
+    let (n, report) =
+        count_allocations(|| solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap());
+    assert_eq!(report.iterations, k);
+    n
+}
+
 #[test]
 fn global_ipm_iterations_allocate_nothing() {
-    use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod, IpmOptions};
-    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    use fc3d_core::global::{GlobalMethod, IpmOptions};
+    use fc3d_core::scenes::PileShape;
     for (shape, update_s, nesterov_todd) in [
         (PileShape::Spheres, false, true),
         (PileShape::Boxes, true, false),
     ] {
-        let p = GeneratedScene {
-            pile: PileSpec {
-                contacts: 60,
-                piles: 1,
-                seed: 3,
-            },
-            shape,
-        }
-        .generate_global()
-        .unwrap();
-        let allocations = |k| {
-            let config = GlobalConfig {
-                tolerance: 0.0,
-                max_iter: k,
-                ..GlobalConfig::new(GlobalMethod::Ipm(IpmOptions {
-                    update_s,
-                    nesterov_todd,
-                    ..Default::default()
-                }))
-            };
-            let (mut r, mut u, mut v) = (
-                vec![0.0; p.size()],
-                vec![0.0; p.size()],
-                vec![0.0; p.ndof()],
-            );
-            let (n, report) =
-                count_allocations(|| solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap());
-            assert_eq!(report.iterations, k);
-            n
-        };
+        let method = GlobalMethod::Ipm(IpmOptions {
+            update_s,
+            nesterov_todd,
+            ..Default::default()
+        });
+        let allocations = |k| global_solve_allocations(shape, method, k);
         let (few, many) = (allocations(2), allocations(12));
         assert_eq!(
             few, many,
@@ -636,37 +647,11 @@ fn global_hform_sweeps_allocate_nothing() {
 /// search, the error of the exact triple) allocate nothing.
 #[test]
 fn global_alm_iterations_allocate_nothing() {
-    use fc3d_core::global::{solve_global, GlobalAlmOptions, GlobalConfig, GlobalMethod};
-    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    use fc3d_core::global::{GlobalAlmOptions, GlobalMethod};
+    use fc3d_core::scenes::PileShape;
     for shape in [PileShape::Spheres, PileShape::Boxes] {
-        let p = GeneratedScene {
-            pile: PileSpec {
-                contacts: 60,
-                piles: 1,
-                seed: 3,
-            },
-            shape,
-        }
-        .generate_global()
-        .unwrap();
-        let allocations = |k| {
-            let config = GlobalConfig {
-                tolerance: 0.0,
-                max_iter: k,
-                ..GlobalConfig::new(GlobalMethod::AugmentedLagrangian(
-                    GlobalAlmOptions::default(),
-                ))
-            };
-            let (mut r, mut u, mut v) = (
-                vec![0.0; p.size()],
-                vec![0.0; p.size()],
-                vec![0.0; p.ndof()],
-            );
-            let (n, report) =
-                count_allocations(|| solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap());
-            assert_eq!(report.iterations, k);
-            n
-        };
+        let method = GlobalMethod::AugmentedLagrangian(GlobalAlmOptions::default());
+        let allocations = |k| global_solve_allocations(shape, method, k);
         let (few, many) = (allocations(3), allocations(15));
         assert_eq!(
             few, many,
