@@ -9,6 +9,7 @@
 //! * `fc3d solve ...` is the same as `fc3d ...`.
 //! * `fc3d bench [FILES]` measures the speed–accuracy trade of the solvers: CSV, summary,
 //!   performance profiles and work–precision pictures (see the `bench` module).
+//! * `fc3d plot CSV --x COL --y COL [--by COL] -o STEM` draws a benchmark CSV (see `plot_csv`).
 //! * `fc3d convert IN OUT` rewrites a problem file as `.dat` or FCLIB `.hdf5`, by OUT's
 //!   extension, without changing a bit (see the `convert` module).
 //!
@@ -31,6 +32,7 @@ use clap::{Parser, Subcommand};
 mod bench;
 mod convert;
 mod inputs;
+mod plot_csv;
 mod scene;
 mod solve;
 mod units;
@@ -60,6 +62,8 @@ enum Command {
     Convert(convert::ConvertArgs),
     /// Generate a pile scene (seeded, deterministic) and write it as a Siconos .dat file.
     Scene(scene::SceneArgs),
+    /// Draw one column of a benchmark CSV against another, log–log, as SVG and PNG.
+    Plot(plot_csv::PlotArgs),
 }
 
 fn main() -> ExitCode {
@@ -73,6 +77,7 @@ fn main() -> ExitCode {
         Some(Command::Bench(args)) => return bench::run(&args),
         Some(Command::Convert(args)) => return convert::run(&args),
         Some(Command::Scene(args)) => return scene::run(&args),
+        Some(Command::Plot(args)) => return plot_csv::run(&args),
         None => cli.solve,
     };
     solve::run_solve(&args)

@@ -25,7 +25,7 @@ mod csv;
 mod format;
 mod pictures;
 mod plan;
-mod plot;
+pub(crate) mod plot;
 mod problems;
 mod profile;
 mod runner;

@@ -120,6 +120,7 @@ pub(super) fn family_pictures(
         let picture = plot::WorkPrecisionPicture {
             title,
             x_desc,
+            y_desc: plot::ERROR_DESC.to_string(),
             curves,
         };
         out.push(plot::save(&picture, dir, &stem));

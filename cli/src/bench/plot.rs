@@ -290,12 +290,17 @@ pub struct Curve {
     pub runs: Vec<(f64, f64)>,
 }
 
-/// Achieved error against time, log–log, one curve per solver.
+/// Achieved error against time (or any positive quantity against another), log–log, one
+/// curve per solver or series.
 pub struct WorkPrecisionPicture {
     pub title: String,
     pub x_desc: String,
+    pub y_desc: String,
     pub curves: Vec<Curve>,
 }
+
+/// The y axis of the bench's work–precision pictures.
+pub const ERROR_DESC: &str = "achieved error (relative natural map)";
 
 fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -363,7 +368,7 @@ impl Picture for WorkPrecisionPicture {
         chart
             .configure_mesh()
             .x_desc(&self.x_desc)
-            .y_desc("achieved error (relative natural map)")
+            .y_desc(&self.y_desc)
             .axis_desc_style((FONT, 18))
             .label_style((FONT, 15))
             .x_label_formatter(&|x| format!("{x:.0e}"))

@@ -33,6 +33,7 @@ use std::time::{Duration, Instant};
 
 use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
 use fc3d_core::io::dat::write_dat_file;
+use fc3d_core::measure::{global_error, ContactLaw};
 use fc3d_core::scenes::sequences::{pile_settling_in_bin, Step};
 use fc3d_core::scenes::GeneratedScene;
 use fc3d_core::{natural_map_error, solve, Method, SolveReport, SolverConfig, Workspace};
@@ -257,14 +258,16 @@ fn run_solve(args: &[String]) -> Result<(), String> {
                 );
                 let report =
                     solve_global(p, &config, &mut r, &mut u, &mut v).map_err(|e| e.to_string())?;
+                // Siconos' global error (the measure the global solvers report), recomputed
+                // here on the returned (r, v) and the problem's M and H.
+                let recomputed = global_error(p, ContactLaw::Coulomb, &r, &mut u, &v);
                 Outcome {
                     status: report.status.name().to_string(),
                     converged: report.converged(),
                     iterations: report.iterations,
                     products: "-".into(),
                     error: report.error,
-                    // The global error is measured on the host's M and H by the solve itself.
-                    recomputed: f64::NAN,
+                    recomputed,
                 }
             }
             _ => unreachable!("the scene is generated in the method's form"),
