@@ -168,3 +168,87 @@ fn a_mostly_zero_dense_w_is_solved_as_sparse_blocks() {
         assert_eq!(run(&dense), run(&sparse), "solver {id}");
     }
 }
+
+/// The facts docs/convergence.md ("Contact order along the load path") rests on, recomputed from
+/// the bodies (H) on small piles: W couples two contacts exactly when they share a body; the
+/// contacts W shows as supports (their coupled contacts all coupled to each other) are exactly
+/// those touching one body; and the scene's index order already runs bottom-up: no two contacts
+/// sharing a body are visited higher level first (levels: breadth-first distance from the
+/// one-body contacts through shared bodies), so NSGS in index order is the load-path sweep.
+#[test]
+fn generated_contacts_come_bottom_up_from_the_supports() {
+    use fc3d_core::scenes::{GeneratedScene, PileShape};
+    for shape in [PileShape::Spheres, PileShape::Boxes] {
+        let scene = GeneratedScene {
+            pile: PileSpec {
+                contacts: 1000,
+                piles: 2,
+                seed: 5,
+            },
+            shape,
+        };
+        let global = scene.generate_global().unwrap();
+        let nc = global.n_contacts();
+        let mut bodies = vec![Vec::new(); nc];
+        global.h().for_each_entry(|dof, col, v| {
+            if v != 0.0 && !bodies[col / 3].contains(&(dof / 6)) {
+                bodies[col / 3].push(dof / 6);
+            }
+        });
+        let share = |c: usize, d: usize| bodies[c].iter().any(|b| bodies[d].contains(b));
+        // W's graph, from the local form of the same scene.
+        let mut coupled = vec![Vec::new(); nc];
+        scene.generate().unwrap().w().for_each_entry(|i, j, v| {
+            let (c, d) = (i / 3, j / 3);
+            if c != d && v != 0.0 && !coupled[c].contains(&d) {
+                coupled[c].push(d);
+            }
+        });
+        let mut pairs = 0;
+        for c in 0..nc {
+            for d in (0..nc).filter(|&d| d != c) {
+                assert_eq!(coupled[c].contains(&d), share(c, d), "{shape:?} {c} {d}");
+            }
+            pairs += coupled[c].len();
+        }
+        let supports: Vec<bool> = (0..nc)
+            .map(|c| {
+                let nb = &coupled[c];
+                nb.iter()
+                    .all(|&a| nb.iter().all(|&b| a == b || coupled[a].contains(&b)))
+            })
+            .collect();
+        for c in 0..nc {
+            assert_eq!(supports[c], bodies[c].len() == 1, "{shape:?} contact {c}");
+        }
+        let mut level = vec![usize::MAX; nc];
+        let mut queue: std::collections::VecDeque<usize> =
+            (0..nc).filter(|&c| bodies[c].len() == 1).collect();
+        queue.iter().for_each(|&c| level[c] = 0);
+        while let Some(c) = queue.pop_front() {
+            for d in 0..nc {
+                if level[d] == usize::MAX && share(c, d) {
+                    level[d] = level[c] + 1;
+                    queue.push_back(d);
+                }
+            }
+        }
+        assert!(level.iter().all(|&l| l != usize::MAX), "{shape:?}");
+        let depth = level.iter().max().unwrap() + 1;
+        assert!(depth >= 3, "{shape:?}: {depth} levels");
+        for c in 0..nc {
+            for &d in coupled[c].iter().filter(|&&d| d > c) {
+                assert!(
+                    level[c] <= level[d],
+                    "{shape:?}: {c} (level {}) before {d} (level {})",
+                    level[c],
+                    level[d]
+                );
+            }
+        }
+        eprintln!(
+            "{shape:?}: {nc} contacts, {} supports, {depth} levels, {pairs} coupled (ordered) pairs",
+            supports.iter().filter(|&&s| s).count()
+        );
+    }
+}
