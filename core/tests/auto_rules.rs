@@ -157,6 +157,11 @@ fn the_capsules_sweep_with_over_relaxation_and_freezing_at_1e_6() {
     use fc3d_core::solvers::auto::{PSOR_FREEZE_SWEEPS, PSOR_FREEZING, PSOR_OMEGA};
     assert_eq!(PSOR_FREEZING.relaxation, Some(PSOR_OMEGA));
     assert_eq!(PSOR_FREEZING.freezing, Some(PSOR_FREEZE_SWEEPS));
+    // The sweeper is built once per solve with the options of the plan's NSGS stage.
+    for (rule, r) in RULES.iter().enumerate() {
+        let sweeps = r.plan.iter().filter(|s| s.kind == StageKind::Nsgs).count();
+        assert!(sweeps <= 1, "rule {rule}: {sweeps} NSGS stages");
+    }
     for (name, most_sweeps) in [
         ("Capsules-i100-1090.dat", 110),
         ("Capsules-i100-889.dat", 115),

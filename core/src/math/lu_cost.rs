@@ -79,14 +79,24 @@ pub fn analysis_seconds(stored_entries: usize, share: f64) -> f64 {
 /// fifth of a core a process) the set-up of NSN-AC on a pile of 10^5 contacts took 39.8 s of a
 /// 30 s budget while its CPU time (6.9 s) fitted.
 pub fn analysis_ends_by(stored_entries: usize, deadline: Option<std::time::Instant>) -> bool {
-    if deadline.is_none() {
+    ends_by_under_load(analysis_seconds(stored_entries, 1.0), deadline)
+}
+
+/// Whether work of `cpu_seconds` on a whole core, started now, ends by `deadline` at the share
+/// of a core the load leaves ([`cpu_share`]). The load is read only when the work would not fit
+/// at the least share ([`MIN_CPU_SHARE`]): on the small problems, where ADMM asks before every
+/// change of rho, no system call is made.
+fn ends_by_under_load(cpu_seconds: f64, deadline: Option<std::time::Instant>) -> bool {
+    let Some(deadline) = deadline else {
         return true;
-    }
-    let seconds = analysis_seconds(stored_entries, cpu_share());
-    ends_by(
-        Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
-        deadline,
-    )
+    };
+    let fits = |seconds: f64| {
+        ends_by(
+            Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
+            Some(deadline),
+        )
+    };
+    fits(cpu_seconds / MIN_CPU_SHARE) || fits(cpu_seconds / cpu_share())
 }
 
 /// The share of a core a single-threaded computation can expect on a machine of `cores`
@@ -144,14 +154,7 @@ impl LuCost {
     /// Whether a factorization started now is predicted to end by `deadline` (always without
     /// one), at the share of a core the machine's load leaves ([`cpu_share`]).
     pub fn ends_by(&self, deadline: Option<std::time::Instant>) -> bool {
-        if deadline.is_none() {
-            return true;
-        }
-        let seconds = self.flops / FLOPS_PER_SECOND / cpu_share().clamp(MIN_CPU_SHARE, 1.0);
-        ends_by(
-            Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
-            deadline,
-        )
+        ends_by_under_load(self.flops / FLOPS_PER_SECOND, deadline)
     }
 
     /// Memory the factors need: a value and a row index per entry.
