@@ -5,6 +5,7 @@
 use std::time::Duration;
 
 use fc3d_core::scenes::{sphere_piles, PileSpec};
+use fc3d_core::solvers::auto::stage;
 use fc3d_core::{solve, AutoOptions, PlannedStage, SolverConfig, StageKind};
 
 fn main() {
@@ -21,14 +22,8 @@ fn main() {
     .unwrap();
     let n = 3 * p.n_contacts();
     use StageKind::{ExtraGradient, Nsgs, Tresca};
-    let s = |kind| PlannedStage {
-        kind,
-        allowance: None,
-    };
-    let patient = |kind| PlannedStage {
-        kind,
-        allowance: fc3d_core::solvers::auto::TO_THE_LIMITS,
-    };
+    let s = |kind| stage(kind, None);
+    let patient = |kind| stage(kind, fc3d_core::solvers::auto::TO_THE_LIMITS);
     let plans: Vec<(&str, Vec<PlannedStage>)> = vec![
         ("rule table", vec![]),
         (

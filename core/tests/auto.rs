@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 use fc3d_core::io::dat::read_dat_file;
 use fc3d_core::local::LocalSolverKind;
 use fc3d_core::solvers::auto::{
-    choose, sweep_local_solver, PlannedStage, ProblemFeatures, PROBE, RULES,
+    choose, stage, sweep_local_solver, PlannedStage, ProblemFeatures, PROBE, RULES,
 };
 use fc3d_core::{
     natural_map_error, solve, AutoOptions, Delassus, DenseMatrix, FrictionProblem, SolveStatus,
@@ -45,16 +45,8 @@ fn true_error(p: &FrictionProblem<'_>, r: &[f64]) -> f64 {
     natural_map_error(p, r, &mut u)
 }
 
-const SWEEPS_THEN_NEWTON: &[PlannedStage] = &[
-    PlannedStage {
-        kind: StageKind::Nsgs,
-        allowance: None,
-    },
-    PlannedStage {
-        kind: StageKind::Newton,
-        allowance: None,
-    },
-];
+const SWEEPS_THEN_NEWTON: &[PlannedStage] =
+    &[stage(StageKind::Nsgs, None), stage(StageKind::Newton, None)];
 
 #[test]
 fn a_stalled_stage_hands_over_and_the_next_one_converges() {
@@ -208,7 +200,7 @@ fn the_budget_and_the_tolerance_select_the_rows_of_strongly_coupled_problems() {
     // OneObject-i1028-138: mu 0.3, normal-row dominance 0.14, 23 contacts.
     let f = ProblemFeatures::of(&shared("OneObject-i1028-138.hdf5.dat"));
     assert!(f.strongly_coupled());
-    // The first stage after the TFP-APGD probe of rule 9 (tests/auto_rules.rs).
+    // The first stage after the TFP-APGD probe of rule 10 (tests/auto_rules.rs).
     let after_probe =
         |plan: &[PlannedStage]| plan.iter().find(|s| s.allowance != PROBE).unwrap().kind;
     let first = |tol: f64, budget: Option<Duration>| after_probe(choose(&f, tol, budget).1);

@@ -1,6 +1,7 @@
 //! AUTO's rules against the misses of issue 27 item 6, in counts (stages and iterations, not
 //! times): the TFP-APGD probe in front of the factorizing plans and TFP-APGD as the second
-//! stage of the weakly coupled plan. The wall-clock check of the 10x rule on every shared
+//! stage of the weakly coupled plan, NSGS with over-relaxation and freezing on the Capsules at
+//! 1e-6. The wall-clock check of the 10x rule on every shared
 //! problem is `fc3d bench ... --auto-max-ratio 10` (docs/auto.md).
 
 use fc3d_core::io::dat::read_dat_file;
@@ -42,7 +43,7 @@ fn stages(report: &SolveReport) -> Vec<(StageKind, usize, StageEnd)> {
 
 #[test]
 fn the_mu_ge_half_plans_start_with_a_tresca_apgd_probe_and_the_moderate_mu_one_does_not() {
-    // Strongly coupled, no short budget: ADMM first (rule 9) and PROX first at 1e-8 (rule 10)
+    // Strongly coupled, no short budget: ADMM first (rule 10) and PROX first at 1e-8 (rule 11)
     // behind the probe; PROX first with mu < 0.5 (rule 8) without it (on the generated
     // 40-contact pile, mu 0.42, PROX from the probe's iterate took 54-63 ms where PROX alone
     // took 36 ms).
@@ -144,5 +145,58 @@ fn the_probe_solves_the_periodic_box() {
     assert_eq!(
         stages(&tight),
         vec![(StageKind::TrescaApgd, 5, StageEnd::Converged)]
+    );
+}
+
+#[test]
+fn the_capsules_sweep_with_over_relaxation_and_freezing_at_1e_6() {
+    // Strongly coupled, mu 0.7, 225-276 contacts, 1e-6: NSGS (QUARTIC) with omega = 1.3 and
+    // freezing for 5 sweeps first. Before, the TFP-APGD probe then ADMM (86-595 ADMM
+    // iterations after 6-7 probe steps); NSGS alone took 101-259 sweeps on three of them, and
+    // on Capsules-i101-404 ADMM ends the solve after the sweeps stalled near 1e-6.
+    use fc3d_core::solvers::auto::{PSOR_FREEZE_SWEEPS, PSOR_FREEZING, PSOR_OMEGA};
+    assert_eq!(PSOR_FREEZING.relaxation, Some(PSOR_OMEGA));
+    assert_eq!(PSOR_FREEZING.freezing, Some(PSOR_FREEZE_SWEEPS));
+    // The sweeper is built once per solve with the options of the plan's NSGS stage.
+    for (rule, r) in RULES.iter().enumerate() {
+        let sweeps = r.plan.iter().filter(|s| s.kind == StageKind::Nsgs).count();
+        assert!(sweeps <= 1, "rule {rule}: {sweeps} NSGS stages");
+    }
+    for (name, most_sweeps) in [
+        ("Capsules-i100-1090.dat", 110),
+        ("Capsules-i100-889.dat", 115),
+        ("Capsules-i103-990.dat", 280),
+    ] {
+        let p = shared(name);
+        let (_, plan) = choose(&ProblemFeatures::of(&p), 1e-6, None);
+        assert_eq!(plan[0].kind, StageKind::Nsgs, "{name}");
+        assert_eq!(plan[0].sweep, PSOR_FREEZING, "{name}");
+        let report = auto(&p, 1e-6);
+        assert_eq!(report.status, SolveStatus::Converged, "{name}");
+        let s = stages(&report);
+        assert_eq!(s.len(), 1, "{name}: {s:?}");
+        assert_eq!(s[0].2, StageEnd::Converged, "{name}: {s:?}");
+        assert!(s[0].1 <= most_sweeps, "{name}: {s:?}");
+    }
+    let p = shared("Capsules-i101-404.dat");
+    let report = auto(&p, 1e-6);
+    assert_eq!(report.status, SolveStatus::Converged);
+    let s = stages(&report);
+    assert_eq!(
+        (s[0].0, s[0].2),
+        (StageKind::Nsgs, StageEnd::Stalled),
+        "{s:?}"
+    );
+    assert_eq!(s[1].0, StageKind::Admm, "{s:?}");
+    // The rule stops at 1e-6: at 1e-8 the probe and PROX (5-20x ahead of any NSGS), below 100
+    // contacts (BoxesStack1: 57-100k sweeps to 1e-6) ADMM behind the probe.
+    assert_eq!(
+        choose(&ProblemFeatures::of(&p), 1e-8, None).1[0].allowance,
+        PROBE
+    );
+    let boxes = shared("BoxesStack1-i100000-32.hdf5.dat");
+    assert_eq!(
+        choose(&ProblemFeatures::of(&boxes), 1e-6, None).1[0].allowance,
+        PROBE
     );
 }

@@ -240,9 +240,10 @@ fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
         let report = solve(&p, &config, &mut r, &mut u).unwrap();
         let elapsed = start.elapsed();
         assert_eq!(report.status, SolveStatus::TimeBudgetExhausted, "{name}");
-        // PROX counts the proximal step whose Newton solve started no step.
+        // PROX counts the proximal step whose Newton solve started no step (none when its
+        // set-up was refused: on a loaded machine the set-up's prediction grows too).
         let steps = if name == "PROX" { 1 } else { 0 };
-        assert_eq!(report.iterations, steps, "{name}");
+        assert!(report.iterations <= steps, "{name}: {}", report.iterations);
         assert!(r.iter().all(|&x| x == 0.0), "{name}: r was changed");
         let mut u2 = vec![0.0; n];
         assert_eq!(
@@ -253,5 +254,49 @@ fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
         // Set-up (copy of W, symbolic analysis, prediction) only: well under one
         // factorization.
         assert!(elapsed < Duration::from_secs(2), "{name}: {elapsed:?}");
+    }
+}
+
+#[test]
+fn a_set_up_predicted_to_end_past_the_deadline_is_not_started() {
+    // Four piles of 10^4 contacts (W: 1.68e6 stored entries): the set-up before the first
+    // factorization (assembly, faer's symbolic LU, the cost prediction) is predicted at 0.22 s
+    // on a whole core, more under load (math::lu_cost::analysis_seconds); measured 0.28 s of
+    // wall clock at load 3. With a budget of 200 ms, ADMM, NSN and PROX stop before it: the
+    // time spent is the budget's check and one product with W (u = W r + q for r as it came),
+    // not the 0.3-1.4 s of an uninterruptible set-up (the former prediction, 0.17 s, started it).
+    use fc3d_core::scenes::{sphere_piles, PileSpec};
+    use fc3d_core::{AdmmOptions, NsnFormulation, NsnOptions, ProxOptions};
+    let p = sphere_piles(&PileSpec {
+        contacts: 10_000,
+        piles: 4,
+        seed: 1,
+    })
+    .unwrap();
+    let n = p.size();
+    let budget = Duration::from_millis(200);
+    let methods: [(&str, fc3d_core::Method); 3] = [
+        ("ADMM", AdmmOptions::default().into()),
+        (
+            "NSN-AC",
+            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
+        ),
+        ("PROX", ProxOptions::default().into()),
+    ];
+    for (name, method) in methods {
+        let config = SolverConfig::new(method)
+            .with_tolerance(1e-8)
+            .with_time_budget(Some(budget));
+        let (mut r, mut u) = (vec![0.0; n], vec![0.0; n]);
+        let start = Instant::now();
+        let report = solve(&p, &config, &mut r, &mut u).unwrap();
+        let elapsed = start.elapsed();
+        assert_eq!(report.status, SolveStatus::TimeBudgetExhausted, "{name}");
+        assert_eq!(report.iterations, 0, "{name}");
+        assert_eq!(report.fill, None, "{name}: no factorization");
+        assert!(r.iter().all(|&x| x == 0.0), "{name}: r was changed");
+        // Within the budget: the refusal comes first, then one product with W (about 10 ms
+        // here) and the error measurement.
+        assert!(elapsed < budget, "{name}: {elapsed:?}");
     }
 }

@@ -39,27 +39,91 @@ use faer::sparse::SymbolicSparseColMatRef;
 /// just have fitted is refused).
 pub const FLOPS_PER_SECOND: f64 = 1e10;
 
-/// Seconds per stored entry of W for what comes before a sparse factorization and cannot be
-/// interrupted: assembling the column-compressed matrix (ADMM's `W + rho I`, NSN's Newton
-/// matrix), faer's symbolic LU (COLAMD ordering and symbolic factorization) and
-/// [`checked_lu_cost`]'s own symbolic Cholesky. Measured on this project's machine (load about 3,
-/// Dec. 2026) as the time ADMM and NSN-AC took to stop out of time before their first
-/// factorization (`fc3d solve --solver ADMM --tol 1e-4 --budget 1s gen:contacts=N,piles=4,seed=1`,
-/// the factorization refused by [`LuCost::ends_by`]): 1.7e-7 s per entry at 10^4 contacts
-/// (0.28 s, 1.7e6 entries), 2.0e-7 at 3·10^4 (1.09 s), 2.7e-7 at 10^5 (5.1 s, 1.9e7 entries);
-/// the analysis alone (`cargo run --release -p fc3d-core --example lu_cost -- predict piles=4
-/// ...`) 8.1e-8 to 1.56e-7. 1e-7 is below every measured set-up rate: a set-up is refused only
-/// when it would have overrun on a machine up to 1.7x faster than this one.
+/// CPU seconds per stored entry of W for what comes before a sparse factorization and cannot
+/// be interrupted (assembling the column-compressed matrix, ADMM's `W + rho I` or NSN's Newton
+/// matrix, faer's symbolic LU: COLAMD ordering and symbolic factorization, and
+/// [`checked_lu_cost`]'s own symbolic Cholesky), on a small W; the cost per entry grows with W's
+/// size (see [`ANALYSIS_GROWTH_ENTRIES`]). Measured on this project's machine as the time ADMM
+/// and NSN-AC took to stop out of time before their first factorization (`fc3d solve --solver
+/// ADMM --tol 1e-4 --budget 1s gen:contacts=N,piles=4,seed=1`, the factorization refused by
+/// [`LuCost::ends_by`]; load about 3, so about 2/3 of a core): 1.7e-7 s per entry of wall
+/// clock at 10^4 contacts (0.28 s, 1.7e6 entries), 2.0e-7 at 3·10^4 (1.09 s), 2.7e-7 at 10^5
+/// (5.1 s, 1.9e7 entries); in CPU time at 10^5 (`convergence_bench solve --scene
+/// contacts=100000,piles=4,seed=1,shape=spheres --method NSN-AC --budget 30`, the whole call)
+/// 2.9e-7 (5.5 s, load 8.8) and 3.7e-7 (6.9 s, load 10.5).
 pub const ANALYSIS_SECONDS_PER_ENTRY: f64 = 1e-7;
 
+/// The set-up's cost per entry is [`ANALYSIS_SECONDS_PER_ENTRY`] times `1 + entries /
+/// ANALYSIS_GROWTH_ENTRIES`: the ordering and the symbolic factorization follow the fill, which
+/// grows faster than W. With 5e6 the prediction is above every CPU time measured: 1.34e-7 s per
+/// entry at 1.7e6 entries (measured 1.1e-7 in CPU time), 2.1e-7 at 5.4e6 (1.3e-7), 4.7e-7 at
+/// 1.9e7 (2.9e-7 and 3.7e-7); below 10^5 entries (the shared problems) it is within 2% of the
+/// constant rate.
+pub const ANALYSIS_GROWTH_ENTRIES: f64 = 5e6;
+
+/// The least share of a core [`cpu_share`] assumes.
+pub const MIN_CPU_SHARE: f64 = 1.0 / 32.0;
+
+/// Predicted wall-clock seconds of the set-up before a factorization of a W of `stored_entries`
+/// entries, on a process that gets `share` of a core.
+pub fn analysis_seconds(stored_entries: usize, share: f64) -> f64 {
+    let entries = stored_entries as f64;
+    entries * ANALYSIS_SECONDS_PER_ENTRY * (1.0 + entries / ANALYSIS_GROWTH_ENTRIES)
+        / share.clamp(MIN_CPU_SHARE, 1.0)
+}
+
 /// Whether the set-up before a factorization (assembly and analysis) of a W of `stored_entries`
-/// entries, started now, is predicted to end by `deadline` (always without one); see [`ANALYSIS_SECONDS_PER_ENTRY`].
+/// entries, started now, is predicted to end by `deadline` (always without one), at the share
+/// of a core the machine's load leaves ([`cpu_share`]); see [`analysis_seconds`]. Neither the
+/// set-up nor a factorization can be interrupted: on a loaded machine (load 10 on 2 cores, a
+/// fifth of a core a process) the set-up of NSN-AC on a pile of 10^5 contacts took 39.8 s of a
+/// 30 s budget while its CPU time (6.9 s) fitted.
 pub fn analysis_ends_by(stored_entries: usize, deadline: Option<std::time::Instant>) -> bool {
-    let seconds = stored_entries as f64 * ANALYSIS_SECONDS_PER_ENTRY;
-    ends_by(
-        Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
-        deadline,
-    )
+    ends_by_under_load(analysis_seconds(stored_entries, 1.0), deadline)
+}
+
+/// Whether work of `cpu_seconds` on a whole core, started now, ends by `deadline` at the share
+/// of a core the load leaves ([`cpu_share`]). The load is read only when the work would not fit
+/// at the least share ([`MIN_CPU_SHARE`]): on the small problems, where ADMM asks before every
+/// change of rho, no system call is made.
+fn ends_by_under_load(cpu_seconds: f64, deadline: Option<std::time::Instant>) -> bool {
+    let Some(deadline) = deadline else {
+        return true;
+    };
+    let fits = |seconds: f64| {
+        ends_by(
+            Duration::try_from_secs_f64(seconds).unwrap_or(Duration::MAX),
+            Some(deadline),
+        )
+    };
+    fits(cpu_seconds / MIN_CPU_SHARE) || fits(cpu_seconds / cpu_share())
+}
+
+/// The share of a core a single-threaded computation can expect on a machine of `cores`
+/// cores whose run queue holds `load` processes (the load average): `cores / load` when the
+/// machine is oversubscribed, 1 otherwise, at least [`MIN_CPU_SHARE`].
+pub fn cpu_share_of(load: f64, cores: usize) -> f64 {
+    let cores = cores.max(1) as f64;
+    if load.is_finite() && load > cores {
+        (cores / load).max(MIN_CPU_SHARE)
+    } else {
+        1.0
+    }
+}
+
+/// The share of a core this process can expect now: [`cpu_share_of`] the 1-minute load average
+/// (`/proc/loadavg`) and the parallelism available; 1 where the load is not known. Read without
+/// allocating (ADMM asks before each refactorization).
+pub fn cpu_share() -> f64 {
+    use std::io::Read;
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut buffer = [0u8; 64];
+    let load = std::fs::File::open("/proc/loadavg")
+        .and_then(|mut f| f.read(&mut buffer))
+        .ok()
+        .and_then(|len| std::str::from_utf8(&buffer[..len]).ok())
+        .and_then(|text| text.split_whitespace().next()?.parse::<f64>().ok());
+    load.map_or(1.0, |l| cpu_share_of(l, cores))
 }
 
 /// Whether work of `duration` started now ends by `deadline` (always without one; never when
@@ -88,9 +152,9 @@ impl LuCost {
     }
 
     /// Whether a factorization started now is predicted to end by `deadline` (always without
-    /// one).
+    /// one), at the share of a core the machine's load leaves ([`cpu_share`]).
     pub fn ends_by(&self, deadline: Option<std::time::Instant>) -> bool {
-        ends_by(self.duration(), deadline)
+        ends_by_under_load(self.flops / FLOPS_PER_SECOND, deadline)
     }
 
     /// Memory the factors need: a value and a row index per entry.
@@ -222,13 +286,33 @@ mod tests {
     }
 
     #[test]
+    fn the_set_up_prediction_covers_the_measured_overrun() {
+        // NSN-AC on 4 sphere piles of 10^5 contacts (W: 18,752,284 entries): its set-up took
+        // 5.5 and 6.9 CPU s (loads 8.8 and 10.5 on 2 cores), 13.8 and 39.8 s of wall clock.
+        let entries = 18_752_284;
+        assert!(analysis_seconds(entries, 1.0) > 6.9);
+        // At load 10.5 on 2 cores the prediction passes the 30 s budget: refused up front.
+        let loaded = cpu_share_of(10.5, 2);
+        assert!((loaded - 2.0 / 10.5).abs() < 1e-15);
+        assert!(analysis_seconds(entries, loaded) > 39.8);
+        // Small problems: the constant rate (the Capsules: about 1e5 entries, 10 ms).
+        assert!((analysis_seconds(100_000, 1.0) - 0.0102).abs() < 1e-12);
+        // An idle or unknown load is a whole core; an absurd one is bounded.
+        assert_eq!(cpu_share_of(0.5, 2), 1.0);
+        assert_eq!(cpu_share_of(f64::NAN, 2), 1.0);
+        assert_eq!(cpu_share_of(1e9, 2), MIN_CPU_SHARE);
+        let share = cpu_share();
+        assert!((MIN_CPU_SHARE..=1.0).contains(&share));
+    }
+
+    #[test]
     fn an_analysis_is_refused_only_when_it_cannot_end_in_time() {
         use std::time::Instant;
-        // 1e6 entries: 0.1 s predicted.
+        // 1e6 entries: 0.12 s predicted on a whole core, up to 32x that under load.
         assert!(analysis_ends_by(1_000_000, None));
         assert!(analysis_ends_by(
             1_000_000,
-            Some(Instant::now() + Duration::from_secs(1))
+            Some(Instant::now() + Duration::from_secs_f64(0.12 / cpu_share() + 1.0))
         ));
         assert!(!analysis_ends_by(
             1_000_000,

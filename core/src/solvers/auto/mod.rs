@@ -27,9 +27,10 @@ use crate::solvers::nsn::NewtonSolver;
 pub use features::{ProblemFeatures, STRONG_MU, WEAK_DOMINANCE};
 pub use plan::{factorizes, next_stage, Handover, NextStage};
 pub use rules::{
-    choose, sweep_local_solver, Condition, PlannedStage, Rule, StallRule, ADMM_BUDGET,
-    ADMM_MAX_CONTACTS, HUGE_PROBLEM, LARGE_PROBLEM, MODERATE_MU, PROBE, PROBE_PRODUCTS, RULES,
-    SHORT_BUDGET, STALL, TO_THE_LIMITS,
+    choose, stage, sweep_local_solver, Condition, PlannedStage, Rule, StallRule, SweepTuning,
+    ADMM_BUDGET, ADMM_MAX_CONTACTS, HUGE_PROBLEM, LARGE_PROBLEM, MODERATE_MU, PROBE,
+    PROBE_PRODUCTS, PSOR_FREEZE_SWEEPS, PSOR_FREEZING, PSOR_OMEGA, RULES, SHORT_BUDGET, STALL,
+    TO_THE_LIMITS,
 };
 pub(crate) use run::auto_with;
 

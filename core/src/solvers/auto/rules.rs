@@ -36,16 +36,72 @@ pub const HUGE_PROBLEM: usize = 30_000;
 /// shared and generated problems of that class have mu <= 0.42 or mu >= 0.7.
 pub const MODERATE_MU: f64 = 0.5;
 
-/// One stage of a plan: a method and the iterations the rule allows it (`None`: until it stalls
-/// or the limits stop it; [`TO_THE_LIMITS`]: not stopped by a stall either).
+/// How an NSGS stage sweeps beyond Gauss-Seidel's default (ignored by the other kinds).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepTuning {
+    /// Over-relaxation (PSOR) factor omega in (0, 2), `None`: plain Gauss-Seidel
+    /// ([`NsgsOptions::relaxation`](crate::NsgsOptions)).
+    pub relaxation: Option<f64>,
+    /// Sweeps a contact that stopped moving (relative to the tolerance) is skipped, `None`:
+    /// never ([`NsgsOptions::freezing`](crate::NsgsOptions)).
+    pub freezing: Option<usize>,
+    /// The stall window of the stage (sweeps, and the factor by which the error must fall over
+    /// them), `None`: NSGS's row of [`STALL`].
+    pub stall: Option<(usize, f64)>,
+}
+
+impl SweepTuning {
+    /// Plain Gauss-Seidel sweeps.
+    pub const PLAIN: SweepTuning = SweepTuning {
+        relaxation: None,
+        freezing: None,
+        stall: None,
+    };
+}
+
+/// One stage of a plan: a method, the iterations the rule allows it (`None`: until it stalls
+/// or the limits stop it; [`TO_THE_LIMITS`]: not stopped by a stall either) and, for an NSGS
+/// stage, its sweep options.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlannedStage {
     pub kind: StageKind,
     pub allowance: Option<usize>,
+    pub sweep: SweepTuning,
 }
 
-pub(crate) const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedStage {
-    PlannedStage { kind, allowance }
+/// A stage with plain sweeps (where it sweeps at all).
+pub const fn stage(kind: StageKind, allowance: Option<usize>) -> PlannedStage {
+    PlannedStage {
+        kind,
+        allowance,
+        sweep: SweepTuning::PLAIN,
+    }
+}
+
+/// Over-relaxation factor of the tight-tolerance NSGS stage on the strongly coupled problems
+/// with `mu >= 0.5` ([`PSOR_FREEZING`]).
+pub const PSOR_OMEGA: f64 = 1.3;
+
+/// Freezing (sweeps) of that stage.
+pub const PSOR_FREEZE_SWEEPS: usize = 5;
+
+/// NSGS with over-relaxation and freezing: on the Capsules at 1e-6 the fastest of the
+/// library's solvers (docs/auto.md, "NSGS with PSOR and freezing"). Its error has plateaus
+/// that end when the active set changes (Capsules-i100-1090: 1.1e-5 after 50 sweeps, 8.1e-6
+/// after 79, 3.1e-6 after 81, 1e-6 after 110), which NSGS's stall window (10 sweeps, 0.7) took
+/// for a stall: the stage is ended when its error does not halve over 100 sweeps.
+pub const PSOR_FREEZING: SweepTuning = SweepTuning {
+    relaxation: Some(PSOR_OMEGA),
+    freezing: Some(PSOR_FREEZE_SWEEPS),
+    stall: Some((100, 0.5)),
+};
+
+const fn tuned_sweeps(allowance: Option<usize>, sweep: SweepTuning) -> PlannedStage {
+    PlannedStage {
+        kind: Nsgs,
+        allowance,
+        sweep,
+    }
 }
 
 /// The allowance of a stage that runs until the tolerance or the limits, whatever its progress:
@@ -248,6 +304,26 @@ pub const RULES: &[Rule] = &[
               generated piles of 40 and 60 contacts, mu 0.38-0.42): PROX is the fastest or within \
               1.7x of it at 1e-6 where ADMM first is 2.8-54x behind; with mu = 0.7 (BoxesStack, \
               Capsules) it is the other way round (PROX 10-30x behind ADMM on two of them)",
+    },
+    Rule {
+        when: Condition {
+            strongly_coupled: Some(true),
+            min_contacts: Some(100),
+            min_tolerance: Some(1e-6),
+            ..Condition::ANY
+        },
+        plan: &[
+            tuned_sweeps(None, PSOR_FREEZING),
+            stage(Admm, None),
+            stage(Prox, None),
+        ],
+        why: "strongly coupled problems of 100 contacts or more with mu >= 0.5 to 1e-6 (the \
+              Capsules, RockPile): NSGS with over-relaxation 1.3 and freezing for 5 sweeps \
+              reaches 1e-6 on the four Capsules in 81-340 sweeps, 3-4x faster than ADMM and \
+              than AUTO's former plan (TFP-APGD probe, ADMM); where it stalls (RockPile) ADMM \
+              and PROX take over. Smaller ones (BoxesStack1, 52 contacts: 57-100k sweeps; \
+              LMGC_100_PR_PerioBox) keep the next row, tighter tolerances too (at 1e-8 PROX \
+              after the probe is 5-20x ahead of any NSGS)",
     },
     Rule {
         when: Condition {

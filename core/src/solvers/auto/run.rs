@@ -20,7 +20,8 @@ use crate::solvers::vi::{ViOptions, ViSolver};
 use super::features::ProblemFeatures;
 use super::plan::{next_probe, next_stage, Handover};
 use super::rules::{
-    choose, stall_rule, sweep_local_solver, PROBE, PROBE_PRODUCTS, SHORT_BUDGET, TO_THE_LIMITS,
+    choose, stall_rule, sweep_local_solver, StallRule, SweepTuning, PROBE, PROBE_PRODUCTS,
+    SHORT_BUDGET, TO_THE_LIMITS,
 };
 use super::{AutoCarry, AutoChoice, AutoOptions, ROUND_OFF};
 
@@ -98,7 +99,16 @@ pub(crate) fn auto_with<'a>(
     let mut best_error = error;
     let mut total = 0usize;
     let mut out_of_time = false;
-    let nsgs_options = NsgsOptions::with_local(sweep_local_solver(rule));
+    // A plan has at most one NSGS stage; its sweep options are the sweeper's.
+    let tuning = plan
+        .iter()
+        .find(|s| s.kind == Nsgs)
+        .map_or(SweepTuning::PLAIN, |s| s.sweep);
+    let nsgs_options = NsgsOptions {
+        relaxation: tuning.relaxation,
+        freezing: tuning.freezing,
+        ..NsgsOptions::with_local(sweep_local_solver(rule))
+    };
     // The sweeps run without a test of their own (Siconos' increment test passes hundreds of
     // sweeps after the error on the Capsules): AUTO measures the full error after each run of
     // sweeps, whose length it predicts from the rate seen (see `next_probe`).
@@ -156,7 +166,16 @@ pub(crate) fn auto_with<'a>(
         if best.restore_if_better(r, error) {
             error = best_error;
         }
-        let watch = stall_rule(planned.kind);
+        let watch = match (planned.kind, planned.sweep.stall) {
+            (Nsgs, Some((chunk, factor))) => StallRule {
+                kind: Nsgs,
+                chunk,
+                factor,
+            },
+            _ => stall_rule(planned.kind),
+        };
+        // NSGS measures its error at least every this many sweeps, whatever its stall window.
+        let longest_probe = stall_rule(planned.kind).chunk;
         let probe = planned.allowance == PROBE && !next.to_the_limits;
         let allowance = match planned.allowance {
             _ if probe => usize::MAX,
@@ -241,7 +260,7 @@ pub(crate) fn auto_with<'a>(
                 break;
             }
             let chunk = match planned.kind {
-                Nsgs => probe_sweeps.min(watch.chunk - window),
+                Nsgs => probe_sweeps.min(watch.chunk - window).min(longest_probe),
                 // A probe checks its cap after each iteration.
                 _ if probe => 1,
                 _ => watch.chunk,
@@ -352,7 +371,7 @@ pub(crate) fn auto_with<'a>(
                 error,
                 iterations,
                 tolerance,
-                watch.chunk,
+                longest_probe,
             );
         }
         log.push(Stage {
