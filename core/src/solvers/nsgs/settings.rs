@@ -88,7 +88,8 @@ pub const DEFAULT_F32_SWITCH_ERROR: f64 = 1e-5;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct F32Sweeps {
     /// The error at or below which the sweep leaves the f32 copy (default
-    /// [`DEFAULT_F32_SWITCH_ERROR`]; 0: only the floor and stall rules switch).
+    /// [`DEFAULT_F32_SWITCH_ERROR`]; finite and > 0: the floor rule needs a full test, which the
+    /// default cheap test makes only once its cheap error passes the tolerance).
     pub switch_error: f64,
 }
 
@@ -201,7 +202,7 @@ impl NsgsOptions {
         if let Some(f) = self.f32_sweeps {
             let e = f.switch_error;
             let name = "nsgs.f32_sweeps.switch_error";
-            require_setting(e >= 0.0 && e.is_finite(), name, e, "finite and >= 0")?;
+            require_setting(e > 0.0 && e.is_finite(), name, e, "finite and > 0")?;
             let why = "the sequential or coloured sweep";
             let supported = self.decomposition != Decomposition::Islands;
             require_setting(supported, "nsgs.f32_sweeps", "islands", why)?;
