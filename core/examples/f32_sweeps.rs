@@ -31,7 +31,7 @@ fn load_average() -> String {
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 fn norm(x: &[f64]) -> f64 {
@@ -54,13 +54,19 @@ fn sweep_times(p: &FrictionProblem<'_>, k: usize) -> (f64, f64) {
     }
     let (mut r64, mut r32) = (r.clone(), r);
     let (mut t64, mut t32) = (Vec::new(), Vec::new());
+    // F32_SWEEPS_ONLY=f64 or f32: one kind of sweep only (for an instruction count of it).
+    let only = std::env::var("F32_SWEEPS_ONLY").unwrap_or_default();
     for _ in 0..k {
-        let t = Instant::now();
-        s64.sweep(q, mu, &mut r64);
-        t64.push(t.elapsed().as_secs_f64() * 1e3);
-        let t = Instant::now();
-        s32.sweep(q, mu, &mut r32);
-        t32.push(t.elapsed().as_secs_f64() * 1e3);
+        if only != "f32" {
+            let t = Instant::now();
+            s64.sweep(q, mu, &mut r64);
+            t64.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        if only != "f64" {
+            let t = Instant::now();
+            s32.sweep(q, mu, &mut r32);
+            t32.push(t.elapsed().as_secs_f64() * 1e3);
+        }
     }
     (median(t64), median(t32))
 }
