@@ -133,13 +133,10 @@ impl<const D: usize> F32Coupling<D> {
         let mut acc = contact_of(q, c);
         for (m, &b) in values.chunks_exact(D * D).zip(cols) {
             let rb: [f64; D] = r_of(b as usize);
-            // The block widened first, in one pass (packed conversions), then the f64 loop.
             let m = &m[..D * D];
-            let w: [[f64; D]; D] =
-                std::array::from_fn(|j| std::array::from_fn(|i| f64::from(m[i + D * j])));
             for (i, a) in acc.iter_mut().enumerate() {
                 for (j, x) in rb.iter().enumerate() {
-                    *a += w[j][i] * x;
+                    *a += f64::from(m[i + D * j]) * x;
                 }
             }
         }
