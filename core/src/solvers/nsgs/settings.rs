@@ -80,8 +80,8 @@ pub const DEFAULT_F32_SWITCH_ERROR: f64 = 1e-5;
 /// read them with f64 accumulation; the diagonal blocks and the local solves stay in f64. The
 /// run sweeps on the copy until the first of: a test whose error (the one the schedule
 /// measures, cheap or full) is at most `switch_error`; a full test above the tolerance within
-/// 4x of the f32 rounding floor (`2^-24 || |W_off| |r| ||` over the error's scale); a stalled
-/// test. It then sweeps on W's f64 blocks to the tolerance. Every full error, the final one
+/// 4x of the f32 rounding floor (`2^-24 || |W_off| |r| ||` over the error's scale, one pass
+/// over the copy, refreshed every 64 full tests or when the error nears it); a stalled test. It then sweeps on W's f64 blocks to the tolerance. Every full error, the final one
 /// included, is measured in f64 on the host's W. A W with an entry beyond f32's range is swept
 /// in f64 throughout. Sequential and [`Decomposition::Coloured`] sweeps (bitwise identical for
 /// any number of threads), not [`Decomposition::Islands`].

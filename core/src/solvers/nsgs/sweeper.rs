@@ -154,7 +154,15 @@ struct F32State<const D: usize> {
     active: bool,
     /// Sweeps done on the copy.
     sweeps: usize,
+    /// The last rounding floor estimate (NaN before the first), and the full tests since.
+    floor: f64,
+    floor_age: u32,
 }
+
+/// The floor estimate reads the whole copy (half a product): a test under the `Full` schedule
+/// (every sweep) reuses it for this many full tests, unless the error comes within twice the
+/// switching distance of it.
+const F32_FLOOR_REUSE: u32 = 64;
 
 /// A full test within this factor of the f32 rounding floor ends the f32 sweeps: the f32
 /// iteration's fixed point has an f64 error of at most about twice the floor, so below this
@@ -216,6 +224,8 @@ impl<'a> Sweeper<'a> {
                 switch_error: f.switch_error,
                 active: true,
                 sweeps: 0,
+                floor: f64::NAN,
+                floor_age: 0,
             });
         }
         if options.decomposition == Decomposition::Coloured {
@@ -324,13 +334,19 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
         let Some(state) = self.f32.as_mut().filter(|s| s.active) else {
             return false;
         };
-        let switch = test.error <= state.switch_error
-            || test.stalled
-            || (test.full && test.error > tolerance && {
+        let mut switch = test.error <= state.switch_error || test.stalled;
+        if !switch && test.full && test.error > tolerance {
+            let near = test.error <= 2.0 * F32_FLOOR_FACTOR * state.floor;
+            if state.floor.is_nan() || state.floor_age >= F32_FLOOR_REUSE || near {
                 let scale = relative_scale(norm(q), r, u);
-                let floor = f64::from(f32::EPSILON) * state.coupling.abs_product_norm_sq(r).sqrt();
-                test.error <= F32_FLOOR_FACTOR * floor / scale
-            });
+                let bound = state.coupling.abs_product_norm_sq(r).sqrt();
+                state.floor = f64::from(f32::EPSILON) * bound / scale;
+                state.floor_age = 0;
+            } else {
+                state.floor_age += 1;
+            }
+            switch = test.error <= F32_FLOOR_FACTOR * state.floor;
+        }
         if switch {
             state.active = false;
         }
