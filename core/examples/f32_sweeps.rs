@@ -72,8 +72,8 @@ fn sweep_times(p: &FrictionProblem<'_>, k: usize) -> (f64, f64) {
 }
 
 /// Bytes of W one sweep reads: in f64 (coupling blocks 72 + column 8 each, row pointers,
-/// diagonal blocks 72 + their position 8) and with the f32 copy (its bytes, and the same
-/// diagonal blocks).
+/// diagonal blocks 72 + their position 8) and with the f32 copy (its bytes: coupling blocks
+/// 36 + column 4 each, row pointers, its f64 diagonal blocks 72).
 fn sweep_bytes(p: &FrictionProblem<'_>) -> (usize, usize) {
     let rows = p.w().block_rows().expect("rows");
     let nc = rows.n_contacts();
@@ -82,7 +82,7 @@ fn sweep_bytes(p: &FrictionProblem<'_>) -> (usize, usize) {
     let copy = F32Coupling::from_rows(&rows)
         .expect("copy")
         .expect("in range");
-    (f64_bytes, copy.bytes() + diagonal)
+    (f64_bytes, copy.bytes())
 }
 
 /// The least f64 error of `sweeps` sweeps on the f32 copy alone (measured every 50 sweeps),

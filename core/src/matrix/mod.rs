@@ -22,7 +22,7 @@ pub use block_rows::BlockRows;
 pub use block_sparse::BlockSparseMatrix;
 pub use csr::CsrMatrix;
 pub use dense::DenseMatrix;
-pub use f32_coupling::{F32Coupling, MixedRows, SweepRows};
+pub use f32_coupling::{F32Coupling, SweepRows};
 pub(crate) use hform::sort_and_dedup_from;
 pub use hform::{transpose, transpose_mul_add, HForm};
 pub use mass::{MassFactor, DENSE_BLOCK_MAX};

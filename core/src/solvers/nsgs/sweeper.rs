@@ -16,7 +16,7 @@ use crate::error::{try_vec, Fc3dError};
 use crate::local::LocalSolverOptions;
 use crate::math::linalg::norm;
 use crate::math::linalg::{block_vec_add, distance_sq_d};
-use crate::matrix::{BlockRows, BlockSparseMatrix, Delassus, F32Coupling, MixedRows, SweepRows};
+use crate::matrix::{BlockRows, BlockSparseMatrix, Delassus, F32Coupling, SweepRows};
 use crate::measure::relative_scale;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
@@ -302,8 +302,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
             let relaxation = plan.relaxation;
             return match low {
                 Some(coupling) => {
-                    let mixed = MixedRows { rows, coupling };
-                    coloured_sweep(&mixed, step, memory, relaxation, coloured, q, mu, r)
+                    coloured_sweep(coupling, step, memory, relaxation, coloured, q, mu, r)
                 }
                 None => coloured_sweep(&*rows, step, memory, relaxation, coloured, q, mu, r),
             };
@@ -312,10 +311,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
             rng.shuffle(&mut plan.order);
         }
         match low {
-            Some(coupling) => {
-                let mixed = MixedRows { rows, coupling };
-                sequential_sweep(&mixed, step, worker, memory, plan, q, mu, r)
-            }
+            Some(coupling) => sequential_sweep(coupling, step, worker, memory, plan, q, mu, r),
             None => sequential_sweep(&*rows, step, worker, memory, plan, q, mu, r),
         }
     }
