@@ -59,8 +59,8 @@ pub use solvers::aclm::{AclmInnerSolver, AclmOptions};
 pub use solvers::admm::{AdmmAcceleration, AdmmInitialRho, AdmmOptions, AdmmRhoStrategy};
 pub use solvers::auto::{AutoChoice, AutoOptions, PlannedStage, ProblemFeatures};
 pub use solvers::nsgs::{
-    Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions, Sweeper,
-    NUM_THREADS_ENV,
+    Acceleration, ContactOrder, Decomposition, F32Sweeps, LocalTolerance, NsgsOptions, Sweeper,
+    DEFAULT_F32_SWITCH_ERROR, NUM_THREADS_ENV,
 };
 pub use solvers::nsn::{NsnFormulation, NsnLineSearch, NsnOptions};
 pub use solvers::pfp::PfpOptions;

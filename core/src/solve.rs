@@ -227,6 +227,7 @@ fn finish(
         stages: outcome.stages,
         fill: outcome.fill,
         products: outcome.products,
+        f32_sweeps: outcome.f32_sweeps,
     }
 }
 
@@ -460,6 +461,7 @@ fn report_measured(
         stages: outcome.stages,
         fill: outcome.fill,
         products: outcome.products,
+        f32_sweeps: outcome.f32_sweeps,
     }
 }
 

@@ -335,6 +335,51 @@ fn solve_allocations_do_not_grow_with_iterations() {
     }
 }
 
+/// The mixed-precision NSGS (early sweeps on the f32 copy of W's coupling blocks): a sweep on
+/// the copy allocates nothing, and a whole solve allocates as often for 1 sweep as for 200,
+/// sequential and coloured on two threads, the copy left (switch error 1: at the first test)
+/// or kept throughout (switch error 1e-30 and tolerance 0: no rule fires on Capsules).
+#[test]
+fn f32_sweeps_allocate_nothing() {
+    for (name, p) in problems() {
+        let options = NsgsOptions {
+            f32_sweeps: Some(fc3d_core::F32Sweeps::default()),
+            ..NsgsOptions::default()
+        };
+        let mut sweeper = Sweeper::with_options(&p, &options, 0.0).unwrap();
+        let mut r = vec![0.0; p.size()];
+        for round in 0..3 {
+            let (n, inc) = count_allocations(|| sweeper.sweep(p.q(), p.mu(), &mut r));
+            assert_eq!(n, 0, "{name}, f32 copy, sweep {round}: {n} allocations");
+            assert!(inc.is_finite());
+        }
+    }
+    let capsules = siconos("Capsules-i100-889.dat");
+    for decomposition in [
+        fc3d_core::Decomposition::Sequential,
+        fc3d_core::Decomposition::Coloured,
+    ] {
+        for mode in [ErrorEvaluation::Full, ErrorEvaluation::LightWithFullFinal] {
+            for switch_error in [1e-30, 1.0] {
+                let options = SolverConfig::new(NsgsOptions {
+                    decomposition,
+                    threads: 2,
+                    error_evaluation: mode,
+                    f32_sweeps: Some(fc3d_core::F32Sweeps { switch_error }),
+                    ..NsgsOptions::default()
+                });
+                solve_allocations(&capsules, options, 1);
+                let one = solve_allocations(&capsules, options, 1);
+                let many = solve_allocations(&capsules, options, 200);
+                assert_eq!(
+                    one, many,
+                    "{decomposition:?}, {mode:?}, switch {switch_error}: {one} vs {many}"
+                );
+            }
+        }
+    }
+}
+
 /// Allocations of a whole solve with `config` (tolerance 0, so every iteration runs).
 fn config_allocations(
     p: &FrictionProblem<'_>,

@@ -10,7 +10,7 @@ use crate::bench;
 use crate::bench::spec::{parse_spec, SolverSpec};
 use crate::units::parse_tolerance;
 use fc3d_core::global::{GlobalConfig, GlobalMethod};
-use fc3d_core::{LocalSolverKind, Method, NsgsOptions, Rescaling, SolverConfig};
+use fc3d_core::{F32Sweeps, LocalSolverKind, Method, NsgsOptions, Rescaling, SolverConfig};
 
 #[derive(Args, Debug, Clone, PartialEq)]
 pub(crate) struct SolveArgs {
@@ -54,6 +54,13 @@ pub(crate) struct SolveArgs {
     /// Written `--diagnostics` or `--diagnostics=K`.
     #[arg(long, value_name = "K", num_args = 0..=1, require_equals = true, default_missing_value = "5")]
     pub diagnostics: Option<usize>,
+    /// NSGS only: early sweeps on an f32 copy of W's coupling blocks (f64 accumulation, f64
+    /// diagonal blocks and local solves), then f64 sweeps from the first test whose error is at
+    /// most E (default 1e-5), or when the f32 sweeps reach their rounding floor or stall. Every
+    /// full error, the final one included, is measured in f64 on the problem's W. Written
+    /// `--f32-sweeps` or `--f32-sweeps=E`.
+    #[arg(long, value_name = "E", num_args = 0..=1, require_equals = true, default_missing_value = "1e-5")]
+    pub f32_sweeps: Option<f64>,
 }
 
 /// The Siconos option slots `--option` sets, by their Siconos names.
@@ -118,6 +125,12 @@ pub(crate) fn global_config_of(args: &SolveArgs) -> Result<GlobalConfig, String>
         config.time_budget = local.time_budget;
         return Ok(config);
     };
+    if args.f32_sweeps.is_some() {
+        return Err(format!(
+            "--f32-sweeps applies to NSGS on W only, not to the global solver {}",
+            method.label()
+        ));
+    }
     let method = match (method, args.local) {
         // The H-form sweep is NSGS: its local solver is chosen the same way.
         (GlobalMethod::HForm(o), Some(local)) => GlobalMethod::HForm(NsgsOptions {
@@ -215,6 +228,17 @@ pub(crate) fn config_of(args: &SolveArgs) -> Result<SolverConfig, String> {
                     ))
                 }
             },
+        }
+    }
+    if let Some(switch_error) = args.f32_sweeps {
+        match &mut config.method {
+            Method::Nsgs(o) => o.f32_sweeps = Some(F32Sweeps { switch_error }),
+            m => {
+                return Err(format!(
+                    "--f32-sweeps applies to NSGS only, not to {}",
+                    m.label()
+                ))
+            }
         }
     }
     config.validate().map_err(|e| e.to_string())?;

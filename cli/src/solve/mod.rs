@@ -151,7 +151,14 @@ pub(crate) fn run_solve(args: &SolveArgs) -> ExitCode {
                 // the table has settled on; the header comes first.
                 let stages = report.stages.map(|log| stage_line(&row.problem, &log));
                 let fill = report.fill.map(|f| fill_line(&row.problem, &f));
-                for line in table.push(row).into_iter().chain(stages).chain(fill) {
+                let f32_sweeps = report.f32_sweeps.map(|k| {
+                    format!(
+                        "#   f32 sweeps on {}: {k} of {} on the f32 copy of W's coupling blocks",
+                        row.problem, report.iterations
+                    )
+                });
+                let lines = table.push(row).into_iter().chain(stages).chain(fill);
+                for line in lines.chain(f32_sweeps) {
                     if !out(line) {
                         return ExitCode::SUCCESS;
                     }

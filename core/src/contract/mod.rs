@@ -63,6 +63,8 @@ pub(crate) struct SolverOutcome {
     pub fill: Option<Fill>,
     /// The products with W the run did, for the families that count them.
     pub products: Option<usize>,
+    /// The sweeps a mixed-precision NSGS run did on its f32 copy of W's coupling blocks.
+    pub f32_sweeps: Option<usize>,
 }
 
 impl SolverOutcome {
@@ -79,6 +81,7 @@ impl SolverOutcome {
             stages: None,
             fill: None,
             products: None,
+            f32_sweeps: None,
         }
     }
 

@@ -77,6 +77,10 @@ pub struct SolveReport {
     /// solve not), for the families that count it: TFP, PFP and ACLMFP with every inner solver.
     /// `None` for the others.
     pub products: Option<usize>,
+    /// The sweeps NSGS did on its f32 copy of W's coupling blocks, when it ran with
+    /// [`NsgsOptions::f32_sweeps`](crate::NsgsOptions) (the others, `iterations` minus these,
+    /// read W's f64 blocks); `None` for every other run, and when the copy could not hold W.
+    pub f32_sweeps: Option<usize>,
 }
 
 /// The fill of a sparse LU factorization `P A Q = L U`: how many entries the factors hold

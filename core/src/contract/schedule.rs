@@ -80,6 +80,13 @@ impl ErrorSchedule {
         }
     }
 
+    /// Forgets what earlier tests learnt of the ratio of cheap to full error (the cheap test
+    /// passes at the tolerance again): when the iteration changes (a mixed-precision sweep
+    /// leaving its f32 copy).
+    pub fn restart_light(&mut self) {
+        self.light_tolerance = self.tolerance;
+    }
+
     /// The test after iteration `iteration`, whose squared increment `||r_new - r_old||^2` is
     /// `increment_sq`; `measure` computes the full natural-map error or Dumont's criterion of the
     /// current `r` when the schedule needs one.

@@ -294,6 +294,21 @@ impl<'a, const D: usize> BlockRows<'a, D> {
             .filter(move |&b| b != c)
     }
 
+    /// Calls `f(b, block)` for each stored coupling block of contact `c`'s row (`b != c`, in
+    /// storage order; `block` holds `D * D` values, column-major): what the f32 copy of the
+    /// coupling reads.
+    pub(crate) fn for_each_coupling_block(&self, c: usize, mut f: impl FnMut(usize, &[f64])) {
+        let range = self.row_ptr[c]..self.row_ptr[c + 1];
+        let cols = &self.cols[range.clone()];
+        with_blocks!(&self.values, D * D, |blocks| {
+            for (m, &b) in blocks.blocks(range.clone()).zip(cols) {
+                if b != c {
+                    f(b, &m[..D * D]);
+                }
+            }
+        })
+    }
+
     /// The normal component of [`BlockRows::local_q`]: all a frictionless contact needs (one
     /// row of each coupled block instead of `D`).
     #[inline]

@@ -9,7 +9,7 @@ use super::parallel::{ContactGraph, Coupling, PoisonOnPanic, Pool, SharedSlice, 
 use super::step::{new_reaction, ContactStep};
 use crate::error::{try_vec, Fc3dError};
 use crate::math::linalg::distance_sq_d;
-use crate::matrix::BlockRows;
+use crate::matrix::SweepRows;
 
 /// A coloured sweep's schedule: the contacts cut in units of [`UNIT`] consecutive contacts,
 /// the units coloured so that no two units of a colour are coupled. Colour after colour, the
@@ -138,9 +138,9 @@ impl Units<'_> {
     /// One NSGS sweep of `rows`' contacts (see [`Units::run`]): each contact's update
     /// ([`new_reaction`]) written into `reactions` and `memory`.
     #[allow(clippy::too_many_arguments)]
-    pub fn sweep<const D: usize, S: ContactStep<D>>(
+    pub fn sweep<const D: usize, P: SweepRows<D>, S: ContactStep<D>>(
         &self,
-        rows: &BlockRows<D>,
+        rows: &P,
         step: &S,
         relaxation: Option<f64>,
         q: &[f64],

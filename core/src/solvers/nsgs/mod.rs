@@ -19,7 +19,10 @@ mod sweeper;
 pub(crate) use coloured::Colouring;
 pub(crate) use hform::HFormSweeper;
 pub use parallel::{resolve_threads, NUM_THREADS_ENV};
-pub use settings::{Acceleration, ContactOrder, Decomposition, LocalTolerance, NsgsOptions};
+pub use settings::{
+    Acceleration, ContactOrder, Decomposition, F32Sweeps, LocalTolerance, NsgsOptions,
+    DEFAULT_F32_SWITCH_ERROR,
+};
 pub use step::{update_contact, ContactStep, LocalStep};
 pub use sweeper::{GaussSeidel, SweepOptions, Sweeper};
 
@@ -279,6 +282,12 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
                 }
             });
             let (error, full) = (test.error, test.full);
+            // A mixed-precision run leaving its f32 copy starts the cheap test afresh: the
+            // ratio of cheap to full error learnt on f32 sweeps says nothing of f64 ones.
+            let switched = test.tested && sweeper.f32_switch(&test, tol, q, r, u);
+            if switched {
+                schedule.restart_light();
+            }
             let mut converged = test.converged;
             if converged && !full && sweeper.any_frozen() {
                 // A cheap test cannot see frozen contacts (they did not move because they were not
@@ -316,7 +325,7 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
             if test.tested {
                 last_measured = measured;
             }
-            if options.stop_when_stalled && test.stalled && !sweeper.any_frozen() {
+            if options.stop_when_stalled && test.stalled && !switched && !sweeper.any_frozen() {
                 break 'run SolverOutcome::stopped(iteration, false).with_final_error(measured);
             }
             if let Some(outcome) = run.end_of_iteration(iteration, converged) {
@@ -351,6 +360,7 @@ pub(crate) fn run_sweeps<const D: usize, P: SweptProblem<D>, S: ContactStep<D>>(
     };
     Ok(SolverOutcome {
         dumont_criterion: dumont,
+        f32_sweeps: sweeper.f32_sweeps(),
         ..outcome
     })
 }

@@ -13,7 +13,7 @@ use std::sync::{Arc, Condvar, Mutex, OnceLock};
 
 use crate::alloc::{try_collect, try_push};
 use crate::error::{try_copy, try_vec, Fc3dError};
-use crate::matrix::BlockRows;
+use crate::matrix::{BlockRows, SweepRows};
 
 /// Environment variable a host may set to choose the threads of parallel sweeps.
 pub const NUM_THREADS_ENV: &str = "FC3D_NUM_THREADS";
@@ -109,8 +109,8 @@ impl<'a> SharedSlice<'a> {
 /// operations in the same order).
 pub(crate) trait Reactions<const D: usize> {
     fn contact(&self, c: usize) -> [f64; D];
-    fn local_q(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> [f64; D];
-    fn local_q_normal(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> f64;
+    fn local_q<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> [f64; D];
+    fn local_q_normal<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> f64;
 }
 
 impl<const D: usize> Reactions<D> for [f64] {
@@ -119,11 +119,11 @@ impl<const D: usize> Reactions<D> for [f64] {
         crate::math::linalg::contact_of(self, c)
     }
     #[inline]
-    fn local_q(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> [f64; D] {
+    fn local_q<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> [f64; D] {
         rows.local_q(c, q, self)
     }
     #[inline]
-    fn local_q_normal(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> f64 {
+    fn local_q_normal<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> f64 {
         rows.local_q_normal(c, q, self)
     }
 }
@@ -134,11 +134,11 @@ impl<const D: usize> Reactions<D> for SharedSlice<'_> {
         SharedSlice::contact(self, c)
     }
     #[inline]
-    fn local_q(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> [f64; D] {
+    fn local_q<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> [f64; D] {
         rows.local_q_by(c, q, |b| SharedSlice::contact(self, b))
     }
     #[inline]
-    fn local_q_normal(&self, rows: &BlockRows<D>, c: usize, q: &[f64]) -> f64 {
+    fn local_q_normal<P: SweepRows<D>>(&self, rows: &P, c: usize, q: &[f64]) -> f64 {
         rows.local_q_normal_by(c, q, |i| self.get(i))
     }
 }

@@ -69,6 +69,38 @@ pub enum Acceleration {
     Anderson { memory: usize },
 }
 
+/// The switch error of [`F32Sweeps::default`] (measured on generated piles and shared problems,
+/// docs/convergence.md, "Cheaper bytes").
+pub const DEFAULT_F32_SWITCH_ERROR: f64 = 1e-5;
+
+/// Early sweeps on an f32 copy of W's coupling blocks (issue 27 item 5; an fc3d option, Rust
+/// and CLI only: no Siconos slot, not exposed through the C API). The off-diagonal blocks of
+/// W's rows are rounded once to f32 (about 6e-8 relative an entry; the copy is allocated
+/// fallibly, about half the bytes of the coupling) and the row products `q_c + sum_d W_cd r_d`
+/// read them with f64 accumulation; the diagonal blocks and the local solves stay in f64. The
+/// run sweeps on the copy until the first of: a test whose error (the one the schedule
+/// measures, cheap or full) is at most `switch_error`; a full test above the tolerance within
+/// 4x of the f32 rounding floor (`2^-24 || |W_off| |r| ||` over the error's scale, one pass
+/// over the copy, refreshed every 64 full tests or when the error nears it); a stalled test. It then sweeps on W's f64 blocks to the tolerance. Every full error, the final one
+/// included, is measured in f64 on the host's W. A W with an entry beyond f32's range is swept
+/// in f64 throughout. Sequential and [`Decomposition::Coloured`] sweeps (bitwise identical for
+/// any number of threads), not [`Decomposition::Islands`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct F32Sweeps {
+    /// The error at or below which the sweep leaves the f32 copy (default
+    /// [`DEFAULT_F32_SWITCH_ERROR`]; finite and > 0: the floor rule needs a full test, which the
+    /// default cheap test makes only once its cheap error passes the tolerance).
+    pub switch_error: f64,
+}
+
+impl Default for F32Sweeps {
+    fn default() -> Self {
+        F32Sweeps {
+            switch_error: DEFAULT_F32_SWITCH_ERROR,
+        }
+    }
+}
+
 /// Settings of the nonsmooth Gauss-Seidel solver (NSGS, Siconos id 500). Its limits default to
 /// 1000 sweeps and a tolerance of 1e-4. Under a time budget NSGS stops after the sweep that
 /// spends it and returns the best iterate it measured.
@@ -104,6 +136,8 @@ pub struct NsgsOptions {
     pub threads: usize,
     /// Acceleration across sweeps (default [`Acceleration::None`]).
     pub acceleration: Acceleration,
+    /// Early sweeps on an f32 copy of W's coupling blocks (default `None`: f64 throughout).
+    pub f32_sweeps: Option<F32Sweeps>,
 }
 
 impl Default for NsgsOptions {
@@ -119,6 +153,7 @@ impl Default for NsgsOptions {
             decomposition: Decomposition::Sequential,
             threads: 0,
             acceleration: Acceleration::None,
+            f32_sweeps: None,
         }
     }
 }
@@ -163,6 +198,14 @@ impl NsgsOptions {
                 && self.error_evaluation != ErrorEvaluation::DumontCriterion;
             let why = "the sequential or coloured sweep without freezing or Dumont's criterion";
             require_setting(supported, "nsgs.acceleration", "Anderson", why)?;
+        }
+        if let Some(f) = self.f32_sweeps {
+            let e = f.switch_error;
+            let name = "nsgs.f32_sweeps.switch_error";
+            require_setting(e > 0.0 && e.is_finite(), name, e, "finite and > 0")?;
+            let why = "the sequential or coloured sweep";
+            let supported = self.decomposition != Decomposition::Islands;
+            require_setting(supported, "nsgs.f32_sweeps", "islands", why)?;
         }
         match self.local_tolerance {
             LocalTolerance::Given => Ok(()),

@@ -9,7 +9,7 @@ use super::parallel::Reactions;
 use crate::error::Fc3dError;
 use crate::local::{AnyLocalSolver, LocalProblem, LocalSolver, LocalSolverOptions};
 use crate::math::linalg::Block;
-use crate::matrix::BlockRows;
+use crate::matrix::{BlockRows, SweepRows};
 
 /// The one-contact step a sweep applies to each contact of dimension `D`. Its configuration is
 /// shared by the threads of a parallel sweep; each thread solves with its own [`Self::Worker`].
@@ -172,8 +172,13 @@ pub fn update_contact<const D: usize, S: ContactStep<D>>(
 /// and its local q when `keep_local_q` (or when computed anyway).
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub(crate) fn new_reaction<const D: usize, S: ContactStep<D>, R: Reactions<D> + ?Sized>(
-    rows: &BlockRows<D>,
+pub(crate) fn new_reaction<
+    const D: usize,
+    P: SweepRows<D>,
+    S: ContactStep<D>,
+    R: Reactions<D> + ?Sized,
+>(
+    rows: &P,
     step: &S,
     worker: &mut S::Worker,
     relaxation: Option<f64>,

@@ -11,10 +11,13 @@ use super::settings::{ContactOrder, Decomposition, NsgsOptions};
 use super::step::{new_reaction, ContactStep, LocalStep};
 use crate::alloc::try_collect;
 use crate::contract::ErrorEvaluation;
+use crate::contract::Test;
 use crate::error::{try_vec, Fc3dError};
 use crate::local::LocalSolverOptions;
+use crate::math::linalg::norm;
 use crate::math::linalg::{block_vec_add, distance_sq_d};
-use crate::matrix::{BlockRows, BlockSparseMatrix, Delassus};
+use crate::matrix::{BlockRows, BlockSparseMatrix, Delassus, F32Coupling, SweepRows};
+use crate::measure::relative_scale;
 use crate::measure::SweptProblem;
 use crate::problem::FrictionProblem;
 
@@ -139,7 +142,32 @@ pub struct GaussSeidel<'a, const D: usize, S: ContactStep<D>> {
     plan: SweepPlan,
     /// The colouring and threads of a [`Decomposition::Coloured`] sweep.
     coloured: Option<ColouredPlan>,
+    /// The f32 copy of the coupling blocks of a mixed-precision run ([`NsgsOptions::f32_sweeps`]).
+    f32: Option<F32State<D>>,
 }
+
+/// Where a mixed-precision run stands: the f32 copy of W's coupling blocks, swept on while
+/// `active`, and the rule that ends it (see [`F32Sweeps`](super::F32Sweeps)).
+struct F32State<const D: usize> {
+    coupling: F32Coupling<D>,
+    switch_error: f64,
+    active: bool,
+    /// Sweeps done on the copy.
+    sweeps: usize,
+    /// The last rounding floor estimate (NaN before the first), and the full tests since.
+    floor: f64,
+    floor_age: u32,
+}
+
+/// The floor estimate reads the whole copy (half a product): a test under the `Full` schedule
+/// (every sweep) reuses it for this many full tests, unless the error comes within twice the
+/// switching distance of it.
+const F32_FLOOR_REUSE: u32 = 64;
+
+/// A full test within this factor of the f32 rounding floor ends the f32 sweeps: the f32
+/// iteration's fixed point has an f64 error of at most about twice the floor, so below this
+/// the copy cannot be trusted to make progress.
+const F32_FLOOR_FACTOR: f64 = 4.0;
 
 /// The 3D sweep with a local solver (public so that benchmarks and hosts that drive their own
 /// loop can sweep without re-preparing).
@@ -190,6 +218,16 @@ impl<'a> Sweeper<'a> {
     ) -> Result<Self, Fc3dError> {
         let step = LocalStep::new(&rows, &options.local)?;
         let mut sweeper = GaussSeidel::from_parts(rows, step, &options.into(), tolerance)?;
+        if let Some(f) = options.f32_sweeps {
+            sweeper.f32 = F32Coupling::from_rows(&sweeper.rows)?.map(|coupling| F32State {
+                coupling,
+                switch_error: f.switch_error,
+                active: true,
+                sweeps: 0,
+                floor: f64::NAN,
+                floor_age: 0,
+            });
+        }
         if options.decomposition == Decomposition::Coloured {
             sweeper.colour(resolve_threads(options.threads), colouring)?;
         }
@@ -215,6 +253,7 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
             memory,
             plan,
             coloured: None,
+            f32: None,
         })
     }
 
@@ -243,94 +282,82 @@ impl<'a, const D: usize, S: ContactStep<D>> GaussSeidel<'a, D, S> {
     /// One sweep over all contacts, updating `r` in place; returns
     /// `sum_c ||r_c^new - r_c^old||^2`.
     pub fn sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
-        if self.coloured.is_some() {
-            return self.coloured_sweep(q, mu, r);
-        }
-        if let Some(rng) = self.plan.reshuffle.as_mut() {
-            rng.shuffle(&mut self.plan.order);
-        }
-        let nc = self.rows.n_contacts();
-        let mut increment_sq = 0.0;
-        for k in 0..nc {
-            let c = if self.plan.order.is_empty() {
-                k
-            } else {
-                self.plan.order[k]
+        let GaussSeidel {
+            rows,
+            step,
+            worker,
+            memory,
+            plan,
+            coloured,
+            f32,
+        } = self;
+        let low = match f32 {
+            Some(state) if state.active => {
+                state.sweeps += 1;
+                Some(&state.coupling)
+            }
+            _ => None,
+        };
+        if let Some(coloured) = coloured.as_mut() {
+            let relaxation = plan.relaxation;
+            return match low {
+                Some(coupling) => {
+                    coloured_sweep(coupling, step, memory, relaxation, coloured, q, mu, r)
+                }
+                None => coloured_sweep(&*rows, step, memory, relaxation, coloured, q, mu, r),
             };
-            increment_sq += self.update_contact(c, q, mu, r);
         }
-        increment_sq
+        if let Some(rng) = plan.reshuffle.as_mut() {
+            rng.shuffle(&mut plan.order);
+        }
+        match low {
+            Some(coupling) => sequential_sweep(coupling, step, worker, memory, plan, q, mu, r),
+            None => sequential_sweep(&*rows, step, worker, memory, plan, q, mu, r),
+        }
     }
 
-    /// Solves contact `c` against the current reactions of the others and writes its new
-    /// reaction into `r`; returns the squared increment.
-    #[inline]
-    fn update_contact(&mut self, c: usize, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
-        if let Some(left) = self.plan.frozen.get_mut(c) {
-            if *left > 0 {
-                *left -= 1;
-                return 0.0;
+    /// After a tested sweep of a mixed-precision run (see [`F32Sweeps`](super::F32Sweeps)): whether the f32
+    /// sweeps end here (the next sweeps read W's f64 blocks). `u` holds `W r + q` after a full
+    /// test. Always false without the f32 copy, or once it was left.
+    pub(crate) fn f32_switch(
+        &mut self,
+        test: &Test,
+        tolerance: f64,
+        q: &[f64],
+        r: &[f64],
+        u: &[f64],
+    ) -> bool {
+        let Some(state) = self.f32.as_mut().filter(|s| s.active) else {
+            return false;
+        };
+        let mut switch = test.error <= state.switch_error || test.stalled;
+        if !switch && test.full && test.error > tolerance {
+            let near = test.error <= 2.0 * F32_FLOOR_FACTOR * state.floor;
+            if state.floor.is_nan() || state.floor_age >= F32_FLOOR_REUSE || near {
+                let scale = relative_scale(norm(q), r, u);
+                let bound = state.coupling.abs_product_norm_sq(r).sqrt();
+                state.floor = f64::from(f32::EPSILON) * bound / scale;
+                state.floor_age = 0;
+            } else {
+                state.floor_age += 1;
             }
+            switch = test.error <= F32_FLOOR_FACTOR * state.floor;
         }
-        let track = !self.plan.u_solved.is_empty();
-        let (rc, old, local_q) = new_reaction(
-            &self.rows,
-            &self.step,
-            &mut self.worker,
-            self.plan.relaxation,
-            c,
-            q,
-            mu,
-            &*r,
-            &mut self.memory[c],
-            track,
-        );
-        let d_sq = distance_sq_d(&rc, &old);
-        if let Some((sweeps, tol)) = self.plan.freezing {
-            let r_sq = distance_sq_d(&rc, &[0.0; D]);
-            if d_sq <= tol * tol * r_sq {
-                self.plan.frozen[c] = sweeps;
-            }
+        if switch {
+            state.active = false;
         }
-        r[D * c..D * c + D].copy_from_slice(&rc);
-        if let Some(lq) = local_q.filter(|_| track) {
-            let uc = block_vec_add(&self.rows.diagonal(c), &rc, &lq);
-            self.plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
-        }
-        d_sq
+        switch
+    }
+
+    /// Sweeps done on the f32 copy of the coupling blocks (`None` without it).
+    pub(crate) fn f32_sweeps(&self) -> Option<usize> {
+        self.f32.as_ref().map(|s| s.sweeps)
     }
 
     /// Gives the block rows and the colouring of their pattern back (to be kept for the next
     /// problem with the same pattern).
     pub(crate) fn into_prepared(self) -> (BlockRows<'a, D>, Option<Colouring>) {
         (self.rows, self.coloured.map(|c| c.colouring))
-    }
-
-    /// A multicoloured sweep (see [`ColouredPlan`]). Every unit's update depends only on `r` at
-    /// the start of its colour and on its own contacts, so the result is the same for any
-    /// number of threads.
-    fn coloured_sweep(&mut self, q: &[f64], mu: &[f64], r: &mut [f64]) -> f64 {
-        let GaussSeidel {
-            rows,
-            step,
-            memory,
-            plan,
-            coloured,
-            ..
-        } = self;
-        let coloured = coloured.as_mut().expect("a coloured plan");
-        let (units, unit_sums) = coloured.units();
-        let (increment_sq, _) = units.sweep(
-            rows,
-            &*step,
-            plan.relaxation,
-            q,
-            mu,
-            &SharedSlice::new(r),
-            &SharedSlice::new(memory),
-            unit_sums,
-        );
-        increment_sq
     }
 
     /// Whether the sweep is a coloured one ([`Decomposition::Coloured`]).
@@ -421,4 +448,107 @@ fn velocity_on_threads(
         part.copy_from_slice(&q[3 * rows.start..3 * rows.end]);
         w.mul_add_block_rows(r, part, rows);
     });
+}
+
+/// One sequential sweep over `rows` (in the plan's order): each contact solved against the
+/// current reactions of the others and written into `r`; returns the squared increment.
+#[allow(clippy::too_many_arguments)]
+fn sequential_sweep<const D: usize, P: SweepRows<D>, S: ContactStep<D>>(
+    rows: &P,
+    step: &S,
+    worker: &mut S::Worker,
+    memory: &mut [f64],
+    plan: &mut SweepPlan,
+    q: &[f64],
+    mu: &[f64],
+    r: &mut [f64],
+) -> f64 {
+    let nc = rows.n_contacts();
+    let mut increment_sq = 0.0;
+    for k in 0..nc {
+        let c = if plan.order.is_empty() {
+            k
+        } else {
+            plan.order[k]
+        };
+        increment_sq += update_contact(rows, step, worker, memory, plan, c, q, mu, r);
+    }
+    increment_sq
+}
+
+/// Solves contact `c` against the current reactions of the others and writes its new
+/// reaction into `r`; returns the squared increment.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn update_contact<const D: usize, P: SweepRows<D>, S: ContactStep<D>>(
+    rows: &P,
+    step: &S,
+    worker: &mut S::Worker,
+    memory: &mut [f64],
+    plan: &mut SweepPlan,
+    c: usize,
+    q: &[f64],
+    mu: &[f64],
+    r: &mut [f64],
+) -> f64 {
+    if let Some(left) = plan.frozen.get_mut(c) {
+        if *left > 0 {
+            *left -= 1;
+            return 0.0;
+        }
+    }
+    let track = !plan.u_solved.is_empty();
+    let (rc, old, local_q) = new_reaction(
+        rows,
+        step,
+        worker,
+        plan.relaxation,
+        c,
+        q,
+        mu,
+        &*r,
+        &mut memory[c],
+        track,
+    );
+    let d_sq = distance_sq_d(&rc, &old);
+    if let Some((sweeps, tol)) = plan.freezing {
+        let r_sq = distance_sq_d(&rc, &[0.0; D]);
+        if d_sq <= tol * tol * r_sq {
+            plan.frozen[c] = sweeps;
+        }
+    }
+    r[D * c..D * c + D].copy_from_slice(&rc);
+    if let Some(lq) = local_q.filter(|_| track) {
+        let uc = block_vec_add(&rows.diagonal(c), &rc, &lq);
+        plan.u_solved[D * c..D * c + D].copy_from_slice(&uc);
+    }
+    d_sq
+}
+
+/// A multicoloured sweep (see [`ColouredPlan`]). Every unit's update depends only on `r` at
+/// the start of its colour and on its own contacts, so the result is the same for any number
+/// of threads.
+#[allow(clippy::too_many_arguments)]
+fn coloured_sweep<const D: usize, P: SweepRows<D>, S: ContactStep<D>>(
+    rows: &P,
+    step: &S,
+    memory: &mut [f64],
+    relaxation: Option<f64>,
+    coloured: &mut ColouredPlan,
+    q: &[f64],
+    mu: &[f64],
+    r: &mut [f64],
+) -> f64 {
+    let (units, unit_sums) = coloured.units();
+    let (increment_sq, _) = units.sweep(
+        rows,
+        step,
+        relaxation,
+        q,
+        mu,
+        &SharedSlice::new(r),
+        &SharedSlice::new(memory),
+        unit_sums,
+    );
+    increment_sq
 }
