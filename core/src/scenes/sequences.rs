@@ -233,7 +233,8 @@ pub fn pile_settling(n: usize, steps: usize, solve: &mut StepSolver<'_>) -> Sequ
 /// host's scale: a wider bin settles a larger pile in the same number of steps. The steps are
 /// handed to `solve` (with their contact ids, to warm-start by id) and not kept (hundreds of
 /// W of 10^4 contacts would not fit); returns the number of steps that had contacts. The
-/// contact detection tests every pair of spheres: its cost grows with the square of `n`.
+/// contact detection sorts the spheres into a uniform grid (O(n log n) a step) and lists the
+/// same pairs, in the same order, as testing every pair would.
 pub fn pile_settling_in_bin(
     n: usize,
     per_side: usize,
@@ -276,70 +277,155 @@ fn settling_pile(
             }
         })
         .collect();
-    let detect = move |bodies: &[SimBody]| {
-        let mut found = Vec::new();
-        let reach = MARGIN + 0.1;
-        for (i, s) in bodies.iter().enumerate() {
-            let x = s.x;
-            if x[2] - radius < reach {
+    let detect =
+        move |bodies: &[SimBody]| sphere_candidates(bodies, radius, half_bin, PairSearch::Grid);
+    (bodies, detect)
+}
+
+/// How [`sphere_candidates`] finds the pairs of spheres within reach.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum PairSearch {
+    /// Every pair `i < j` (O(n^2)): the reference.
+    #[cfg_attr(not(test), allow(dead_code))]
+    AllPairs,
+    /// A uniform grid of cells wider than the reach (O(n log n)): the same pairs in the same order.
+    Grid,
+}
+
+/// The contacts of the settling pile's spheres (radius `radius`, bin walls at `+-half_bin`):
+/// for each sphere `i` in order, the ground, the 4 walls, then the spheres `j > i` in
+/// increasing `j` whose gap is below the reach. The order and the ids define the problem; both
+/// searches give the same list.
+fn sphere_candidates(
+    bodies: &[SimBody],
+    radius: f64,
+    half_bin: f64,
+    search: PairSearch,
+) -> Vec<Candidate> {
+    let mut found = Vec::new();
+    let reach = MARGIN + 0.1;
+    let grid = (search == PairSearch::Grid).then(|| SphereGrid::new(bodies, 2.0 * radius + reach));
+    let mut near: Vec<usize> = Vec::new();
+    for (i, s) in bodies.iter().enumerate() {
+        let x = s.x;
+        if x[2] - radius < reach {
+            found.push(Candidate {
+                a: i,
+                b: None,
+                point: [x[0], x[1], 0.0],
+                normal: E_Z,
+                gap: x[2] - radius,
+                mu: 0.5,
+                id: contact_id(1, i, 0),
+            });
+        }
+        for (w, (axis, sign)) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)]
+            .iter()
+            .enumerate()
+        {
+            // Wall at coordinate `sign * half_bin` on `axis`, normal pointing inwards.
+            let gap = half_bin - sign * x[*axis] - radius;
+            if gap < reach {
+                let mut normal = [0.0; 3];
+                normal[*axis] = -sign;
+                let mut point = x;
+                point[*axis] = sign * half_bin;
                 found.push(Candidate {
                     a: i,
                     b: None,
-                    point: [x[0], x[1], 0.0],
-                    normal: E_Z,
-                    gap: x[2] - radius,
-                    mu: 0.5,
-                    id: contact_id(1, i, 0),
+                    point,
+                    normal,
+                    gap,
+                    mu: 0.0,
+                    id: contact_id(2, i, w),
                 });
             }
-            for (w, (axis, sign)) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)]
-                .iter()
-                .enumerate()
-            {
-                // Wall at coordinate `sign * half_bin` on `axis`, normal pointing inwards.
-                let gap = half_bin - sign * x[*axis] - radius;
-                if gap < reach {
-                    let mut normal = [0.0; 3];
-                    normal[*axis] = -sign;
-                    let mut point = x;
-                    point[*axis] = sign * half_bin;
-                    found.push(Candidate {
-                        a: i,
-                        b: None,
-                        point,
-                        normal,
-                        gap,
-                        mu: 0.0,
-                        id: contact_id(2, i, w),
-                    });
-                }
-            }
-            for (j, t) in bodies.iter().enumerate().skip(i + 1) {
-                let d = [x[0] - t.x[0], x[1] - t.x[1], x[2] - t.x[2]];
-                let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                let gap = dist - 2.0 * radius;
-                if gap < reach {
-                    let n = [d[0] / dist, d[1] / dist, d[2] / dist];
-                    let p = [
-                        t.x[0] + radius * n[0],
-                        t.x[1] + radius * n[1],
-                        t.x[2] + radius * n[2],
-                    ];
-                    found.push(Candidate {
-                        a: i,
-                        b: Some(j),
-                        point: p,
-                        normal: n,
-                        gap,
-                        mu: 0.3,
-                        id: contact_id(3, i, j),
-                    });
-                }
+        }
+        near.clear();
+        match &grid {
+            Some(g) => g.later_neighbours(i, &mut near),
+            None => near.extend(i + 1..bodies.len()),
+        }
+        for &j in &near {
+            let t = &bodies[j];
+            let d = [x[0] - t.x[0], x[1] - t.x[1], x[2] - t.x[2]];
+            let dist = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let gap = dist - 2.0 * radius;
+            if gap < reach {
+                let n = [d[0] / dist, d[1] / dist, d[2] / dist];
+                let p = [
+                    t.x[0] + radius * n[0],
+                    t.x[1] + radius * n[1],
+                    t.x[2] + radius * n[2],
+                ];
+                found.push(Candidate {
+                    a: i,
+                    b: Some(j),
+                    point: p,
+                    normal: n,
+                    gap,
+                    mu: 0.3,
+                    id: contact_id(3, i, j),
+                });
             }
         }
-        found
-    };
-    (bodies, detect)
+    }
+    found
+}
+
+/// The spheres sorted by the cell of a uniform grid that holds their centre. Cells are 1% wider
+/// than the largest centre distance of a contact, so that (round-off included) two spheres
+/// within reach lie in the same or adjacent cells on every axis.
+struct SphereGrid {
+    /// `(cell x, cell y, cell z, sphere)`, sorted.
+    cells: Vec<(i64, i64, i64, usize)>,
+    /// The cell of each sphere.
+    of: Vec<(i64, i64, i64)>,
+}
+
+impl SphereGrid {
+    fn new(bodies: &[SimBody], reach: f64) -> SphereGrid {
+        let size = 1.01 * reach;
+        // A NaN coordinate casts to cell 0 and an infinite one saturates: such a sphere is
+        // still tested (and its NaN gap rejects it) as the all-pairs search would.
+        let cell = |v: f64| (v / size).floor() as i64;
+        let of: Vec<(i64, i64, i64)> = bodies
+            .iter()
+            .map(|b| (cell(b.x[0]), cell(b.x[1]), cell(b.x[2])))
+            .collect();
+        let mut cells: Vec<(i64, i64, i64, usize)> = of
+            .iter()
+            .enumerate()
+            .map(|(k, c)| (c.0, c.1, c.2, k))
+            .collect();
+        cells.sort_unstable();
+        SphereGrid { cells, of }
+    }
+
+    /// Appends to `out` the spheres `j > i` in the 27 cells around sphere `i`'s, in increasing
+    /// `j`.
+    fn later_neighbours(&self, i: usize, out: &mut Vec<usize>) {
+        let (cx, cy, cz) = self.of[i];
+        for dx in [-1i64, 0, 1] {
+            for dy in [-1i64, 0, 1] {
+                let (x, y) = (cx.saturating_add(dx), cy.saturating_add(dy));
+                // Sorted by (x, y, z, sphere): the cells z - 1 ..= z + 1 of column (x, y) are
+                // one run.
+                let lo = (x, y, cz.saturating_sub(1));
+                let hi = (x, y, cz.saturating_add(1));
+                let start = self.cells.partition_point(|e| (e.0, e.1, e.2) < lo);
+                let end = self.cells.partition_point(|e| (e.0, e.1, e.2) <= hi);
+                out.extend(
+                    self.cells[start..end]
+                        .iter()
+                        .map(|e| e.3)
+                        .filter(|&j| j > i),
+                );
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
 }
 
 /// A box (0.8 x 0.6 x 0.2, mass 4) carrying a smaller yawed box (mass 1) slides on the ground at
@@ -424,4 +510,71 @@ pub fn box_slide(steps: usize, solve: &mut StepSolver<'_>) -> Sequence {
         &detect,
         solve,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{solve, NsgsOptions, SolverConfig};
+
+    fn same(a: &[Candidate], b: &[Candidate]) -> bool {
+        a.len() == b.len()
+            && a.iter().zip(b).all(|(x, y)| {
+                x.a == y.a
+                    && x.b == y.b
+                    && x.id == y.id
+                    && x.gap.to_bits() == y.gap.to_bits()
+                    && x.mu.to_bits() == y.mu.to_bits()
+                    && (0..3).all(|k| {
+                        x.point[k].to_bits() == y.point[k].to_bits()
+                            && x.normal[k].to_bits() == y.normal[k].to_bits()
+                    })
+            })
+    }
+
+    /// At every step of settling piles (small and medium, dropped, landing, at rest), the grid
+    /// lists exactly the candidates of the all-pairs search, in the same order.
+    #[test]
+    fn grid_and_all_pairs_find_the_same_candidates() {
+        let config = SolverConfig::new(NsgsOptions::default())
+            .with_tolerance(1e-4)
+            .with_max_iter(200);
+        for (n, per_side, steps) in [(40, 4, 60), (300, 8, 40), (1000, 12, 25)] {
+            let (bodies, _) = settling_pile(n, per_side);
+            let radius = 0.1;
+            let half_bin = 0.5 * per_side as f64 * 2.2 * radius * BIN_ROOM;
+            let checked = std::cell::Cell::new(0usize);
+            let pairs = std::cell::Cell::new(0usize);
+            let detect = |b: &[SimBody]| {
+                let grid = sphere_candidates(b, radius, half_bin, PairSearch::Grid);
+                let all = sphere_candidates(b, radius, half_bin, PairSearch::AllPairs);
+                assert!(same(&grid, &all), "{n} spheres, step {}", checked.get());
+                checked.set(checked.get() + 1);
+                pairs.set(pairs.get() + grid.iter().filter(|c| c.b.is_some()).count());
+                grid
+            };
+            let solved = run_steps(bodies, steps, &detect, &mut |step: Step| {
+                let p = &step.problem;
+                let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+                solve(p, &config, &mut r, &mut u).expect("solve");
+                r
+            });
+            assert_eq!(checked.get(), steps);
+            assert!(solved > 0 && pairs.get() > n, "{n}: {} pairs", pairs.get());
+        }
+    }
+
+    /// The grid keeps a sphere with a non-finite coordinate (as the all-pairs search does: its
+    /// NaN gap rejects it) and finds the same list.
+    #[test]
+    fn grid_handles_non_finite_positions() {
+        let (mut bodies, _) = settling_pile(64, 4);
+        bodies[3].x[0] = f64::NAN;
+        bodies[10].x[2] = f64::INFINITY;
+        bodies[11].x[1] = f64::NEG_INFINITY;
+        let half_bin = 0.5 * 4.0 * 2.2 * 0.1 * BIN_ROOM;
+        let grid = sphere_candidates(&bodies, 0.1, half_bin, PairSearch::Grid);
+        let all = sphere_candidates(&bodies, 0.1, half_bin, PairSearch::AllPairs);
+        assert!(same(&grid, &all));
+    }
 }
