@@ -14,7 +14,7 @@
 use super::world::{bottom_corners, cross, yaw, Body, Storage, World, E_Z};
 use super::DT;
 use crate::math::linalg::{mat3_mul, mat3_vec, Mat3, Vec3};
-use crate::problem::FrictionProblem;
+use crate::problem::{FrictionProblem, GlobalProblem};
 
 /// Gap below which two shapes are in contact even without approaching (m).
 pub const MARGIN: f64 = 1e-3;
@@ -82,6 +82,16 @@ fn contact_id(kind: i64, i: usize, j: usize) -> i64 {
     (kind << 48) | ((i as i64) << 24) | j as i64
 }
 
+/// One step of a sequence in the global form (M block diagonal, one 6x6 block a body; H the
+/// contacts' Jacobians; `q = M v_free`; `b` the normal rows' shift `gap / dt` of the contacts
+/// still open): reduced, it is the [`Step`] the local form hands over.
+#[derive(Debug, Clone)]
+pub struct GlobalStep {
+    pub problem: GlobalProblem<'static>,
+    /// The host's name of each contact, stable while the contact persists.
+    pub ids: Vec<i64>,
+}
+
 /// A solver that also sees the step's contact ids (to warm-start by id), for sequences whose
 /// steps are not kept ([`pile_settling_in_bin`]).
 pub type StepSolverWithIds<'a> = dyn FnMut(&Step) -> Vec<f64> + 'a;
@@ -96,7 +106,8 @@ fn simulate(
     solve: &mut StepSolver<'_>,
 ) -> Sequence {
     let mut out = Vec::with_capacity(steps);
-    run_steps(bodies, steps, detect, &mut |step: Step| {
+    run_steps(bodies, steps, detect, &mut |world, candidates| {
+        let step = local_step(world, candidates);
         let r = solve(&step.problem);
         out.push(step);
         r
@@ -108,13 +119,14 @@ fn simulate(
     }
 }
 
-/// The stepper: per step with contacts, `solve` gets the step (and may keep it) and returns r.
-/// Returns the number of steps that had contacts.
+/// The stepper: per step with contacts, `solve` gets the step's world (bodies with their free
+/// velocities, contacts added) and its candidates, and returns r. Returns the number of steps
+/// that had contacts.
 fn run_steps(
     mut bodies: Vec<SimBody>,
     steps: usize,
     detect: &dyn Fn(&[SimBody]) -> Vec<Candidate>,
-    solve: &mut dyn FnMut(Step) -> Vec<f64>,
+    solve: &mut dyn FnMut(&World, &[Candidate]) -> Vec<f64>,
 ) -> usize {
     let mut solved = 0;
     for _ in 0..steps {
@@ -145,17 +157,7 @@ fn run_steps(
         for c in &candidates {
             world.add_contact(c.a, c.b, c.point, c.normal, c.mu);
         }
-        let ids: Vec<i64> = candidates.iter().map(|c| c.id).collect();
-        let mut problem = world.problem(Storage::SparseBlock);
-        let mut q = problem.q().to_vec();
-        for (k, c) in candidates.iter().enumerate() {
-            if c.gap > 0.0 {
-                q[3 * k] += c.gap / DT;
-            }
-        }
-        problem = FrictionProblem::new(problem.w().clone(), q, problem.mu().to_vec())
-            .expect("consistent step");
-        let r = solve(Step { problem, ids });
+        let r = solve(&world, &candidates);
         solved += 1;
         let dv = world.impulse_response(&r);
         for ((s, b), d) in bodies.iter_mut().zip(&world.bodies).zip(&dv) {
@@ -164,6 +166,42 @@ fn run_steps(
         }
     }
     solved
+}
+
+/// The normal rows' shift `gap / dt` of the open candidates (`u_N + g / dt >= 0`), 3 entries a
+/// contact.
+fn gap_shift(candidates: &[Candidate]) -> Vec<f64> {
+    let mut shift = vec![0.0; 3 * candidates.len()];
+    for (k, c) in candidates.iter().enumerate() {
+        if c.gap > 0.0 {
+            shift[3 * k] = c.gap / DT;
+        }
+    }
+    shift
+}
+
+/// The local form of a step: `FC(W, q + shift, mu)` with W stored sparse by blocks.
+fn local_step(world: &World, candidates: &[Candidate]) -> Step {
+    let ids: Vec<i64> = candidates.iter().map(|c| c.id).collect();
+    let problem = world.problem(Storage::SparseBlock);
+    let mut q = problem.q().to_vec();
+    for (qi, s) in q.iter_mut().zip(gap_shift(candidates)) {
+        if s != 0.0 {
+            *qi += s;
+        }
+    }
+    let problem = FrictionProblem::new(problem.w().clone(), q, problem.mu().to_vec())
+        .expect("consistent step");
+    Step { problem, ids }
+}
+
+/// The global form of a step (`b` the shift).
+fn global_step(world: &World, candidates: &[Candidate]) -> GlobalStep {
+    let ids: Vec<i64> = candidates.iter().map(|c| c.id).collect();
+    let problem = world
+        .global_problem_with_b(gap_shift(candidates))
+        .expect("consistent step");
+    GlobalStep { problem, ids }
 }
 
 /// Normal velocity of the material point of a body at `p` along `n`.
@@ -242,7 +280,29 @@ pub fn pile_settling_in_bin(
     solve: &mut StepSolverWithIds<'_>,
 ) -> usize {
     let (bodies, detect) = settling_pile(n, per_side);
-    run_steps(bodies, steps, &detect, &mut |step: Step| solve(&step))
+    run_steps(bodies, steps, &detect, &mut |world, candidates| {
+        solve(&local_step(world, candidates))
+    })
+}
+
+/// A solver of a step in the global form, from its contact ids (to warm-start by id).
+pub type GlobalStepSolver<'a> = dyn FnMut(&GlobalStep) -> Vec<f64> + 'a;
+
+/// [`pile_settling_in_bin`] with each step handed over in the global form ([`GlobalStep`]: M,
+/// H, `q = M v_free`, `b` the gap shift) for a solver that takes M and H (the H-form sweep)
+/// rather than W. The bodies move by the same rule from the returned r
+/// (`v+ = v_free + M^-1 H r`); with the same r at every step the sequence is
+/// [`pile_settling_in_bin`]'s. Returns the number of steps that had contacts.
+pub fn pile_settling_in_bin_global(
+    n: usize,
+    per_side: usize,
+    steps: usize,
+    solve: &mut GlobalStepSolver<'_>,
+) -> usize {
+    let (bodies, detect) = settling_pile(n, per_side);
+    run_steps(bodies, steps, &detect, &mut |world, candidates| {
+        solve(&global_step(world, candidates))
+    })
 }
 
 /// The spheres of [`pile_settling_in_bin`] and their contact detection.
@@ -553,7 +613,8 @@ mod tests {
                 pairs.set(pairs.get() + grid.iter().filter(|c| c.b.is_some()).count());
                 grid
             };
-            let solved = run_steps(bodies, steps, &detect, &mut |step: Step| {
+            let solved = run_steps(bodies, steps, &detect, &mut |world, candidates| {
+                let step = local_step(world, candidates);
                 let p = &step.problem;
                 let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
                 solve(p, &config, &mut r, &mut u).expect("solve");
@@ -576,5 +637,46 @@ mod tests {
         let grid = sphere_candidates(&bodies, 0.1, half_bin, PairSearch::Grid);
         let all = sphere_candidates(&bodies, 0.1, half_bin, PairSearch::AllPairs);
         assert!(same(&grid, &all));
+    }
+
+    /// At every step of a settling pile, the global form (M, H, q, b) reduces to the local
+    /// form's W and q (gap shift included) up to round-off, with the same ids.
+    #[test]
+    fn global_steps_reduce_to_the_local_steps() {
+        let config = SolverConfig::new(NsgsOptions::default())
+            .with_tolerance(1e-6)
+            .with_max_iter(500);
+        let (bodies, detect) = settling_pile(120, 5);
+        let mut shifted = 0usize;
+        let solved = run_steps(bodies, 60, &detect, &mut |world, candidates| {
+            let local = local_step(world, candidates);
+            let global = global_step(world, candidates);
+            assert_eq!(local.ids, global.ids);
+            shifted += global.problem.b().iter().filter(|b| **b > 0.0).count();
+            let mut operator = global.problem.operator().unwrap();
+            assert!(operator.mass().is_block_diagonal());
+            let reduced = global.problem.reduce(&mut operator).unwrap();
+            let p = &local.problem;
+            let scale = p.q().iter().fold(1e-3_f64, |a, v| a.max(v.abs()));
+            for (a, b) in reduced.q().iter().zip(p.q()) {
+                assert!((a - b).abs() <= 1e-12 * scale, "q: {a} {b}");
+            }
+            let mut wmax = 0.0_f64;
+            p.w().for_each_entry(|_, _, v| wmax = wmax.max(v.abs()));
+            let mut worst = 0.0_f64;
+            p.w()
+                .for_each_entry(|i, j, v| worst = worst.max((v - reduced.w().get(i, j)).abs()));
+            reduced
+                .w()
+                .for_each_entry(|i, j, v| worst = worst.max((v - p.w().get(i, j)).abs()));
+            assert!(worst <= 1e-12 * wmax, "W: {worst} of {wmax}");
+            let (mut r, mut u) = (vec![0.0; p.size()], vec![0.0; p.size()]);
+            solve(p, &config, &mut r, &mut u).expect("solve");
+            r
+        });
+        assert!(
+            solved > 20 && shifted > 0,
+            "{solved} steps, {shifted} shifted rows"
+        );
     }
 }
