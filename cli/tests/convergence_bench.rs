@@ -239,6 +239,7 @@ fn settling_in_the_global_form_runs_the_h_form_warm() {
         .output()
         .unwrap();
     assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("takes a local method"));
 }
 
 #[test]
