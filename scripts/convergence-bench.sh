@@ -8,6 +8,8 @@
 #   bash scripts/convergence-bench.sh                                 # the table and the sequence
 #   bash scripts/convergence-bench.sh --sizes 1000 --methods NSGS,TFP --no-settling
 #   bash scripts/convergence-bench.sh --quick                         # seconds: the harness works
+#   bash scripts/convergence-bench.sh --no-table --settling 35000:63 \
+#        --settling-methods TFP,AUTO,NSGS_HFORM --settling-every 0      # 10^5 contacts (hours)
 #
 # Table: one process per (scene, method) and per (scene, Siconos id, tolerance), so that each
 # run's peak memory is its own. fc3d: `convergence_bench solve` (cli/src/bin), one solve from
@@ -20,7 +22,10 @@
 # Settling: `convergence_bench settling` (pile_settling_in_bin: spheres dropped into a square bin),
 # every step solved to --settling-tol through one fc3d Workspace (warm start by contact id), per
 # fc3d method; every --settling-every-th step of the first method's run is written as .dat and
-# solved from r = 0 (cold) by Siconos' ids and by the same fc3d methods.
+# solved from r = 0 (cold) by Siconos' ids and by the same fc3d methods. A global method
+# (NSGS_HFORM or 691, ...) runs the sequence in the global form (M and H given,
+# pile_settling_in_bin_global), warm-started by contact id; it writes no .dat files (list a
+# local method first, or --settling-every 0).
 #
 # Options (lists comma-separated):
 #   --shapes LIST          spheres,boxes (default both)
@@ -34,9 +39,10 @@
 #   --budget S             wall-clock budget of each run, seconds (default 30)
 #   --mem-limit-gb G       address-space limit of each run (default 8; 0: none)
 #   --no-table / --no-settling
-#   --settling N:K         N spheres in a K x K bin (default 3500:20, about 10^4 contacts at rest)
+#   --settling N:K         N spheres in a K x K bin (default 3500:20, about 10^4 contacts at rest;
+#                          35000:63 gives about 1.07 x 10^5)
 #   --settling-steps S     steps (default 200)
-#   --settling-methods L   fc3d methods of the sequence (default AUTO,TFP)
+#   --settling-methods L   fc3d methods of the sequence, local or global (default AUTO,TFP)
 #   --settling-tol T       tolerance of every step (default 1e-4)
 #   --settling-budget S    wall-clock budget of each step (default 5)
 #   --settling-every K     write every K-th step for the cold comparison (default 40; 0: none)

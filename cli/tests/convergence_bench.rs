@@ -145,6 +145,103 @@ fn settling_solves_every_step_warm_and_writes_them() {
     assert!(out.contains(",fc3d,TFP,1e-4,converged,"), "{out}");
 }
 
+/// A global method runs the sequence in the global form (M and H given), warm-started by
+/// contact id: every step converges, later steps start warm, and a short run's steps match the
+/// library's own global solves of the same sequence (same iterations and error).
+#[test]
+fn settling_in_the_global_form_runs_the_h_form_warm() {
+    use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
+    use fc3d_core::scenes::sequences::pile_settling_in_bin_global;
+    let dir = out_dir("settling-global");
+    let steps_csv = dir.join("steps.csv");
+    let summary = bench(&[
+        "settling",
+        "--spheres",
+        "40",
+        "--per-side",
+        "4",
+        "--steps",
+        "12",
+        "--method",
+        "NSGS_HFORM",
+        "--tol",
+        "1e-6",
+        "--budget",
+        "20",
+        "--steps-csv",
+        steps_csv.to_str().unwrap(),
+    ]);
+    let header = bench(&["settling-header"]);
+    let row = summary.trim();
+    assert_eq!(cell(header.trim(), row, "method"), "NSGS_HFORM");
+    assert_eq!(cell(header.trim(), row, "not_converged"), "0", "{row}");
+    let steps = std::fs::read_to_string(&steps_csv).unwrap();
+    let rows: Vec<Vec<&str>> = steps
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert!(!rows.is_empty(), "{steps}");
+    assert_eq!(
+        cell(header.trim(), row, "solved_steps"),
+        rows.len().to_string()
+    );
+    let warm: usize = rows.iter().map(|r| r[2].parse::<usize>().unwrap()).sum();
+    assert!(warm > 0, "{steps}");
+    // The same sequence stepped by the library with the same warm start.
+    let mut config = GlobalConfig::new(GlobalMethod::preset("NSGS_HFORM").unwrap());
+    config.tolerance = 1e-6;
+    config.max_iter = 1_000_000;
+    config.time_budget = Some(std::time::Duration::from_secs(20));
+    let mut memory = std::collections::HashMap::<i64, [f64; 3]>::new();
+    let mut k = 0;
+    pile_settling_in_bin_global(40, 4, 12, &mut |step| {
+        let p = &step.problem;
+        let mut r = vec![0.0; p.size()];
+        for (rc, id) in r.chunks_exact_mut(3).zip(&step.ids) {
+            if let Some(m) = memory.get(id) {
+                rc.copy_from_slice(m);
+            }
+        }
+        let (mut u, mut v) = (vec![0.0; p.size()], vec![0.0; p.ndof()]);
+        let report = solve_global(p, &config, &mut r, &mut u, &mut v).unwrap();
+        assert!(report.converged() && report.error <= 1e-6);
+        assert_eq!(rows[k][1], p.n_contacts().to_string());
+        assert_eq!(rows[k][6], report.iterations.to_string());
+        assert_eq!(rows[k][7], format!("{:.3e}", report.error));
+        memory = step
+            .ids
+            .iter()
+            .zip(r.chunks_exact(3))
+            .map(|(&id, rc)| (id, [rc[0], rc[1], rc[2]]))
+            .collect();
+        k += 1;
+        r
+    });
+    assert_eq!(k, rows.len());
+    // The global form writes no .dat files.
+    let o = Command::new(env!("CARGO_BIN_EXE_convergence_bench"))
+        .args([
+            "settling",
+            "--spheres",
+            "40",
+            "--per-side",
+            "4",
+            "--steps",
+            "2",
+        ])
+        .args([
+            "--method",
+            "691",
+            "--dat-dir",
+            dir.join("d").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("takes a local method"));
+}
+
 #[test]
 fn the_script_runs_quick_and_reports() {
     let dir = out_dir("script");

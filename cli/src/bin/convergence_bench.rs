@@ -22,7 +22,11 @@
 //! `settling`: `pile_settling_in_bin`, every step solved to the tolerance through one
 //! [`Workspace`] (warm start by contact id); per-step rows to `--steps-csv`, one summary row
 //! ([`SETTLING_HEADER`]) on stdout. `--dat-dir` writes every K-th step's problem as a .dat file
-//! (for Siconos' cold solves of the same problems).
+//! (for Siconos' cold solves of the same problems). A global method (name or id, e.g.
+//! `NSGS_HFORM` or 691) runs `pile_settling_in_bin_global`: each step's M, H, q, b solved by
+//! `solve_global` from the reactions the same contact ids had at the end of the previous step
+//! (zero for a new id), as the workspace warm-starts the local form; its error is the global
+//! one (`global_error`). `--dat-dir` takes a local method.
 //!
 //! `report`: the markdown tables of a results CSV (fc3d's rows and Siconos'), with Siconos' best
 //! id per scene and tolerance and the ratio of fc3d's best to it.
@@ -34,7 +38,9 @@ use std::time::{Duration, Instant};
 use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
 use fc3d_core::io::dat::write_dat_file;
 use fc3d_core::measure::{global_error, ContactLaw};
-use fc3d_core::scenes::sequences::{pile_settling_in_bin, Step};
+use fc3d_core::scenes::sequences::{
+    pile_settling_in_bin, pile_settling_in_bin_global, GlobalStep, Step,
+};
 use fc3d_core::scenes::GeneratedScene;
 use fc3d_core::{natural_map_error, solve, Method, SolveReport, SolverConfig, Workspace};
 
@@ -304,40 +310,28 @@ fn median(v: &[f64]) -> f64 {
     }
 }
 
-fn run_settling(args: &[String]) -> Result<(), String> {
-    let opts = options(args)?;
-    let spheres: usize = parsed(&opts, "spheres", None)?;
-    let per_side: usize = parsed(&opts, "per-side", None)?;
-    let steps: usize = parsed(&opts, "steps", Some(200))?;
-    let name: String = parsed(&opts, "method", Some("AUTO".into()))?;
-    let method = match method_named(&name)? {
-        AnyMethod::Local(m) => m,
-        AnyMethod::Global(_) => return Err("the settling sequence runs local methods".into()),
-    };
-    let tol: f64 = parsed(&opts, "tol", Some(1e-4))?;
-    let budget = Duration::from_secs_f64(parsed(&opts, "budget", Some(30.0))?);
-    let dat_dir = opts.get("dat-dir").map(PathBuf::from);
-    let dat_every: usize = parsed(&opts, "dat-every", Some(20))?;
-    let mut steps_csv = match opts.get("steps-csv") {
-        Some(path) => {
-            let mut f = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
-            use std::io::Write;
-            writeln!(f, "{STEP_HEADER}").map_err(|e| e.to_string())?;
-            Some(f)
-        }
-        None => None,
-    };
-    if let Some(dir) = &dat_dir {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
-    let config = SolverConfig::new(method)
-        .with_tolerance(tol)
-        .with_max_iter(1_000_000)
-        .with_time_budget(Some(budget));
+/// What the settling run records of one step.
+struct StepRow {
+    index: usize,
+    contacts: usize,
+    warm: usize,
+    status: &'static str,
+    cpu: f64,
+    wall: f64,
+    iterations: usize,
+    converged: bool,
+    error: f64,
+}
+
+/// The local form: every step through one [`Workspace`] (warm start by contact id).
+fn settle_local(
+    (spheres, per_side, steps): (usize, usize, usize),
+    config: &SolverConfig,
+    dat: Option<(&std::path::Path, usize)>,
+    record: &mut dyn FnMut(StepRow),
+) -> Result<(), String> {
     let mut workspace = Workspace::new();
-    let mut rows: Vec<(usize, f64, usize, bool, f64)> = Vec::new();
     let mut failure: Option<String> = None;
-    let total = Instant::now();
     let mut step_index = 0usize;
     let mut solver = |step: &Step| -> Vec<f64> {
         let p = &step.problem;
@@ -352,29 +346,22 @@ fn run_settling(args: &[String]) -> Result<(), String> {
             .filter(|id| workspace.last_reaction(**id).is_some())
             .count();
         let (cpu0, wall0) = (cpu_seconds(), Instant::now());
-        match workspace.solve(p, &config, &step.ids, &mut r, &mut u) {
+        match workspace.solve(p, config, &step.ids, &mut r, &mut u) {
             Ok(report) => {
                 let (cpu, wall) = (cpu_seconds() - cpu0, wall0.elapsed().as_secs_f64());
-                rows.push((
-                    p.n_contacts(),
+                record(StepRow {
+                    index: step_index,
+                    contacts: p.n_contacts(),
+                    warm,
+                    status: report.status.name(),
                     cpu,
-                    report.iterations,
-                    report.converged(),
-                    report.error,
-                ));
-                if let Some(f) = steps_csv.as_mut() {
-                    use std::io::Write;
-                    let _ = writeln!(
-                        f,
-                        "{step_index},{},{warm},{},{cpu:.5},{wall:.5},{},{:.3e}",
-                        p.n_contacts(),
-                        report.status.name(),
-                        report.iterations,
-                        report.error
-                    );
-                }
-                if let Some(dir) = &dat_dir {
-                    if dat_every > 0 && step_index % dat_every == dat_every - 1 {
+                    wall,
+                    iterations: report.iterations,
+                    converged: report.converged(),
+                    error: report.error,
+                });
+                if let Some((dir, every)) = dat {
+                    if every > 0 && step_index % every == every - 1 {
                         let path = dir.join(format!("settling-step{step_index:04}.dat"));
                         if let Err(e) = write_dat_file(p, &path) {
                             failure = Some(format!("{}: {e}", path.display()));
@@ -388,8 +375,140 @@ fn run_settling(args: &[String]) -> Result<(), String> {
         r
     };
     let _ = pile_settling_in_bin(spheres, per_side, steps, &mut solver);
-    if let Some(e) = failure {
-        return Err(e);
+    failure.map_or(Ok(()), Err)
+}
+
+/// The global form: every step's M, H, q, b solved from the reactions its contact ids had at
+/// the end of the previous step (zero for a new id); the time includes the solve's set-up
+/// (M factored, the method's data), as a host calling it every step would pay it.
+fn settle_global(
+    (spheres, per_side, steps): (usize, usize, usize),
+    config: &GlobalConfig,
+    record: &mut dyn FnMut(StepRow),
+) -> Result<(), String> {
+    let mut memory: std::collections::HashMap<i64, [f64; 3]> = std::collections::HashMap::new();
+    let mut failure: Option<String> = None;
+    let mut step_index = 0usize;
+    let mut solver = |step: &GlobalStep| -> Vec<f64> {
+        let p = &step.problem;
+        let mut r = vec![0.0; p.size()];
+        if failure.is_some() {
+            return r;
+        }
+        let mut warm = 0;
+        for (rc, id) in r.chunks_exact_mut(3).zip(&step.ids) {
+            if let Some(m) = memory.get(id) {
+                rc.copy_from_slice(m);
+                warm += 1;
+            }
+        }
+        let (mut u, mut v) = (vec![0.0; p.size()], vec![0.0; p.ndof()]);
+        let (cpu0, wall0) = (cpu_seconds(), Instant::now());
+        match solve_global(p, config, &mut r, &mut u, &mut v) {
+            Ok(report) => {
+                let (cpu, wall) = (cpu_seconds() - cpu0, wall0.elapsed().as_secs_f64());
+                record(StepRow {
+                    index: step_index,
+                    contacts: p.n_contacts(),
+                    warm,
+                    status: report.status.name(),
+                    cpu,
+                    wall,
+                    iterations: report.iterations,
+                    converged: report.converged(),
+                    error: report.error,
+                });
+                memory = step
+                    .ids
+                    .iter()
+                    .zip(r.chunks_exact(3))
+                    .map(|(&id, rc)| (id, [rc[0], rc[1], rc[2]]))
+                    .collect();
+            }
+            Err(e) => {
+                failure = Some(e.to_string());
+                r.iter_mut().for_each(|x| *x = 0.0);
+            }
+        }
+        step_index += 1;
+        r
+    };
+    let _ = pile_settling_in_bin_global(spheres, per_side, steps, &mut solver);
+    failure.map_or(Ok(()), Err)
+}
+
+fn run_settling(args: &[String]) -> Result<(), String> {
+    let opts = options(args)?;
+    let spheres: usize = parsed(&opts, "spheres", None)?;
+    let per_side: usize = parsed(&opts, "per-side", None)?;
+    let steps: usize = parsed(&opts, "steps", Some(200))?;
+    let name: String = parsed(&opts, "method", Some("AUTO".into()))?;
+    let method = method_named(&name)?;
+    let tol: f64 = parsed(&opts, "tol", Some(1e-4))?;
+    let budget = Duration::from_secs_f64(parsed(&opts, "budget", Some(30.0))?);
+    let dat_dir = opts.get("dat-dir").map(PathBuf::from);
+    if dat_dir.is_some() && matches!(method, AnyMethod::Global(_)) {
+        return Err("--dat-dir writes local problems: it takes a local method".into());
+    }
+    let dat_every: usize = parsed(&opts, "dat-every", Some(20))?;
+    let mut steps_csv = match opts.get("steps-csv") {
+        Some(path) => {
+            let mut f = std::fs::File::create(path).map_err(|e| format!("{path}: {e}"))?;
+            use std::io::Write;
+            writeln!(f, "{STEP_HEADER}").map_err(|e| e.to_string())?;
+            Some(f)
+        }
+        None => None,
+    };
+    if let Some(dir) = &dat_dir {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let mut rows: Vec<(usize, f64, usize, bool, f64)> = Vec::new();
+    let total = Instant::now();
+    let mut record = |row: StepRow| {
+        if let Some(f) = steps_csv.as_mut() {
+            use std::io::Write;
+            let _ = writeln!(
+                f,
+                "{},{},{},{},{:.5},{:.5},{},{:.3e}",
+                row.index,
+                row.contacts,
+                row.warm,
+                row.status,
+                row.cpu,
+                row.wall,
+                row.iterations,
+                row.error
+            );
+        }
+        rows.push((
+            row.contacts,
+            row.cpu,
+            row.iterations,
+            row.converged,
+            row.error,
+        ));
+    };
+    match method {
+        AnyMethod::Local(m) => {
+            let config = SolverConfig::new(m)
+                .with_tolerance(tol)
+                .with_max_iter(1_000_000)
+                .with_time_budget(Some(budget));
+            settle_local(
+                (spheres, per_side, steps),
+                &config,
+                dat_dir.as_deref().map(|d| (d, dat_every)),
+                &mut record,
+            )?;
+        }
+        AnyMethod::Global(m) => {
+            let mut config = GlobalConfig::new(m);
+            config.tolerance = tol;
+            config.max_iter = 1_000_000;
+            config.time_budget = Some(budget);
+            settle_global((spheres, per_side, steps), &config, &mut record)?;
+        }
     }
     let times: Vec<f64> = rows.iter().map(|r| r.1).collect();
     let its: Vec<f64> = rows.iter().map(|r| r.2 as f64).collect();

@@ -14,6 +14,15 @@ use crate::problem::GlobalProblem;
 
 impl World {
     fn global_problem(&self) -> Result<GlobalProblem<'static>, Fc3dError> {
+        self.global_problem_with_b(vec![0.0; 3 * self.contacts.len()])
+    }
+
+    /// The global problem with the given `b` (3 entries per contact: `u = H^T v + b`), as a
+    /// stepper shifts the normal rows of open contacts by `gap / dt`.
+    pub(super) fn global_problem_with_b(
+        &self,
+        b: Vec<f64>,
+    ) -> Result<GlobalProblem<'static>, Fc3dError> {
         let n = 6 * self.bodies.len();
         let mut m = Vec::with_capacity(12 * self.bodies.len());
         let mut q = vec![0.0; n];
@@ -49,7 +58,7 @@ impl World {
             CsrMatrix::from_triplets(n, n, &m)?,
             CsrMatrix::from_triplets(n, 3 * nc, &h)?,
             q,
-            vec![0.0; 3 * nc],
+            b,
             mu,
         )
     }
