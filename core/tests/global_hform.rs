@@ -253,10 +253,23 @@ fn iteration_limit_and_time_budget_hold() {
         assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
         assert!(report.iterations < 1_000_000);
         assert_eq!(report.error, independent_error(&g, &r).0);
-        // The budget counts from the first sweep: the set-up (M factored, the contacts'
-        // data) comes on top; a sweep of 10^4 contacts takes milliseconds.
+        // The budget counts from the call; M's preparation (before the clock can stop
+        // anything) and the final error (a product) come on top.
         assert!(elapsed < Duration::from_secs(5), "{elapsed:?}");
     }
+    // A budget spent before the sweep's set-up ends stops it: no sweep, r untouched.
+    let config = GlobalConfig {
+        tolerance: 1e-12,
+        max_iter: 1_000_000,
+        time_budget: Some(Duration::from_nanos(1)),
+        ..GlobalConfig::new(hform(Decomposition::Sequential, 1))
+    };
+    let (mut r, mut u, mut v) = zeros(&g);
+    let report = solve_global(&g, &config, &mut r, &mut u, &mut v).unwrap();
+    assert_eq!(report.status, SolveStatus::TimeBudgetExhausted);
+    assert_eq!(report.iterations, 0);
+    assert!(r.iter().all(|&x| x == 0.0));
+    assert_eq!(report.error, independent_error(&g, &r).0);
 }
 
 #[test]

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use super::config::{GlobalConfig, GlobalMethod, GlobalRollingConfig};
 use super::rescaling::{GlobalRescaling, Scaling};
 use super::{aclm, admm, alm, hform, ipm, jacobi, newton, vi};
-use crate::config::SolverConfig;
+use crate::config::{MethodConfig, SolverConfig};
 use crate::contract::{Limits, Observer, SolveReport, SolveStatus, SolverOutcome};
 use crate::error::{check_finite, try_vec, Fc3dError};
 use crate::matrix::HForm;
@@ -82,9 +82,18 @@ pub fn solve_global_with_observer(
     v: &mut [f64],
     observer: &mut Observer<'_>,
 ) -> Result<GlobalReport, Fc3dError> {
+    let entry = Instant::now();
     check_arrays(problem.size(), problem.ndof(), r, u, v)?;
     config.validate()?;
     let mut operator = problem.operator()?;
+    // The budget counts from the call: what preparing M took is spent.
+    let config = &MethodConfig {
+        time_budget: config.time_budget.map(|b| {
+            b.saturating_sub(entry.elapsed())
+                .max(Duration::from_nanos(1))
+        }),
+        ..*config
+    };
     if problem.n_contacts() == 0 {
         return Ok(without_contacts(
             &mut operator,

@@ -15,6 +15,7 @@ use super::coloured::ColouredPlan;
 use super::parallel::{Coupling, SharedSlice};
 use super::step::{solve_contact, LocalStep};
 use super::{Decomposition, NsgsOptions};
+use crate::contract::deadline_passed;
 use crate::error::{try_vec, Fc3dError};
 use crate::local::AnyLocalSolver;
 use crate::math::linalg::{distance_sq_d, Block};
@@ -40,9 +41,17 @@ pub(crate) struct HFormContacts {
     block_contacts: Vec<usize>,
 }
 
+/// Contacts between two clock reads of the H-form set-up (a contact's data costs about a
+/// microsecond: the budget holds to about a millisecond).
+const SET_UP_CLOCK_PERIOD: usize = 1024;
+
 impl HFormContacts {
-    /// The contacts of `operator` (3 columns of H each). Needs a block-diagonal M.
-    pub(crate) fn new(operator: &HForm) -> Result<Self, Fc3dError> {
+    /// The contacts of `operator` (3 columns of H each). Needs a block-diagonal M. `None` when
+    /// `deadline` passes first (the clock is read every [`SET_UP_CLOCK_PERIOD`] contacts).
+    pub(crate) fn new(
+        operator: &HForm,
+        deadline: Option<std::time::Instant>,
+    ) -> Result<Option<Self>, Fc3dError> {
         let Some((block_dofs, offsets)) = operator.mass().blocks() else {
             return Err(Fc3dError::Unsupported(
                 "the H-form sweep needs a block-diagonal M (connected blocks of at most 96 \
@@ -81,6 +90,9 @@ impl HFormContacts {
         let mut diagonal = try_vec(nc, [[0.0; 3]; 3], "the H-form sweep")?;
         let mut column = Vec::new();
         for c in 0..nc {
+            if c % SET_UP_CLOCK_PERIOD == 0 && deadline_passed(deadline) {
+                return Ok(None);
+            }
             let first_block = contact_blocks.len();
             for row in 3 * c..3 * c + 3 {
                 for &i in &ht_cols[ht_ptr[row]..ht_ptr[row + 1]] {
@@ -140,7 +152,7 @@ impl HFormContacts {
                 fill[k] += 1;
             }
         }
-        Ok(HFormContacts {
+        Ok(Some(HFormContacts {
             ptr,
             dofs,
             h,
@@ -150,7 +162,7 @@ impl HFormContacts {
             contact_blocks,
             block_contact_ptr,
             block_contacts,
-        })
+        }))
     }
 
     pub(crate) fn n_contacts(&self) -> usize {
@@ -273,9 +285,16 @@ pub(crate) struct HFormSweeper {
 
 impl HFormSweeper {
     /// The sweeper of `options` (validated by the caller: natural order, no freezing, the
-    /// sequential or coloured decomposition).
-    pub(crate) fn new(operator: &HForm, options: &NsgsOptions) -> Result<Self, Fc3dError> {
-        let contacts = HFormContacts::new(operator)?;
+    /// sequential or coloured decomposition); `None` when `deadline` passes during the set-up
+    /// (a pass over H: seconds at 10^5 contacts on a loaded machine).
+    pub(crate) fn new(
+        operator: &HForm,
+        options: &NsgsOptions,
+        deadline: Option<std::time::Instant>,
+    ) -> Result<Option<Self>, Fc3dError> {
+        let Some(contacts) = HFormContacts::new(operator, deadline)? else {
+            return Ok(None);
+        };
         let nc = contacts.n_contacts();
         let step = LocalStep::for_contacts(nc, &options.local)?;
         let coloured = match options.decomposition {
@@ -286,14 +305,14 @@ impl HFormSweeper {
             )?),
             _ => None,
         };
-        Ok(HFormSweeper {
+        Ok(Some(HFormSweeper {
             worker: super::ContactStep::worker(&step),
             memory: try_vec(nc, 1.0, "local solver states")?,
             contacts,
             step,
             relaxation: options.relaxation,
             coloured,
-        })
+        }))
     }
 
     pub(crate) fn contacts(&self) -> &HFormContacts {
