@@ -300,3 +300,52 @@ fn a_set_up_predicted_to_end_past_the_deadline_is_not_started() {
         assert!(elapsed < budget, "{name}: {elapsed:?}");
     }
 }
+
+#[test]
+fn a_global_set_up_predicted_to_end_past_the_deadline_is_not_started() {
+    // Four piles of 4·10^4 contacts in the global form: the assembly before the first
+    // factorization is predicted (math::lu_cost::assembly_seconds, 1e-7 s a position on a
+    // whole core) at 0.3 s (SSN-ALM's M + rho H D H^T) to 1.7 s (ADMM's M + rho H H^T), and
+    // measured at 0.4-2.1 s of CPU time; the factorizations after it at 0.7-22 s. With a
+    // budget of 200 ms every factorizing global method stops before its set-up: 0 iterations,
+    // r as it came, the time spent the solve's own, which the budget does not gate (M's blocks,
+    // v = M^-1 (q + H r), the error): 144-166 ms measured alone at load 4.5, 334 ms beside
+    // this file's other tests; the margin is one more budget (unguarded, the set-up and the
+    // first factorization took 1.9 s (690) to 30 s (607) at load 4).
+    use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
+    use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
+    let p = GeneratedScene {
+        pile: PileSpec {
+            contacts: 40_000,
+            piles: 4,
+            seed: 1,
+        },
+        shape: PileShape::Spheres,
+    }
+    .generate_global()
+    .unwrap();
+    let budget = Duration::from_millis(200);
+    // ADMM, ACLMFP (ADMM inside), IPM, the global Newton (NSN_AC), SSN-ALM.
+    for id in ["613", "612", "615", "607", "690"] {
+        let method = GlobalMethod::preset(id).unwrap();
+        let config = GlobalConfig {
+            tolerance: 1e-8,
+            time_budget: Some(budget),
+            ..GlobalConfig::new(method)
+        };
+        let (mut r, mut u, mut v) = (
+            vec![0.0; p.size()],
+            vec![0.0; p.size()],
+            vec![0.0; p.ndof()],
+        );
+        let start = Instant::now();
+        let report = solve_global(&p, &config, &mut r, &mut u, &mut v).unwrap();
+        let elapsed = start.elapsed();
+        assert_eq!(report.status, SolveStatus::TimeBudgetExhausted, "{id}");
+        assert_eq!(report.iterations, 0, "{id}");
+        assert!(r.iter().all(|&x| x == 0.0), "{id}: r was changed");
+        assert!(report.error.is_finite(), "{id}");
+        assert!(v.iter().chain(&u).all(|x| x.is_finite()), "{id}");
+        assert!(elapsed < 2 * budget, "{id}: {elapsed:?}");
+    }
+}

@@ -79,7 +79,10 @@ pub(super) fn run(
         error_frequency: 1,
         rescaling: GlobalRescaling::None,
     };
-    let mut admm = GlobalAdmm::new(problem, operator, &options.inner)?;
+    let Some(mut admm) = GlobalAdmm::new(problem, operator, &options.inner, run.deadline())? else {
+        // Out of time before the set-up or the first factorization: r as it came.
+        return Ok(SolverOutcome::stopped(0, true));
+    };
     let mut work = ErrorWork::new(problem.ndof());
     let mut shift = vec![0.0; problem.size()];
     let mut outer = OuterLoop::new(run, r)?;

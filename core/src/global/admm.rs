@@ -200,10 +200,12 @@ impl Splitting for GlobalSplitting<'_, '_, '_> {
     fn split_size(&self) -> usize {
         self.problem.size()
     }
-    fn factor_ends_by(&self, _deadline: Option<Instant>) -> bool {
-        // M + rho H H^T has the fill of M and of the bodies' couplings through contacts: no
-        // prediction is made (a refactorization costs what the first one did).
-        true
+    fn factor_ends_by(&self, deadline: Option<Instant>) -> bool {
+        // Predicted before the first factorization when there is a deadline (the pattern is
+        // fixed: every refactorization costs what the first one did).
+        self.system.lu.predicted_cost().is_none_or(|cost| {
+            cost.ends_by_at(crate::math::lu_cost::GLOBAL_LU_FLOPS_PER_SECOND, deadline)
+        })
     }
     fn factor(&mut self, rho: f64) -> bool {
         self.system.factor(rho)
@@ -347,20 +349,36 @@ pub(super) struct GlobalAdmm {
 }
 
 impl GlobalAdmm {
-    /// Builds `M + rho H H^T` (pattern, symbolic analysis) and factors it for the first rho.
+    /// Builds `M + rho H H^T` (pattern, symbolic analysis) and factors it for the first rho;
+    /// `None` (nothing done that cannot be interrupted past `deadline`) when the set-up
+    /// ([`crate::math::lu_cost::assembly_ends_by`]) or the factorization
+    /// ([`SparseLu::factor_ends_by`]) is predicted to end past `deadline`.
     pub fn new(
         problem: &GlobalProblem<'_>,
         operator: &mut HForm,
         options: &AdmmOptions,
-    ) -> Result<Self, Fc3dError> {
+        deadline: Option<Instant>,
+    ) -> Result<Option<Self>, Fc3dError> {
+        // The positions of M, of each column of H's outer product (k touched unknowns a row of
+        // H^T, 3 rows a contact) and of the diagonal.
+        let entries = super::set_up_entries(problem, |k| 3.0 * k * k, problem.ndof());
+        if !crate::math::lu_cost::assembly_ends_by(entries, deadline) {
+            return Ok(None);
+        }
         let rho = initial_rho(problem, operator, options);
         let mut system = ShiftedMass::new(problem)?;
+        if !system
+            .lu
+            .factor_ends_by(deadline, "global ADMM: M + rho H H^T")?
+        {
+            return Ok(None);
+        }
         if !system.factor(rho) {
             return Err(Fc3dError::Unsupported(format!(
                 "global ADMM: M + rho H H^T is singular for rho = {rho}"
             )));
         }
-        Ok(GlobalAdmm { system })
+        Ok(Some(GlobalAdmm { system }))
     }
 
     /// Runs ADMM from the reaction in `r` with the current rho; `fixed_s`: a De Saxcé term
@@ -431,7 +449,10 @@ pub(super) fn run(
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     let run = limits.start();
-    let mut admm = GlobalAdmm::new(problem, operator, &options.admm)?;
+    let Some(mut admm) = GlobalAdmm::new(problem, operator, &options.admm, run.deadline())? else {
+        // Out of time before the set-up or the first factorization: r as it came.
+        return Ok(SolverOutcome::stopped(0, true));
+    };
     let (outcome, last_error) =
         admm.run(problem, operator, options, &run, None, r, u, v, observer)?;
     let relaxation_converged = !options.update_s && last_error <= run.tolerance;

@@ -455,6 +455,13 @@ pub(super) fn run(
     let run = limits.start();
     let (n, m, nc) = (problem.ndof(), problem.size(), problem.n_contacts());
     let (q, b, mu, h) = (problem.q(), problem.b(), problem.mu(), problem.h());
+    // The set-up (H^T, then the lower triangle of M and of each contact's square of the k
+    // unknowns its rows touch, and the diagonal) and the first factorization are not started
+    // when predicted to end past the deadline: r as it came, 0 iterations.
+    let entries = super::set_up_entries(problem, |k| k * (k + 1.0) / 2.0, n);
+    if !crate::math::lu_cost::assembly_ends_by(entries, run.deadline()) {
+        return Ok(SolverOutcome::stopped(0, true));
+    }
     let ht = transpose(h)?;
     let mut system = BodySystem::new(problem, &ht)?;
     let mut w = Work {
@@ -507,6 +514,8 @@ pub(super) fn run(
     let mut last_error = f64::INFINITY;
     let mut last_law = f64::INFINITY;
     let mut outer = 0;
+    // A factorization was refused for time: the outer iteration ends the run.
+    let mut refused = false;
     loop {
         // Newton on F(v) = M v - q - H p(v) = 0 with (r, rho) fixed.
         // Inexact inner solves, tightened at least by half every outer iteration so that a
@@ -540,6 +549,18 @@ pub(super) fn run(
                 || iterations >= run.max_iter
                 || run.out_of_time()
             {
+                break;
+            }
+            // A factorization predicted to end past the deadline is not started.
+            if !system
+                .cholesky
+                .factor_ends_by(run.deadline(), "the SSN-ALM matrix M + rho H D H^T")?
+            {
+                if iterations == 0 {
+                    // r as it came (projected on the cones), 0 iterations.
+                    return Ok(SolverOutcome::stopped(0, true));
+                }
+                refused = true;
                 break;
             }
             // The Newton step: (M + rho H D' H^T) dv = -F.
@@ -665,7 +686,7 @@ pub(super) fn run(
         });
         let outcome = if error <= run.tolerance {
             Some(SolverOutcome::stopped(iterations, false))
-        } else if run.out_of_time() {
+        } else if refused || run.out_of_time() {
             Some(SolverOutcome::stopped(iterations, true))
         } else if iterations >= run.max_iter {
             Some(run.exhausted())

@@ -695,7 +695,18 @@ pub(super) fn run(
     observer: &mut Observer<'_>,
 ) -> Result<SolverOutcome, Fc3dError> {
     let run = limits.start();
+    // The set-up (the Newton matrix: M's entries and each contact's square of the k unknowns
+    // its rows touch) and the first factorization are not started when predicted to end past
+    // the deadline: r as it came, 0 iterations.
+    let entries = super::set_up_entries(problem, |k| k * k, 0);
+    if !crate::math::lu_cost::assembly_ends_by(entries, run.deadline()) {
+        return Ok(SolverOutcome::stopped(0, true));
+    }
     let mut ipm = Ipm::new(problem, *options)?;
+    let what = "the IPM Newton matrix";
+    if !ipm.system.lu.factor_ends_by(run.deadline(), what)? {
+        return Ok(SolverOutcome::stopped(0, true));
+    }
     let mut work = ErrorWork::new(problem.ndof());
     let law = options.law();
     let m = problem.size() as f64;
@@ -717,7 +728,10 @@ pub(super) fn run(
     for iteration in 1..=run.max_iter {
         // The set-up (M's and the Newton matrix's analyses) may have spent the budget; a
         // factorization is not started when the last iteration says it would overrun.
-        if run.out_of_time() || (iteration > 1 && run.cannot_afford(last_iteration)) {
+        if run.out_of_time()
+            || (iteration > 1 && run.cannot_afford(last_iteration))
+            || !ipm.system.lu.factor_ends_by(run.deadline(), what)?
+        {
             return Ok(SolverOutcome::stopped(iteration - 1, true));
         }
         let started = Instant::now();

@@ -39,3 +39,26 @@ pub use jacobi::JacobiOptions;
 pub use newton::GlobalNewtonOptions;
 pub use rescaling::GlobalRescaling;
 pub use solve::{solve_global, solve_global_rolling, solve_global_with_observer, GlobalReport};
+
+/// The entries a factorizing global solver's set-up handles before its first factorization
+/// (M's, then per contact the square of the unknowns its rows of `H^T` touch, `couplings`
+/// entries for `k` touched unknowns, and `extra`), the count
+/// [`crate::math::lu_cost::assembly_ends_by`] predicts the set-up's duration from. The rows of
+/// `H^T` are not counted one by one (that would be a pass of the set-up itself): with `nnz(H)`
+/// spread evenly, a contact touches `nnz(H) / (3 n_c)` unknowns, the fewest its rows can touch
+/// when each touches the same ones; `couplings` is convex, so the count is at most the set-up's
+/// (a set-up is refused only when even the fewest entries cannot be handled in time).
+fn set_up_entries(
+    problem: &GlobalProblem<'_>,
+    couplings: impl Fn(f64) -> f64,
+    extra: usize,
+) -> usize {
+    let nc = problem.n_contacts().max(1) as f64;
+    let touched = problem.h().nnz() as f64 / (3.0 * nc);
+    let entries = problem.m().nnz() as f64 + nc * couplings(touched) + extra as f64;
+    if entries < usize::MAX as f64 {
+        entries as usize
+    } else {
+        usize::MAX
+    }
+}

@@ -248,6 +248,13 @@ pub(super) fn run(
             rho_t: options.rho,
         })
         .collect();
+    // The set-up (the Newton matrix: M, H twice, the diagonal of u and two 3x3 blocks a
+    // contact) and the first factorization are not started when predicted to end past the
+    // deadline: r as it came, 0 iterations.
+    let entries = problem.m().nnz() + 2 * problem.h().nnz() + m + 18 * nc;
+    if !crate::math::lu_cost::assembly_ends_by(entries, run.deadline()) {
+        return Ok(SolverOutcome::stopped(0, true));
+    }
     let mut system = NewtonSystem::new(problem)?;
     let mut z = try_vec(size, 0.0, "the global Newton iterate")?;
     let mut psi = try_vec(size, 0.0, "the global Newton residual")?;
@@ -277,6 +284,13 @@ pub(super) fn run(
         );
         for (d, p) in dz.iter_mut().zip(&psi) {
             *d = -p;
+        }
+        if !system
+            .lu
+            .factor_ends_by(run.deadline(), "the global Newton matrix")?
+        {
+            // r is the last iterate (as it came before the first).
+            return Ok(SolverOutcome::stopped(iteration - 1, true));
         }
         if !system.solve(&a, &b, &mut dz, &mut trial) {
             // Siconos stops on a failed linear solve: so does fc3d after its shifts.

@@ -61,6 +61,40 @@ pub const ANALYSIS_SECONDS_PER_ENTRY: f64 = 1e-7;
 /// constant rate.
 pub const ANALYSIS_GROWTH_ENTRIES: f64 = 5e6;
 
+/// Predicted flops per second of faer's sparse LU on the global formulation's matrices
+/// ([`crate::math::sparse_lu::SparseLu`]: `M + rho H H^T`, the IPM's `M + P̃^T S P̃`, the global
+/// Newton matrix), whose fronts are denser than W's. Measured in CPU time of the first
+/// factorization on generated sphere piles in the global form (4 piles, 10^4 and 4·10^4
+/// contacts, load about 4 on 2 cores): the IPM's matrix 5.0e9 and 8.3e9 flops/s, the Newton
+/// matrix (its prediction from `A + A^T` is above its fill) 1.35e10 and 1.73e10. 2e10 is above
+/// every rate measured (1.16x the fastest).
+pub const GLOBAL_LU_FLOPS_PER_SECOND: f64 = 2e10;
+
+/// Predicted flops per second of faer's sparse Cholesky
+/// ([`crate::math::sparse_cholesky::SparseCholesky`], supernodal: dense blocks), for the flops
+/// of [`checked_cholesky_cost`]. Measured in CPU time of SSN-ALM's first factorization on the
+/// same piles: 1.7e10 flops/s at 10^4 contacts, 2.35e10 at 4·10^4; 3e10 is above both.
+pub const CHOLESKY_FLOPS_PER_SECOND: f64 = 3e10;
+
+/// CPU seconds per position (a `(row, column)` pair, repeats counted) of the assembly of a
+/// global-form matrix before its first factorization (gathering and sorting the positions, the
+/// fill-reducing order and symbolic analysis of the merged pattern, which is far smaller, and
+/// the cost prediction): linear, measured 1.0e-7-1.7e-7 s per position in CPU time on
+/// generated global sphere piles of 10^4 and 4·10^4 contacts (4 piles; ADMM 1.1e-7 and
+/// 1.3e-7, the IPM 1.0e-7 and 1.2e-7, SSN-ALM 1.0e-7 and 1.2e-7, the global Newton 1.5e-7 and
+/// 1.7e-7; load about 4). The per-position rate is [`ANALYSIS_SECONDS_PER_ENTRY`], below
+/// every one measured.
+pub fn assembly_seconds(positions: usize, share: f64) -> f64 {
+    positions as f64 * ANALYSIS_SECONDS_PER_ENTRY / share.clamp(MIN_CPU_SHARE, 1.0)
+}
+
+/// Whether the assembly of a global-form matrix of `positions` positions
+/// ([`assembly_seconds`]), started now, is predicted to end by `deadline` (always without one)
+/// at the share of a core the load leaves.
+pub fn assembly_ends_by(positions: usize, deadline: Option<std::time::Instant>) -> bool {
+    ends_by_under_load(assembly_seconds(positions, 1.0), deadline)
+}
+
 /// The least share of a core [`cpu_share`] assumes.
 pub const MIN_CPU_SHARE: f64 = 1.0 / 32.0;
 
@@ -154,7 +188,13 @@ impl LuCost {
     /// Whether a factorization started now is predicted to end by `deadline` (always without
     /// one), at the share of a core the machine's load leaves ([`cpu_share`]).
     pub fn ends_by(&self, deadline: Option<std::time::Instant>) -> bool {
-        ends_by_under_load(self.flops / FLOPS_PER_SECOND, deadline)
+        self.ends_by_at(FLOPS_PER_SECOND, deadline)
+    }
+
+    /// [`LuCost::ends_by`] at `flops_per_second` on a whole core (a matrix class measured
+    /// faster: [`GLOBAL_LU_FLOPS_PER_SECOND`], [`CHOLESKY_FLOPS_PER_SECOND`]).
+    pub fn ends_by_at(&self, flops_per_second: f64, deadline: Option<std::time::Instant>) -> bool {
+        ends_by_under_load(self.flops / flops_per_second, deadline)
     }
 
     /// Memory the factors need: a value and a row index per entry.
@@ -183,6 +223,33 @@ pub fn checked_lu_cost(
         what: format!("{what} (analysis)"),
         bytes: n.saturating_add(a.compute_nnz()).saturating_mul(3 * 8),
     })?;
+    fitting_in_memory(cost, what)
+}
+
+/// [`checked_lu_cost`] of a Cholesky `L L^T` of a symmetric matrix stored by one triangle
+/// (`a`, either), in its symmetric order `perm`: the LU prediction's `L` alone, half its flops
+/// (`sum_j c_j^2`) and its entries with the diagonal once. Its duration is at
+/// [`CHOLESKY_FLOPS_PER_SECOND`].
+pub fn checked_cholesky_cost(
+    a: SymbolicSparseColMatRef<'_, usize>,
+    perm: PermRef<'_, usize>,
+    what: &str,
+) -> Result<LuCost, Fc3dError> {
+    let n = a.ncols();
+    let lu = predict_lu_cost(a, perm).ok_or_else(|| Fc3dError::OutOfMemory {
+        what: format!("{what} (analysis)"),
+        bytes: n.saturating_add(a.compute_nnz()).saturating_mul(3 * 8),
+    })?;
+    let cost = LuCost {
+        factor_entries: (lu.factor_entries + n as f64) / 2.0,
+        flops: lu.flops / 2.0,
+    };
+    fitting_in_memory(cost, what)
+}
+
+/// `cost`, or an [`Fc3dError::OutOfMemory`] naming `what` when its factors cannot fit in the
+/// available memory.
+fn fitting_in_memory(cost: LuCost, what: &str) -> Result<LuCost, Fc3dError> {
     if cost.exceeds_available_memory() {
         return Err(Fc3dError::OutOfMemory {
             what: format!("{what} (predicted from the symbolic analysis)"),

@@ -14,6 +14,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use crate::error::{try_vec, Fc3dError};
+use crate::math::lu_cost::{checked_cholesky_cost, LuCost, CHOLESKY_FLOPS_PER_SECOND};
 use crate::math::sparse_lu::compressed_columns;
 
 /// A symmetric `n x n` matrix stored by its lower triangle in compressed columns, values
@@ -26,6 +27,9 @@ pub struct SparseCholesky {
     factor: Vec<f64>,
     scratch: MemBuffer,
     factored: bool,
+    /// The predicted cost of a numeric factorization, computed at the first
+    /// [`SparseCholesky::factor_ends_by`] under a deadline.
+    cost: Option<LuCost>,
 }
 
 impl std::fmt::Debug for SparseCholesky {
@@ -78,6 +82,7 @@ impl SparseCholesky {
                 factor,
                 scratch,
                 factored: false,
+                cost: None,
             },
             slots,
         ))
@@ -131,6 +136,40 @@ impl SparseCholesky {
 
     pub fn is_factored(&self) -> bool {
         self.factored
+    }
+
+    /// Whether a numeric factorization started now is predicted to end by `deadline`
+    /// ([`LuCost::ends_by_at`] [`CHOLESKY_FLOPS_PER_SECOND`] of [`checked_cholesky_cost`]'s prediction in the symbolic
+    /// analysis' order, made at the first call under a deadline and kept). Without a deadline:
+    /// true, with no work. Fails as [`checked_cholesky_cost`] does (`what` names the matrix).
+    pub fn factor_ends_by(
+        &mut self,
+        deadline: Option<std::time::Instant>,
+        what: &str,
+    ) -> Result<bool, Fc3dError> {
+        if deadline.is_none() {
+            return Ok(true);
+        }
+        let cost = match self.cost {
+            Some(cost) => cost,
+            None => {
+                let cost = match self.symbolic.perm() {
+                    Some(perm) => checked_cholesky_cost(self.pattern.as_ref(), perm, what)?,
+                    None => {
+                        let identity: Vec<usize> = (0..self.n).collect();
+                        let perm = faer::perm::PermRef::new_checked(&identity, &identity, self.n);
+                        checked_cholesky_cost(self.pattern.as_ref(), perm, what)?
+                    }
+                };
+                *self.cost.insert(cost)
+            }
+        };
+        Ok(cost.ends_by_at(CHOLESKY_FLOPS_PER_SECOND, deadline))
+    }
+
+    /// The prediction [`SparseCholesky::factor_ends_by`] made, if it made one.
+    pub fn predicted_cost(&self) -> Option<LuCost> {
+        self.cost
     }
 
     /// Solves `A x = rhs` in place with the last factorization (which must exist).
@@ -205,5 +244,24 @@ mod tests {
         a.values_mut().iter_mut().for_each(|v| *v = -*v);
         assert!(a.factor().is_err());
         assert!(!a.is_factored());
+    }
+
+    #[test]
+    fn a_factorization_is_predicted_only_under_a_deadline() {
+        use std::time::{Duration, Instant};
+        let n = 60;
+        let positions: Vec<(usize, usize)> =
+            (0..n).flat_map(|i| (0..=i).map(move |j| (i, j))).collect();
+        let (mut a, _) = SparseCholesky::from_positions(n, &positions, "test").unwrap();
+        assert!(a.factor_ends_by(None, "test").unwrap());
+        assert_eq!(a.predicted_cost(), None);
+        let far = Instant::now() + Duration::from_secs(3600);
+        assert!(a.factor_ends_by(Some(far), "test").unwrap());
+        // A dense Cholesky: sum_j c_j^2, half the LU's; the factor's n (n + 1) / 2 entries.
+        let cost = a.predicted_cost().unwrap();
+        let dense: f64 = (1..=n).map(|c| (c * c) as f64).sum();
+        assert_eq!(cost.flops, dense);
+        assert_eq!(cost.factor_entries, (n * (n + 1) / 2) as f64);
+        assert!(!a.factor_ends_by(Some(Instant::now()), "test").unwrap());
     }
 }

@@ -10,6 +10,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
 use crate::error::{try_vec, Fc3dError};
+use crate::math::lu_cost::{checked_lu_cost, LuCost, GLOBAL_LU_FLOPS_PER_SECOND};
 
 /// A sparse `n x n` matrix in compressed columns, its values refillable in place, with its LU.
 pub struct SparseLu {
@@ -20,6 +21,9 @@ pub struct SparseLu {
     numeric: NumericLu<usize, f64>,
     scratch: MemBuffer,
     factored: bool,
+    /// The predicted cost of a numeric factorization, computed at the first
+    /// [`SparseLu::factor_ends_by`] under a deadline.
+    cost: Option<LuCost>,
 }
 
 impl std::fmt::Debug for SparseLu {
@@ -63,6 +67,7 @@ impl SparseLu {
             numeric: NumericLu::new(),
             scratch,
             factored: false,
+            cost: None,
         })
     }
 
@@ -117,6 +122,36 @@ impl SparseLu {
 
     pub fn is_factored(&self) -> bool {
         self.factored
+    }
+
+    /// Whether a numeric factorization started now is predicted to end by `deadline`
+    /// ([`LuCost::ends_by_at`] [`GLOBAL_LU_FLOPS_PER_SECOND`] of [`checked_lu_cost`]'s
+    /// prediction from this pattern's symbolic
+    /// analysis, made at the first call under a deadline and kept: the pattern is fixed). Without
+    /// a deadline: true, with no work. Fails when the prediction's work arrays cannot be
+    /// allocated or the factors would not fit in memory (`what` names the matrix).
+    pub fn factor_ends_by(
+        &mut self,
+        deadline: Option<std::time::Instant>,
+        what: &str,
+    ) -> Result<bool, Fc3dError> {
+        if deadline.is_none() {
+            return Ok(true);
+        }
+        let cost = match self.cost {
+            Some(cost) => cost,
+            None => *self.cost.insert(checked_lu_cost(
+                self.pattern.as_ref(),
+                self.symbolic.col_perm(),
+                what,
+            )?),
+        };
+        Ok(cost.ends_by_at(GLOBAL_LU_FLOPS_PER_SECOND, deadline))
+    }
+
+    /// The prediction [`SparseLu::factor_ends_by`] made, if it made one.
+    pub fn predicted_cost(&self) -> Option<LuCost> {
+        self.cost
     }
 
     /// Solves `A x = rhs` in place with the last factorization (which must exist).
@@ -231,5 +266,26 @@ mod tests {
         lu.values_mut()[slots[1]] = 1.0;
         assert!(lu.factor().is_err());
         assert!(!lu.is_factored());
+    }
+
+    #[test]
+    fn a_factorization_is_predicted_only_under_a_deadline() {
+        use std::time::{Duration, Instant};
+        // A dense 60x60 pattern: 2 * 60^3 / 3 flops, microseconds at any rate measured.
+        let n = 60;
+        let positions: Vec<(usize, usize)> =
+            (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+        let (mut lu, _) = SparseLu::from_positions(n, &positions, "test").unwrap();
+        // Without a deadline: no prediction made.
+        assert!(lu.factor_ends_by(None, "test").unwrap());
+        assert_eq!(lu.predicted_cost(), None);
+        let far = Instant::now() + Duration::from_secs(3600);
+        assert!(lu.factor_ends_by(Some(far), "test").unwrap());
+        let cost = lu.predicted_cost().unwrap();
+        // sum_j 2 c_j^2 with c_j = n - j: about 2 n^3 / 3.
+        let dense: f64 = (1..=n).map(|c| 2.0 * (c * c) as f64).sum();
+        assert_eq!(cost.flops, dense);
+        // A deadline already reached: refused.
+        assert!(!lu.factor_ends_by(Some(Instant::now()), "test").unwrap());
     }
 }
