@@ -32,6 +32,7 @@ use clap::{Parser, Subcommand};
 mod bench;
 mod convert;
 mod inputs;
+mod plain_csv;
 mod plot_csv;
 mod scene;
 mod solve;

@@ -3,8 +3,8 @@
 //! (in the order of first appearance), as `STEM.svg` and `STEM.png`, with the pictures of
 //! `fc3d bench` (the same colours, markers and legend). Rows whose x or y is not a positive
 //! number (`-`, `NaN`, empty) are left out; `--where` keeps the rows whose column holds the value
-//! (repeatable, all must hold). The CSV is the plain kind the benchmarks write: a header line,
-//! comma-separated fields, no quoting.
+//! (repeatable, all must hold). The CSV is the plain kind the benchmarks write
+//! ([`crate::plain_csv`]).
 //!
 //! The pictures of docs/convergence.md are drawn with it (the commands are beside them).
 //!
@@ -17,6 +17,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use crate::bench::plot::{save, Curve, WorkPrecisionPicture};
+use crate::plain_csv::Table;
 
 #[derive(Args, Debug, Clone, PartialEq)]
 pub struct PlotArgs {
@@ -58,38 +59,19 @@ fn parse_filter(s: &str) -> Result<(String, String), String> {
         .ok_or_else(|| format!("'{s}' is not COLUMN=VALUE"))
 }
 
-/// The curves of `text` (a CSV) under `args`: (name, points) in order of first appearance.
-fn curves(text: &str, args: &PlotArgs) -> Result<Vec<Curve>, String> {
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header: Vec<&str> = lines
-        .next()
-        .ok_or("the CSV is empty")?
-        .split(',')
-        .map(str::trim)
-        .collect();
-    let column = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .ok_or_else(|| format!("no column '{name}' (columns: {})", header.join(", ")))
-    };
-    let (x, y) = (column(&args.x)?, column(&args.y)?);
-    let by = args.by.as_deref().map(column).transpose()?;
+/// The curves of `table` under `args`: (name, points) in order of first appearance.
+fn curves(table: &Table, args: &PlotArgs) -> Result<Vec<Curve>, String> {
+    let (x, y) = (table.column(&args.x)?, table.column(&args.y)?);
+    let by = args.by.as_deref().map(|c| table.column(c)).transpose()?;
     let filters = args
         .filters
         .iter()
-        .map(|(c, v)| Ok((column(c)?, v.as_str())))
+        .map(|(c, v)| Ok((table.column(c)?, v.as_str())))
         .collect::<Result<Vec<_>, String>>()?;
-    let positive = |s: &str| {
-        s.trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|v| v.is_finite() && *v > 0.0)
-    };
+    let positive = |s: &str| s.parse::<f64>().ok().filter(|v| v.is_finite() && *v > 0.0);
     let mut out: Vec<Curve> = Vec::new();
-    for line in lines {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let field = |k: usize| fields.get(k).copied().unwrap_or("");
+    for fields in &table.rows {
+        let field = |k: usize| fields.get(k).map_or("", String::as_str);
         if filters.iter().any(|&(c, v)| field(c) != v) {
             continue;
         }
@@ -113,9 +95,8 @@ fn curves(text: &str, args: &PlotArgs) -> Result<Vec<Curve>, String> {
 }
 
 pub fn run(args: &PlotArgs) -> ExitCode {
-    let drawn = std::fs::read_to_string(&args.csv)
-        .map_err(|e| format!("{}: {e}", args.csv.display()))
-        .and_then(|text| curves(&text, args))
+    let drawn = Table::read(&args.csv)
+        .and_then(|table| curves(&table, args))
         .and_then(|curves| {
             let picture = WorkPrecisionPicture {
                 title: args
@@ -176,7 +157,8 @@ mod tests {
 
     #[test]
     fn rows_become_curves_in_order_of_first_appearance() {
-        let c = curves(CSV, &args(Some("mu_scale"), &[("shape", "spheres")])).unwrap();
+        let table = Table::parse(CSV).unwrap();
+        let c = curves(&table, &args(Some("mu_scale"), &[("shape", "spheres")])).unwrap();
         assert_eq!(c.len(), 2);
         assert_eq!(c[0].name, "mu x 0");
         assert_eq!(c[0].points, vec![(1.0, 0.3), (2.0, 0.1)]);
@@ -186,9 +168,10 @@ mod tests {
 
     #[test]
     fn unknown_columns_and_empty_selections_are_refused() {
-        let e = curves(CSV, &args(Some("nope"), &[])).err().unwrap();
+        let table = Table::parse(CSV).unwrap();
+        let e = curves(&table, &args(Some("nope"), &[])).err().unwrap();
         assert!(e.contains("no column 'nope'"), "{e}");
-        let e = curves(CSV, &args(None, &[("shape", "cones")]))
+        let e = curves(&table, &args(None, &[("shape", "cones")]))
             .err()
             .unwrap();
         assert!(e.contains("no row"), "{e}");

@@ -32,7 +32,7 @@
 //! id per scene and tolerance and the ratio of fc3d's best to it.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use fc3d_core::global::{solve_global, GlobalConfig, GlobalMethod};
@@ -43,6 +43,10 @@ use fc3d_core::scenes::sequences::{
 };
 use fc3d_core::scenes::GeneratedScene;
 use fc3d_core::{natural_map_error, solve, Method, SolveReport, SolverConfig, Workspace};
+
+#[path = "../plain_csv.rs"]
+mod plain_csv;
+use plain_csv::Table;
 
 const SOLVE_HEADER: &str =
     "shape,contacts,piles,seed,library,method,tolerance,status,cpu_s,wall_s,\
@@ -532,36 +536,6 @@ fn run_settling(args: &[String]) -> Result<(), String> {
 }
 
 /// One CSV table: the header's names and the rows.
-struct Table {
-    columns: Vec<String>,
-    rows: Vec<Vec<String>>,
-}
-
-impl Table {
-    fn read(path: &str) -> Result<Table, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-        let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-        let columns = lines
-            .next()
-            .ok_or_else(|| format!("{path}: empty"))?
-            .split(',')
-            .map(str::to_string)
-            .collect();
-        let rows = lines
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect();
-        Ok(Table { columns, rows })
-    }
-
-    fn get<'a>(&self, row: &'a [String], column: &str) -> &'a str {
-        self.columns
-            .iter()
-            .position(|c| c == column)
-            .and_then(|i| row.get(i))
-            .map_or("", String::as_str)
-    }
-}
-
 fn number(s: &str) -> Option<f64> {
     s.parse::<f64>().ok().filter(|v| v.is_finite())
 }
@@ -569,10 +543,10 @@ fn number(s: &str) -> Option<f64> {
 fn run_report(args: &[String]) -> Result<(), String> {
     let opts = options(args)?;
     if let Some(path) = opts.get("csv") {
-        print!("{}", solve_report(&Table::read(path)?));
+        print!("{}", solve_report(&Table::read(Path::new(path))?));
     }
     if let Some(path) = opts.get("settling") {
-        print!("{}", settling_report(&Table::read(path)?));
+        print!("{}", settling_report(&Table::read(Path::new(path))?));
     }
     Ok(())
 }

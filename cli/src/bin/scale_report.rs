@@ -15,6 +15,10 @@ use std::process::ExitCode;
 
 use plotters::prelude::*;
 
+#[path = "../plain_csv.rs"]
+mod plain_csv;
+use plain_csv::Table;
+
 struct Row {
     contacts: f64,
     library: String,
@@ -31,33 +35,31 @@ impl Row {
 }
 
 fn read_rows(path: &Path) -> Result<(Vec<Row>, Vec<String>), String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut lines = text.lines();
-    let header: Vec<String> = lines
-        .next()
-        .ok_or_else(|| format!("{}: empty", path.display()))?
-        .split(',')
-        .map(str::to_string)
-        .collect();
+    let table = Table::read(path)?;
     let mut rows = Vec::new();
-    for line in lines.filter(|l| !l.trim().is_empty()) {
-        let fields: BTreeMap<String, String> = header
+    for line in &table.rows {
+        let fields: BTreeMap<String, String> = table
+            .columns
             .iter()
             .cloned()
-            .zip(line.split(',').map(str::to_string))
+            .zip(line.iter().cloned())
             .collect();
-        let contacts = fields
-            .get("contacts")
-            .and_then(|v| v.parse().ok())
-            .ok_or_else(|| format!("{}: a row without contacts: {line}", path.display()))?;
-        let library = fields.get("library").cloned().unwrap_or_default();
+        let contacts = table.get(line, "contacts").parse().map_err(|_| {
+            format!(
+                "{}: a row without contacts: {}",
+                path.display(),
+                line.join(",")
+            )
+        })?;
+        let library = table.get(line, "library").to_string();
         rows.push(Row {
             contacts,
             library,
             fields,
         });
     }
-    let tols = header
+    let tols = table
+        .columns
         .iter()
         .filter_map(|h| h.strip_prefix("t_").and_then(|t| t.strip_suffix("_s")))
         .map(str::to_string)
