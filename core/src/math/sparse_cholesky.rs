@@ -156,7 +156,8 @@ impl SparseCholesky {
                 let cost = match self.symbolic.perm() {
                     Some(perm) => checked_cholesky_cost(self.pattern.as_ref(), perm, what)?,
                     None => {
-                        let identity: Vec<usize> = (0..self.n).collect();
+                        let mut identity = try_vec(self.n, 0usize, what)?;
+                        identity.iter_mut().enumerate().for_each(|(i, x)| *x = i);
                         let perm = faer::perm::PermRef::new_checked(&identity, &identity, self.n);
                         checked_cholesky_cost(self.pattern.as_ref(), perm, what)?
                     }
