@@ -123,10 +123,56 @@ pub(crate) fn next_probe(
     }
 }
 
+/// A probe's progress when its products with W pass its cap.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ProbeProgress {
+    /// Its error after its first iteration and its best error since.
+    pub first_error: f64,
+    pub best_error: f64,
+    /// Iterations done.
+    pub steps: usize,
+    /// Products with W spent, and those of its last iteration.
+    pub products: usize,
+    pub last_products: usize,
+}
+
+/// The most iterations a probe past its cap may be short of the tolerance, at its mean rate, to
+/// run on.
+pub(crate) const PROBE_RUN_ON_STEPS: f64 = 2.0;
+
+/// Whether a probe that passed its cap of `cap` products runs on, once, up to twice the cap:
+/// when it is nearly there, at most [`PROBE_RUN_ON_STEPS`] iterations short of `tolerance` at
+/// its mean rate (from its first iteration to its best error), and these, each costing what its
+/// last one cost, fit in that. The mean rate flatters a probe whose fall slows down (the
+/// generated 40-contact pile at 1e-4: 0.28 after the first step, 2.0e-3 after the seventh, a
+/// mean rate of 0.44 that asks for 4 more; five more reached 1.8e-4): such a probe hands over,
+/// as one that crawls. The error of a Tresca
+/// fixed point is not monotone (LMGC_100_PR_PerioBox: 3.0e-8 at the seventh outer step of
+/// TFP-APGD, 2.0e-3 at the eighth), hence the best error. Its later iterations cost more as its
+/// inner tolerance follows the outer error (BoxesStack1: 206 products for the fourth, 1165 for
+/// the fifth), hence the cost of the last one, not the mean: a probe that falls fast but whose
+/// iterations grow (BoxesStack1, the Capsules) hands over, as one that crawls.
+pub(crate) fn probe_runs_on(progress: &ProbeProgress, tolerance: f64, cap: usize) -> bool {
+    let ProbeProgress {
+        first_error,
+        best_error,
+        steps,
+        products,
+        last_products,
+    } = *progress;
+    if steps < 2 || !(best_error > tolerance) || !(tolerance > 0.0) || !(first_error > best_error) {
+        return false;
+    }
+    let rate = (best_error / first_error).powf(1.0 / (steps - 1) as f64);
+    let needed = ((tolerance / best_error).ln() / rate.ln()).ceil();
+    needed <= PROBE_RUN_ON_STEPS
+        && products as f64 + needed * last_products as f64 <= (2 * cap) as f64
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::rules::{stage, PlannedStage, TO_THE_LIMITS};
-    use super::{next_probe, next_stage, Handover, NextStage};
+    use super::{next_probe, next_stage, probe_runs_on, Handover, NextStage, ProbeProgress};
     use crate::contract::StageKind::{Admm, ExtraGradient, Nsgs, Prox};
     use std::time::Duration;
 
@@ -247,5 +293,46 @@ mod tests {
         assert_eq!(next_probe(2, 1.0, 0.5, 1, 0.0, 10), 10);
         // NaN errors: doubling too (the stall window ends the stage).
         assert_eq!(next_probe(2, f64::NAN, f64::NAN, 1, 1e-4, 10), 4);
+    }
+
+    #[test]
+    fn a_probe_runs_on_when_two_steps_short_within_twice_its_cap() {
+        let at = |first_error, best_error, steps, products, last_products| ProbeProgress {
+            first_error,
+            best_error,
+            steps,
+            products,
+            last_products,
+        };
+        // LMGC_100_PR_PerioBox at 1e-8, TFP-APGD past its cap (140) after its seventh step:
+        // 9.7e-5 -> 3.0e-8, mean rate 0.26, one more step of 13 products: runs on (to 280).
+        assert!(probe_runs_on(&at(9.73e-5, 3.0e-8, 7, 151, 13), 1e-8, 140));
+        // BoxesStack1 after its fourth (cap 230): rate 0.094, to 1e-8 four more steps of 206
+        // products, to 1e-6 two: hands over either way.
+        assert!(!probe_runs_on(
+            &at(7.25e-2, 6.08e-5, 4, 394, 206),
+            1e-8,
+            230
+        ));
+        assert!(!probe_runs_on(
+            &at(7.25e-2, 6.08e-5, 4, 394, 206),
+            1e-6,
+            230
+        ));
+        // Capsules-i100-889 after its sixth (cap 210): 5 more steps of 43 to 1e-8.
+        assert!(!probe_runs_on(&at(2.09e-3, 4.42e-6, 6, 215, 43), 1e-8, 210));
+        // The generated 40-contact pile at 1e-4 after its seventh (cap 270): 4 more steps.
+        assert!(!probe_runs_on(&at(0.281, 1.99e-3, 7, 278, 45), 1e-4, 270));
+        // Two steps short within twice the cap runs on; three, or past twice the cap, not.
+        assert!(probe_runs_on(&at(1e-2, 1e-6, 5, 150, 10), 1e-8, 140));
+        assert!(!probe_runs_on(&at(1e-2, 1e-6, 5, 150, 10), 1e-9, 140));
+        assert!(!probe_runs_on(&at(1e-2, 1e-6, 5, 150, 70), 1e-8, 140));
+        // A crawl, no fall, one step only, an anytime solve (tolerance 0), NaN: hands over.
+        assert!(!probe_runs_on(&at(1e-3, 5e-4, 7, 150, 10), 1e-8, 140));
+        assert!(!probe_runs_on(&at(1e-4, 1e-4, 7, 150, 10), 1e-8, 140));
+        assert!(!probe_runs_on(&at(1e-4, 1e-6, 1, 150, 150), 1e-8, 140));
+        assert!(!probe_runs_on(&at(1e-4, 1e-6, 7, 150, 10), 0.0, 140));
+        assert!(!probe_runs_on(&at(f64::NAN, 1e-6, 7, 150, 10), 1e-8, 140));
+        assert!(!probe_runs_on(&at(1e-4, f64::NAN, 7, 150, 10), 1e-8, 140));
     }
 }

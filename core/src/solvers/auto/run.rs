@@ -18,7 +18,7 @@ use crate::solvers::tresca::{TrescaInnerSolver, TrescaOptions};
 use crate::solvers::vi::{ViOptions, ViSolver};
 
 use super::features::ProblemFeatures;
-use super::plan::{next_probe, next_stage, Handover};
+use super::plan::{next_probe, next_stage, probe_runs_on, Handover, ProbeProgress};
 use super::rules::{
     choose, stall_rule, sweep_local_solver, StallRule, SweepTuning, PROBE, PROBE_PRODUCTS,
     SHORT_BUDGET, TO_THE_LIMITS,
@@ -247,8 +247,11 @@ pub(crate) fn auto_with<'a>(
         let mut window_start = error;
         let mut window = 0usize;
         let mut probe_sweeps = 1usize;
-        // A probe's products with W: those of its first iteration set its cap.
+        // A probe's products with W: those of its first iteration set its cap; its error after
+        // that iteration and its best one since decide whether it runs on past the cap.
         let (mut products, mut first_products) = (0usize, None);
+        let (mut first_error, mut stage_best) = (None, f64::INFINITY);
+        let mut caps = 1usize;
         loop {
             let left = (run.max_iter - total).min(allowance - done);
             if left == 0 {
@@ -343,18 +346,35 @@ pub(crate) fn auto_with<'a>(
             }
             if probe {
                 // A family that does not count its products counts one per iteration.
-                products += chunk_products.unwrap_or(iterations);
+                let last_products = chunk_products.unwrap_or(iterations);
+                products += last_products;
+                let first = *first_error.get_or_insert(error);
+                stage_best = stage_best.min(error);
                 let cap = PROBE_PRODUCTS * *first_products.get_or_insert(products);
-                if products > cap {
-                    end = StageEnd::Allowance;
-                    break;
+                if products > caps * cap {
+                    let progress = ProbeProgress {
+                        first_error: first,
+                        best_error: stage_best,
+                        steps: done,
+                        products,
+                        last_products,
+                    };
+                    if caps == 1 && probe_runs_on(&progress, tolerance, cap) {
+                        caps = 2;
+                    } else {
+                        end = StageEnd::Allowance;
+                        break;
+                    }
                 }
             }
             // A stage run to the limits is not ended by a stall (large piles: every method's
             // error falls slowly).
             // So is the last stage of a budgeted solve: the host gave the time left.
+            // Neither is a probe running on past its cap (bounded by it, and its error is not
+            // monotone: a window can end on a bad step of a fast-falling sequence).
             let patient =
-                (to_the_limits || (last_possible && run.deadline().is_some())) && error.is_finite();
+                (to_the_limits || caps > 1 || (last_possible && run.deadline().is_some()))
+                    && error.is_finite();
             window += iterations;
             if window >= watch.chunk {
                 // NaN compares false: a non-finite error is a stall.
