@@ -119,6 +119,38 @@ impl CsrMatrix {
         })
     }
 
+    /// `self^T`, allocated fallibly. A counting pass over the entries: the rows of `self` are
+    /// read in order, so every row of the transpose comes out sorted and free of duplicates
+    /// (no sort; H^T of the 10^5-contact sphere pile took 0.17 s through triplets).
+    pub fn transposed(&self) -> Result<CsrMatrix, Fc3dError> {
+        let mut row_ptr = try_vec(self.ncols + 1, 0usize, "the row pointers of a transpose")?;
+        for &j in &self.col_idx {
+            row_ptr[j + 1] += 1;
+        }
+        for j in 0..self.ncols {
+            row_ptr[j + 1] += row_ptr[j];
+        }
+        let nnz = self.nnz();
+        let mut col_idx = try_vec(nnz, 0usize, "the column indices of a transpose")?;
+        let mut values = try_vec(nnz, 0.0, "the values of a transpose")?;
+        let mut next = try_copy(&row_ptr[..self.ncols], "the row pointers of a transpose")?;
+        for i in 0..self.nrows {
+            for k in self.row_ptr[i]..self.row_ptr[i + 1] {
+                let at = &mut next[self.col_idx[k]];
+                col_idx[*at] = i;
+                values[*at] = self.values[k];
+                *at += 1;
+            }
+        }
+        Ok(CsrMatrix {
+            nrows: self.ncols,
+            ncols: self.nrows,
+            row_ptr,
+            col_idx,
+            values,
+        })
+    }
+
     /// From compressed rows. Unsorted columns and duplicates are accepted (sorted, summed).
     pub fn from_csr(
         nrows: usize,
@@ -307,5 +339,32 @@ mod tests {
     fn bad_pointers_are_rejected() {
         assert!(CsrMatrix::from_csr(2, 2, &[0, 2, 1], &[0, 1], &[1.0, 1.0]).is_err());
         assert!(CsrMatrix::from_csr(2, 2, &[0, 1, 2], &[0, 5], &[1.0, 1.0]).is_err());
+    }
+
+    /// The counting transpose equals the transpose built through triplets (sorted, the same
+    /// entries), empty rows and columns included; transposing twice gives the matrix back.
+    #[test]
+    fn transposed_equals_the_transpose_through_triplets() {
+        let entries = [
+            (0, 3, 1.5),
+            (0, 0, -2.0),
+            (2, 1, 3.0),
+            (2, 3, 4.0),
+            (3, 0, 5.0),
+            (3, 2, -6.0),
+        ];
+        let a = CsrMatrix::from_triplets(4, 5, &entries).unwrap();
+        let swapped: Vec<_> = entries.iter().map(|&(i, j, v)| (j, i, v)).collect();
+        let at = a.transposed().unwrap();
+        assert_eq!(at, CsrMatrix::from_triplets(5, 4, &swapped).unwrap());
+        assert_eq!(at.transposed().unwrap(), a);
+        let empty = CsrMatrix::from_triplets(2, 3, &[])
+            .unwrap()
+            .transposed()
+            .unwrap();
+        assert_eq!(
+            (empty.nrows(), empty.ncols(), empty.row_ptr()),
+            (3, 2, &[0, 0, 0, 0][..])
+        );
     }
 }

@@ -448,9 +448,7 @@ pub fn transpose_mul_add(a: &CsrMatrix, x: &[f64], y: &mut [f64]) {
 
 /// `A^T` in compressed rows.
 pub fn transpose(a: &CsrMatrix) -> Result<CsrMatrix, Fc3dError> {
-    let mut triplets = Vec::with_capacity(a.nnz());
-    a.for_each_entry(|i, j, v| triplets.push((j, i, v)));
-    CsrMatrix::from_triplets(a.ncols(), a.nrows(), &triplets)
+    a.transposed()
 }
 
 #[cfg(test)]

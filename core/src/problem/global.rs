@@ -119,7 +119,7 @@ impl<'a, const D: usize> GlobalProblem<'a, D> {
 
     /// `W = H^T M^-1 H` as an operator: M factored (block by block when it is block diagonal).
     pub fn operator(&self) -> Result<HForm, Fc3dError> {
-        HForm::new(&self.m, self.h.clone())
+        HForm::new(&self.m, self.h.try_clone()?)
     }
 
     /// The local problem FC(W, q_loc, mu), W assembled from the operator.
