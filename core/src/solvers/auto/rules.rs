@@ -359,7 +359,8 @@ pub const RULES: &[Rule] = &[
               converges in a few steps where NSGS does not converge at all. The TFP-APGD probe \
               first: from its iterate PROX needs 1-3 steps, at 1e-8 AUTO's instruction count \
               falls from 763M to 60M on LMGC_100_PR_PerioBox, 391M to 60M on BoxesStack1, 178M \
-              to 130M and 76M to 71M on Capsules-i100-889 and -i101-404",
+              to 130M and 76M to 71M on Capsules-i100-889 and -i101-404; a probe two steps \
+              short of the tolerance runs on (LMGC_100_PR_PerioBox: 11 steps, 14M)",
     },
     Rule {
         when: Condition::ANY,
