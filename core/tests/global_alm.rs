@@ -88,6 +88,28 @@ fn converges_on_generated_piles() {
     }
 }
 
+/// The method runs on one thread: two solves of the same sphere pile, and of the same box pile,
+/// return the same bits (reactions, local and global velocities, error, iterations).
+#[test]
+fn repeated_solves_are_bitwise_identical() {
+    let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    for (shape, tolerance) in [(PileShape::Spheres, 1e-5), (PileShape::Boxes, 1e-6)] {
+        let p = scene(200, shape);
+        let (a, ra, ua, va) = solve_checked(&p, &alm(tolerance, 3000));
+        let (b, rb, ub, vb) = solve_checked(&p, &alm(tolerance, 3000));
+        assert_eq!(a.status, SolveStatus::Converged, "{shape:?}");
+        assert_eq!(
+            (a.iterations, a.error.to_bits()),
+            (b.iterations, b.error.to_bits()),
+            "{shape:?}"
+        );
+        assert_eq!(
+            (bits(&ra), bits(&ua), bits(&va)),
+            (bits(&rb), bits(&ub), bits(&vb))
+        );
+    }
+}
+
 /// A non-symmetric M (an FE-like iteration matrix): the factored symmetric part preconditions
 /// GMRES on the true Newton matrix; the result balances the non-symmetric M.
 #[test]
