@@ -218,12 +218,7 @@ pub fn checked_lu_cost(
     col_perm: PermRef<'_, usize>,
     what: &str,
 ) -> Result<LuCost, Fc3dError> {
-    let n = a.ncols();
-    let cost = predict_lu_cost(a, col_perm).ok_or_else(|| Fc3dError::OutOfMemory {
-        what: format!("{what} (analysis)"),
-        bytes: n.saturating_add(a.compute_nnz()).saturating_mul(3 * 8),
-    })?;
-    fitting_in_memory(cost, what)
+    fitting_in_memory(predicted(a, col_perm, what)?, what)
 }
 
 /// [`checked_lu_cost`] of a Cholesky `L L^T` of a symmetric matrix stored by one triangle
@@ -236,15 +231,48 @@ pub fn checked_cholesky_cost(
     what: &str,
 ) -> Result<LuCost, Fc3dError> {
     let n = a.ncols();
-    let lu = predict_lu_cost(a, perm).ok_or_else(|| Fc3dError::OutOfMemory {
-        what: format!("{what} (analysis)"),
-        bytes: n.saturating_add(a.compute_nnz()).saturating_mul(3 * 8),
-    })?;
+    let lu = predicted(a, perm, what)?;
     let cost = LuCost {
         factor_entries: (lu.factor_entries + n as f64) / 2.0,
         flops: lu.flops / 2.0,
     };
     fitting_in_memory(cost, what)
+}
+
+/// [`predict_lu_cost`], or an [`Fc3dError::OutOfMemory`] naming `what` when its work arrays
+/// cannot be allocated.
+fn predicted(
+    a: SymbolicSparseColMatRef<'_, usize>,
+    perm: PermRef<'_, usize>,
+    what: &str,
+) -> Result<LuCost, Fc3dError> {
+    predict_lu_cost(a, perm).ok_or_else(|| Fc3dError::OutOfMemory {
+        what: format!("{what} (analysis)"),
+        bytes: a
+            .ncols()
+            .saturating_add(a.compute_nnz())
+            .saturating_mul(3 * 8),
+    })
+}
+
+/// Whether a numeric factorization started now ends by `deadline` at `flops_per_second`, by
+/// the cost in `kept`, which `predict` fills at the first call under a deadline (a factor's
+/// pattern is fixed: one prediction serves every later factorization). Without a deadline:
+/// true, with no work.
+pub fn factor_ends_by_kept(
+    kept: &mut Option<LuCost>,
+    deadline: Option<std::time::Instant>,
+    flops_per_second: f64,
+    predict: impl FnOnce() -> Result<LuCost, Fc3dError>,
+) -> Result<bool, Fc3dError> {
+    if deadline.is_none() {
+        return Ok(true);
+    }
+    let cost = match *kept {
+        Some(cost) => cost,
+        None => *kept.insert(predict()?),
+    };
+    Ok(cost.ends_by_at(flops_per_second, deadline))
 }
 
 /// `cost`, or an [`Fc3dError::OutOfMemory`] naming `what` when its factors cannot fit in the

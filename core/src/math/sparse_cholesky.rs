@@ -14,7 +14,9 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
 use crate::error::{try_vec, Fc3dError};
-use crate::math::lu_cost::{checked_cholesky_cost, LuCost, CHOLESKY_FLOPS_PER_SECOND};
+use crate::math::lu_cost::{
+    checked_cholesky_cost, factor_ends_by_kept, LuCost, CHOLESKY_FLOPS_PER_SECOND,
+};
 use crate::math::sparse_lu::compressed_columns;
 
 /// A symmetric `n x n` matrix stored by its lower triangle in compressed columns, values
@@ -147,25 +149,20 @@ impl SparseCholesky {
         deadline: Option<std::time::Instant>,
         what: &str,
     ) -> Result<bool, Fc3dError> {
-        if deadline.is_none() {
-            return Ok(true);
-        }
-        let cost = match self.cost {
-            Some(cost) => cost,
-            None => {
-                let cost = match self.symbolic.perm() {
-                    Some(perm) => checked_cholesky_cost(self.pattern.as_ref(), perm, what)?,
-                    None => {
-                        let mut identity = try_vec(self.n, 0usize, what)?;
-                        identity.iter_mut().enumerate().for_each(|(i, x)| *x = i);
-                        let perm = faer::perm::PermRef::new_checked(&identity, &identity, self.n);
-                        checked_cholesky_cost(self.pattern.as_ref(), perm, what)?
-                    }
-                };
-                *self.cost.insert(cost)
-            }
-        };
-        Ok(cost.ends_by_at(CHOLESKY_FLOPS_PER_SECOND, deadline))
+        factor_ends_by_kept(
+            &mut self.cost,
+            deadline,
+            CHOLESKY_FLOPS_PER_SECOND,
+            || match self.symbolic.perm() {
+                Some(perm) => checked_cholesky_cost(self.pattern.as_ref(), perm, what),
+                None => {
+                    let mut identity = try_vec(self.n, 0usize, what)?;
+                    identity.iter_mut().enumerate().for_each(|(i, x)| *x = i);
+                    let perm = faer::perm::PermRef::new_checked(&identity, &identity, self.n);
+                    checked_cholesky_cost(self.pattern.as_ref(), perm, what)
+                }
+            },
+        )
     }
 
     /// The prediction [`SparseCholesky::factor_ends_by`] made, if it made one.

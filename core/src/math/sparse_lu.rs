@@ -10,7 +10,9 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par};
 
 use crate::error::{try_vec, Fc3dError};
-use crate::math::lu_cost::{checked_lu_cost, LuCost, GLOBAL_LU_FLOPS_PER_SECOND};
+use crate::math::lu_cost::{
+    checked_lu_cost, factor_ends_by_kept, LuCost, GLOBAL_LU_FLOPS_PER_SECOND,
+};
 
 /// A sparse `n x n` matrix in compressed columns, its values refillable in place, with its LU.
 pub struct SparseLu {
@@ -135,18 +137,9 @@ impl SparseLu {
         deadline: Option<std::time::Instant>,
         what: &str,
     ) -> Result<bool, Fc3dError> {
-        if deadline.is_none() {
-            return Ok(true);
-        }
-        let cost = match self.cost {
-            Some(cost) => cost,
-            None => *self.cost.insert(checked_lu_cost(
-                self.pattern.as_ref(),
-                self.symbolic.col_perm(),
-                what,
-            )?),
-        };
-        Ok(cost.ends_by_at(GLOBAL_LU_FLOPS_PER_SECOND, deadline))
+        factor_ends_by_kept(&mut self.cost, deadline, GLOBAL_LU_FLOPS_PER_SECOND, || {
+            checked_lu_cost(self.pattern.as_ref(), self.symbolic.col_perm(), what)
+        })
     }
 
     /// The prediction [`SparseLu::factor_ends_by`] made, if it made one.
