@@ -16,8 +16,8 @@ use std::time::{Duration, Instant};
 
 use fc3d_core::scenes::{GeneratedScene, PileShape, PileSpec};
 use fc3d_core::{
-    natural_map_error, solve_with_observer, BlockSparseMatrix, Delassus, ErrorEvaluation,
-    FrictionProblem, Method, NsgsOptions, ProxInternal, ProxOptions, SolverConfig,
+    natural_map_error, solve_with_observer, ErrorEvaluation, FrictionProblem, Method, NsgsOptions,
+    ProxInternal, ProxOptions, SolverConfig,
 };
 
 fn norm(v: &[f64]) -> f64 {
@@ -82,26 +82,8 @@ fn main() {
         .map(|(label, method)| (label, method, None))
         .collect();
     for k in tikhonov {
-        let Delassus::SparseBlock(w) = p.w().clone() else {
-            panic!("the generator's W is sparse-block")
-        };
-        let (rows, cols, row_ptr, col_idx, values) = w.into_parts();
-        let mut blocks: Vec<[f64; 9]> = values
-            .chunks_exact(9)
-            .map(|b| b.try_into().expect("9 values"))
-            .collect();
-        for i in 0..rows {
-            for b in row_ptr[i]..row_ptr[i + 1] {
-                if col_idx[b] == i {
-                    for d in [0, 4, 8] {
-                        blocks[b][d] += k * mean_wnn;
-                    }
-                }
-            }
-        }
-        let shifted = BlockSparseMatrix::new(rows, cols, row_ptr, col_idx, blocks).expect("W + aI");
         let regularized = FrictionProblem::new(
-            Delassus::SparseBlock(shifted),
+            p.w().shifted(k * mean_wnn).expect("W + aI"),
             p.q().to_vec(),
             p.mu().to_vec(),
         )

@@ -86,6 +86,46 @@ impl<'a> Delassus<'a> {
         })
     }
 
+    /// `W + shift I` in W's own storage (owned): the proximal method's regularized W.
+    pub fn shifted(&self, shift: f64) -> Result<Delassus<'static>, Fc3dError> {
+        let n = self.nrows();
+        Ok(match self {
+            Delassus::Dense(d) => {
+                let mut data = d.values().to_vec();
+                for i in 0..n {
+                    data[i + i * n] += shift;
+                }
+                Delassus::Dense(DenseMatrix::new(n, n, data)?)
+            }
+            Delassus::SparseBlock(s) => {
+                let mut blocks: Vec<[f64; 9]> = s.blocks().copied().collect();
+                for bi in 0..s.n_block_rows() {
+                    let (start, end) = (s.row_ptr()[bi], s.row_ptr()[bi + 1]);
+                    // Column-major 3x3: the diagonal is entries 0, 4, 8. Added to the first
+                    // diagonal block only, should a host store it twice.
+                    if let Some(k) = (start..end).find(|&k| s.col_idx()[k] == bi) {
+                        for e in [0, 4, 8] {
+                            blocks[k][e] += shift;
+                        }
+                    }
+                }
+                Delassus::SparseBlock(BlockSparseMatrix::new(
+                    s.n_block_rows(),
+                    s.n_block_cols(),
+                    s.row_ptr().to_vec(),
+                    s.col_idx().to_vec(),
+                    blocks,
+                )?)
+            }
+            Delassus::Sparse(s) => {
+                let mut triplets = Vec::with_capacity(s.nnz() + n);
+                s.for_each_entry(|i, j, v| triplets.push((i, j, v)));
+                triplets.extend((0..n).map(|i| (i, i, shift)));
+                Delassus::Sparse(CsrMatrix::from_triplets(n, n, &triplets)?)
+            }
+        })
+    }
+
     /// Entry (i, j), zero where nothing is stored.
     pub fn get(&self, i: usize, j: usize) -> f64 {
         match self {
@@ -427,5 +467,23 @@ mod tests {
             }
         }
         assert_eq!(csr.get(0, 4), 2.0);
+    }
+
+    #[test]
+    fn shifted_keeps_the_storage_and_adds_to_the_diagonal() {
+        let d = DenseMatrix::new(3, 3, vec![1.0, 2.0, 0.0, 0.0, 3.0, 0.0, 0.5, 0.0, 4.0]).unwrap();
+        let w = Delassus::Dense(d);
+        let csr = Delassus::Sparse(w.to_csr());
+        let sbm = Delassus::SparseBlock(w.to_block_sparse().unwrap());
+        for m in [&w, &csr, &sbm] {
+            let s = m.shifted(0.25).unwrap();
+            assert_eq!(s.storage_name(), m.storage_name());
+            for i in 0..3 {
+                for j in 0..3 {
+                    let extra = if i == j { 0.25 } else { 0.0 };
+                    assert_eq!(s.get(i, j), w.get(i, j) + extra);
+                }
+            }
+        }
     }
 }

@@ -10,7 +10,6 @@ use std::time::{Duration, Instant};
 
 use crate::contract::{BestIterate, Family, IterationEvent, Limits, Observer, Run, SolverOutcome};
 use crate::error::{require_setting, Fc3dError};
-use crate::matrix::{BlockSparseMatrix, CsrMatrix, Delassus, DenseMatrix};
 use crate::measure::natural_map_error;
 use crate::problem::FrictionProblem;
 use crate::solvers::nsgs::{nsgs, NsgsOptions};
@@ -154,46 +153,6 @@ impl Family for ProxOptions {
     }
 }
 
-/// `W + shift I` in W's own storage.
-fn shifted(w: &Delassus<'_>, shift: f64) -> Result<Delassus<'static>, Fc3dError> {
-    let n = w.nrows();
-    Ok(match w {
-        Delassus::Dense(d) => {
-            let mut data = d.values().to_vec();
-            for i in 0..n {
-                data[i + i * n] += shift;
-            }
-            Delassus::Dense(DenseMatrix::new(n, n, data)?)
-        }
-        Delassus::SparseBlock(s) => {
-            let mut blocks: Vec<[f64; 9]> = s.blocks().copied().collect();
-            for bi in 0..s.n_block_rows() {
-                let (start, end) = (s.row_ptr()[bi], s.row_ptr()[bi + 1]);
-                // Column-major 3x3: the diagonal is entries 0, 4, 8. Added to the first
-                // diagonal block only, should a host store it twice.
-                if let Some(k) = (start..end).find(|&k| s.col_idx()[k] == bi) {
-                    for e in [0, 4, 8] {
-                        blocks[k][e] += shift;
-                    }
-                }
-            }
-            Delassus::SparseBlock(BlockSparseMatrix::new(
-                s.n_block_rows(),
-                s.n_block_cols(),
-                s.row_ptr().to_vec(),
-                s.col_idx().to_vec(),
-                blocks,
-            )?)
-        }
-        Delassus::Sparse(s) => {
-            let mut triplets = Vec::with_capacity(s.nnz() + n);
-            s.for_each_entry(|i, j, v| triplets.push((i, j, v)));
-            triplets.extend((0..n).map(|i| (i, i, shift)));
-            Delassus::Sparse(CsrMatrix::from_triplets(n, n, &triplets)?)
-        }
-    })
-}
-
 /// Runs the proximal point method from the reaction in `r`.
 fn prox(
     problem: &FrictionProblem<'_>,
@@ -311,7 +270,7 @@ impl ProxState {
                 }
                 ProxInternal::Nsgs(g) => {
                     let inner = FrictionProblem::new(
-                        shifted(problem.w(), shift)?,
+                        problem.w().shifted(shift)?,
                         shifted_q.clone(),
                         problem.mu().to_vec(),
                     )?;
@@ -436,23 +395,5 @@ mod tests {
         let newton = state.into_newton();
         assert!(newton.is_some());
         assert!(ProxState::reusing(&p, &options, newton).unwrap().1);
-    }
-
-    #[test]
-    fn shifted_keeps_the_storage_and_adds_to_the_diagonal() {
-        let d = DenseMatrix::new(3, 3, vec![1.0, 2.0, 0.0, 0.0, 3.0, 0.0, 0.5, 0.0, 4.0]).unwrap();
-        let w = Delassus::Dense(d);
-        let csr = Delassus::Sparse(w.to_csr());
-        let sbm = Delassus::SparseBlock(w.to_block_sparse().unwrap());
-        for m in [&w, &csr, &sbm] {
-            let s = shifted(m, 0.25).unwrap();
-            assert_eq!(s.storage_name(), m.storage_name());
-            for i in 0..3 {
-                for j in 0..3 {
-                    let extra = if i == j { 0.25 } else { 0.0 };
-                    assert_eq!(s.get(i, j), w.get(i, j) + extra);
-                }
-            }
-        }
     }
 }
