@@ -208,6 +208,20 @@ fn admm_and_vi_stop_at_the_deadline_near_round_off() {
     }
 }
 
+/// The local methods whose set-up ends in a sparse factorization (ADMM, NSN-AC, PROX), with
+/// their Siconos defaults.
+fn factorizing_methods() -> [(&'static str, fc3d_core::Method); 3] {
+    use fc3d_core::{AdmmOptions, NsnFormulation, NsnOptions, ProxOptions};
+    [
+        ("ADMM", AdmmOptions::default().into()),
+        (
+            "NSN-AC",
+            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
+        ),
+        ("PROX", ProxOptions::default().into()),
+    ]
+}
+
 #[test]
 fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
     // One pile of 5000 contacts: the symbolic analysis of W + rho I (and of NSN's Newton matrix,
@@ -215,7 +229,6 @@ fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
     // numeric factorization measured 2.4 s (release, loaded machine). With a budget of 300 ms
     // ADMM, NSN and PROX stop out of time before their first factorization, with r as it came.
     use fc3d_core::scenes::{sphere_piles, PileSpec};
-    use fc3d_core::{AdmmOptions, NsnFormulation, NsnOptions, ProxOptions};
     let p = sphere_piles(&PileSpec {
         contacts: 5000,
         piles: 1,
@@ -223,15 +236,7 @@ fn a_factorization_predicted_to_end_past_the_deadline_is_not_started() {
     })
     .unwrap();
     let n = p.size();
-    let methods: [(&str, fc3d_core::Method); 3] = [
-        ("ADMM", AdmmOptions::default().into()),
-        (
-            "NSN-AC",
-            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
-        ),
-        ("PROX", ProxOptions::default().into()),
-    ];
-    for (name, method) in methods {
+    for (name, method) in factorizing_methods() {
         let config = SolverConfig::new(method)
             .with_tolerance(1e-8)
             .with_time_budget(Some(Duration::from_millis(300)));
@@ -266,7 +271,6 @@ fn a_set_up_predicted_to_end_past_the_deadline_is_not_started() {
     // time spent is the budget's check and one product with W (u = W r + q for r as it came),
     // not the 0.3-1.4 s of an uninterruptible set-up (the former prediction, 0.17 s, started it).
     use fc3d_core::scenes::{sphere_piles, PileSpec};
-    use fc3d_core::{AdmmOptions, NsnFormulation, NsnOptions, ProxOptions};
     let p = sphere_piles(&PileSpec {
         contacts: 10_000,
         piles: 4,
@@ -275,15 +279,7 @@ fn a_set_up_predicted_to_end_past_the_deadline_is_not_started() {
     .unwrap();
     let n = p.size();
     let budget = Duration::from_millis(200);
-    let methods: [(&str, fc3d_core::Method); 3] = [
-        ("ADMM", AdmmOptions::default().into()),
-        (
-            "NSN-AC",
-            NsnOptions::new(NsnFormulation::AlartCurnier).into(),
-        ),
-        ("PROX", ProxOptions::default().into()),
-    ];
-    for (name, method) in methods {
+    for (name, method) in factorizing_methods() {
         let config = SolverConfig::new(method)
             .with_tolerance(1e-8)
             .with_time_budget(Some(budget));
